@@ -1,0 +1,57 @@
+// apps/layers/main.cpp -- entry point of the `layers` CLI: global flags,
+// verb dispatch and the mapping of errors to exit codes
+// (0 ok, 1 failure or bad input, 2 bad usage).
+#include <spdlog/spdlog.h>
+
+#include <iostream>
+#include <map>
+
+#include "layers/core/error.h"
+#include "layers/core/log.h"
+#include "verbs.h"
+
+int main(int argc, char** argv) {
+  using namespace layers;
+  CLI::App app{
+      "layers: generate multi-layered garment datasets, train and compare learned garment "
+      "simulators.\nExit codes: 0 success, 1 failure (bad input, failed validation), 2 bad usage."};
+  app.require_subcommand(1);
+  app::Global global;
+  app.add_option("--log-level", global.log_level, "trace, debug, info, warn, error, critical or off")
+      ->capture_default_str();
+
+  std::map<CLI::App*, app::VerbRun> verbs;
+  auto add = [&](app::VerbRun (*reg)(CLI::App&, const app::Global&)) {
+    std::size_t before = app.get_subcommands({}).size();
+    app::VerbRun run = reg(app, global);
+    auto subs = app.get_subcommands({});
+    if (subs.size() != before + 1) throw Error("verb registration must add exactly one subcommand");
+    verbs[subs.back()] = std::move(run);
+  };
+
+  try {
+    add(app::register_config);
+  } catch (const std::exception& e) {
+    std::cerr << "layers: internal error: " << e.what() << "\n";
+    return app::kFailure;
+  }
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    int code = app.exit(e);
+    return code == 0 ? app::kOk : app::kUsage;
+  }
+
+  try {
+    set_log_level(global.log_level);
+    for (auto* sub : app.get_subcommands()) return verbs.at(sub)();
+  } catch (const UsageError& e) {
+    std::cerr << "layers: " << e.what() << "\n";
+    return app::kUsage;
+  } catch (const std::exception& e) {
+    std::cerr << "layers: error: " << e.what() << "\n";
+    return app::kFailure;
+  }
+  return app::kOk;
+}

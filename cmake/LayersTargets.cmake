@@ -1,0 +1,38 @@
+# Helpers shared by every layers target: warnings, the layers::<name> alias,
+# and the plugin convention (a shared library in bin/plugins named
+# liblayers_plugin_<name>.so that links layers::zoo).
+
+function(layers_warnings target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wno-unused-parameter)
+  if(LAYERS_WARNINGS_AS_ERRORS)
+    target_compile_options(${target} PRIVATE -Werror)
+  endif()
+endfunction()
+
+# layers_library(<name> SOURCES ... DEPS ... [PRIVATE_DEPS ...])
+# Builds shared library layers_<name> with public headers in
+# libs/<name>/include, aliased as layers::<name>.
+function(layers_library name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;PRIVATE_DEPS" ${ARGN})
+  add_library(layers_${name} SHARED ${ARG_SOURCES})
+  add_library(layers::${name} ALIAS layers_${name})
+  target_include_directories(layers_${name} PUBLIC
+    $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>)
+  target_link_libraries(layers_${name} PUBLIC ${ARG_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
+  layers_warnings(layers_${name})
+endfunction()
+
+# layers_plugin(<name> SOURCES ... [OUTPUT_DIR dir] [DEPS ...])
+function(layers_plugin name)
+  cmake_parse_arguments(ARG "" "OUTPUT_DIR" "SOURCES;DEPS" ${ARGN})
+  if(NOT ARG_OUTPUT_DIR)
+    set(ARG_OUTPUT_DIR ${LAYERS_PLUGIN_OUTPUT_DIRECTORY})
+  endif()
+  add_library(layers_plugin_${name} MODULE ${ARG_SOURCES})
+  target_link_libraries(layers_plugin_${name} PRIVATE layers::zoo ${ARG_DEPS})
+  set_target_properties(layers_plugin_${name} PROPERTIES
+    LIBRARY_OUTPUT_DIRECTORY ${ARG_OUTPUT_DIR}
+    PREFIX "lib"
+    BUILD_RPATH "${CMAKE_BINARY_DIR}/lib")
+  layers_warnings(layers_plugin_${name})
+endfunction()

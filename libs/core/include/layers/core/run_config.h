@@ -1,0 +1,27 @@
+// layers/core/run_config.h -- the `run:` section shared by every config
+// (seed, threads, device): how a run executes, not what it computes.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "layers/core/config.h"
+
+namespace layers {
+
+struct RunConfig {
+  std::uint64_t seed = 0;
+  int threads = 2;             // intra-op threads (torch/BLAS); 0 = all cores
+  std::string device = "cpu";  // cpu or cuda
+  std::string output = "runs"; // where runs write checkpoints, metrics, reports
+
+  template <class V>
+  void visit(V& v) {
+    v("seed", seed, cfg::opt().help("random seed of the whole run"));
+    v("threads", threads, cfg::opt().range(0, 256).help("intra-op threads; 0 = all cores"));
+    v("device", device, cfg::opt().choices({"cpu", "cuda"}));
+    v("output", output, cfg::opt().help("output folder"));
+  }
+};
+
+}  // namespace layers

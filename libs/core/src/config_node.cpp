@@ -1,0 +1,238 @@
+// Parsing, include resolution, merging, --set overrides and emission of the
+// configuration tree (see config_node.h).
+#include "layers/core/config_node.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "layers/core/error.h"
+
+namespace fs = std::filesystem;
+
+namespace layers::cfg {
+
+const Node* Node::find(const std::string& key) const {
+  for (const auto& [k, v] : map)
+    if (k == key) return &v;
+  return nullptr;
+}
+
+Node* Node::find(const std::string& key) {
+  for (auto& [k, v] : map)
+    if (k == key) return &v;
+  return nullptr;
+}
+
+Node& Node::child(const std::string& key) {
+  if (Node* existing = find(key)) return *existing;
+  if (kind == Kind::Null) kind = Kind::Map;
+  map.emplace_back(key, Node{});
+  Node& added = map.back().second;
+  added.file = file;
+  added.line = line;
+  return added;
+}
+
+std::string Node::where() const {
+  std::string out = file.empty() ? std::string("<config>") : file;
+  if (line > 0) out += ":" + std::to_string(line);
+  return out;
+}
+
+std::string Node::kind_name() const {
+  switch (kind) {
+    case Kind::Null: return "nothing";
+    case Kind::Scalar: return "a scalar";
+    case Kind::Map: return "a mapping";
+    case Kind::Seq: return "a list";
+  }
+  return "?";
+}
+
+namespace {
+
+Node convert(const YAML::Node& y, const std::string& name) {
+  Node out;
+  out.file = name;
+  out.line = y.Mark().line >= 0 ? y.Mark().line + 1 : 0;
+  switch (y.Type()) {
+    case YAML::NodeType::Undefined:
+    case YAML::NodeType::Null:
+      out.kind = Node::Kind::Null;
+      break;
+    case YAML::NodeType::Scalar:
+      out.kind = Node::Kind::Scalar;
+      out.scalar = y.Scalar();
+      break;
+    case YAML::NodeType::Sequence:
+      out.kind = Node::Kind::Seq;
+      for (const auto& item : y) out.seq.push_back(convert(item, name));
+      break;
+    case YAML::NodeType::Map:
+      out.kind = Node::Kind::Map;
+      for (const auto& kv : y) {
+        std::string key = kv.first.as<std::string>();
+        if (out.find(key))
+          throw InputError::message(name + ":" + std::to_string(kv.first.Mark().line + 1), key,
+                                    "duplicate key");
+        out.map.emplace_back(key, convert(kv.second, name));
+      }
+      break;
+  }
+  return out;
+}
+
+Node load_recursive(const fs::path& path, std::vector<std::string>& stack) {
+  std::string name = path.string();
+  std::error_code ec;
+  fs::path canonical = fs::weakly_canonical(path, ec);
+  std::string key = ec ? name : canonical.string();
+  for (const auto& open : stack)
+    if (open == key) throw InputError::message(name, "include", "include cycle through " + stack.front());
+  std::ifstream in(path);
+  if (!in) throw InputError::message(name, "", "cannot open config file");
+  std::stringstream text;
+  text << in.rdbuf();
+  Node own = parse(text.str(), name);
+  if (own.kind == Node::Kind::Null) {
+    own.kind = Node::Kind::Map;
+  } else if (own.kind != Node::Kind::Map) {
+    throw InputError(own.where(), "<top level>", "a mapping of keys", own.kind_name());
+  }
+
+  const Node* include = own.find("include");
+  if (!include) return own;
+
+  std::vector<const Node*> paths;
+  if (include->kind == Node::Kind::Scalar) {
+    paths.push_back(include);
+  } else if (include->kind == Node::Kind::Seq) {
+    for (const auto& p : include->seq) {
+      if (p.kind != Node::Kind::Scalar)
+        throw InputError(p.where(), "include", "a file path", p.kind_name());
+      paths.push_back(&p);
+    }
+  } else {
+    throw InputError(include->where(), "include", "a file path or a list of paths", include->kind_name());
+  }
+
+  stack.push_back(key);
+  Node result;
+  result.kind = Node::Kind::Map;
+  result.file = name;
+  for (const Node* p : paths) {
+    fs::path target = fs::path(p->scalar);
+    if (target.is_relative()) target = path.parent_path() / target;
+    if (!fs::exists(target))
+      throw InputError(p->where(), "include", "an existing file", "'" + target.string() + "'");
+    merge(result, load_recursive(target, stack));
+  }
+  stack.pop_back();
+  Node rest = own;
+  rest.map.erase(std::remove_if(rest.map.begin(), rest.map.end(),
+                                [](const auto& kv) { return kv.first == "include"; }),
+                 rest.map.end());
+  merge(result, rest);
+  return result;
+}
+
+void emit(YAML::Emitter& out, const Node& node) {
+  switch (node.kind) {
+    case Node::Kind::Null: out << YAML::Null; break;
+    case Node::Kind::Scalar: out << node.scalar; break;
+    case Node::Kind::Seq:
+      out << YAML::BeginSeq;
+      for (const auto& item : node.seq) emit(out, item);
+      out << YAML::EndSeq;
+      break;
+    case Node::Kind::Map:
+      out << YAML::BeginMap;
+      for (const auto& [k, v] : node.map) {
+        out << YAML::Key << k << YAML::Value;
+        emit(out, v);
+      }
+      out << YAML::EndMap;
+      break;
+  }
+}
+
+}  // namespace
+
+Node parse(const std::string& text, const std::string& name) {
+  try {
+    return convert(YAML::Load(text), name);
+  } catch (const YAML::Exception& e) {
+    std::string where = name;
+    if (e.mark.line >= 0)
+      where += ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1);
+    throw InputError::message(where, "", "malformed YAML: " + e.msg);
+  }
+}
+
+Node load_file(const std::string& path) {
+  std::vector<std::string> stack;
+  return load_recursive(fs::path(path), stack);
+}
+
+void merge(Node& base, const Node& over) {
+  if (base.kind == Node::Kind::Map && over.kind == Node::Kind::Map) {
+    for (const auto& [k, v] : over.map) {
+      if (Node* existing = base.find(k))
+        merge(*existing, v);
+      else
+        base.map.emplace_back(k, v);
+    }
+    return;
+  }
+  base = over;
+}
+
+void apply_set(Node& root, const std::string& assignment) {
+  const std::string source = "--set " + assignment;
+  auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InputError("--set", "'" + assignment + "'", "key.path=value", "no '=' or empty key");
+  std::string path = assignment.substr(0, eq);
+  Node value = parse(assignment.substr(eq + 1), "--set");
+  // Values set from the command line point at the command line.
+  std::vector<Node*> todo{&value};
+  while (!todo.empty()) {
+    Node* n = todo.back();
+    todo.pop_back();
+    n->file = source;
+    n->line = 0;
+    for (auto& kv : n->map) todo.push_back(&kv.second);
+    for (auto& s : n->seq) todo.push_back(&s);
+  }
+  Node* at = &root;
+  std::size_t begin = 0;
+  while (true) {
+    std::size_t dot = path.find('.', begin);
+    std::string key = path.substr(begin, dot == std::string::npos ? std::string::npos : dot - begin);
+    if (key.empty()) throw InputError("--set", "'" + assignment + "'", "a key path like model.width", "an empty key");
+    if (at->kind != Node::Kind::Map && at->kind != Node::Kind::Null)
+      throw InputError("--set", path.substr(0, begin ? begin - 1 : 0), "a mapping to set '" + key + "' in",
+                       at->kind_name() + " (from " + at->where() + ")");
+    if (at->kind == Node::Kind::Null) {
+      at->kind = Node::Kind::Map;
+      at->file = source;
+    }
+    at = &at->child(key);
+    if (dot == std::string::npos) break;
+    begin = dot + 1;
+  }
+  merge(*at, value);
+}
+
+std::string to_yaml(const Node& node) {
+  YAML::Emitter out;
+  emit(out, node);
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace layers::cfg

@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# scripts/setup.sh -- install every dependency of layers from Debian
+# packages and build it (Release, Ninja, ccache) into ./build.
+# Idempotent: installs only what is missing, rebuilds incrementally.
+# Works as root or through sudo. Set LAYERS_BUILD_DIR to build elsewhere.
+set -euo pipefail
+
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${LAYERS_BUILD_DIR:-$root/build}"
+
+packages=(
+  build-essential cmake ninja-build ccache pkg-config
+  libtorch-dev libopenblas0-pthread
+  libeigen3-dev libhdf5-dev libnanoflann-dev libspdlog-dev libyaml-cpp-dev libcli11-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+)
+
+if [ "$(id -u)" -eq 0 ]; then sudo=""; else sudo="sudo"; fi
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+else
+  echo "setup: all Debian packages present"
+fi
+
+# LibTorch from Debian falls back to the reference BLAS unless an optimised
+# one is selected (8x slower matmuls): prefer OpenBLAS (pthread build).
+blas=/usr/lib/x86_64-linux-gnu/openblas-pthread/libblas.so.3
+if [ -e "$blas" ] && command -v update-alternatives >/dev/null; then
+  $sudo update-alternatives --set libblas.so.3-x86_64-linux-gnu "$blas" >/dev/null 2>&1 || true
+  lapack=/usr/lib/x86_64-linux-gnu/openblas-pthread/liblapack.so.3
+  [ -e "$lapack" ] && $sudo update-alternatives --set liblapack.so.3-x86_64-linux-gnu "$lapack" >/dev/null 2>&1 || true
+fi
+
+jobs="${LAYERS_JOBS:-$(nproc)}"
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release
+cmake --build "$build" -j "$jobs"
+echo "setup: built $build/bin/layers"
