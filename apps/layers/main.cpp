@@ -30,6 +30,11 @@ int main(int argc, char** argv) {
   };
 
   try {
+    add(app::register_info);
+    add(app::register_validate);
+    add(app::register_stats);
+    add(app::register_export);
+    add(app::register_models);
     add(app::register_config);
   } catch (const std::exception& e) {
     std::cerr << "layers: internal error: " << e.what() << "\n";

@@ -6,6 +6,8 @@
 
 #include "config_loading.h"
 #include "layers/core/atomic_file.h"
+#include "layers/zoo/model_config.h"
+#include "plugins.h"
 #include "verbs.h"
 
 namespace layers::app {
@@ -21,6 +23,9 @@ VerbRun register_config(CLI::App& app, const Global&) {
   cmd->add_option("--out", args->out, "also write the resolved config to this file");
   return [args]() {
     LoadedConfig loaded = load_config(args->config);
+    // A model section is checked by creating the model: its name must be
+    // registered and the plugin must accept its parameters.
+    if (loaded.typed.model.kind != cfg::Node::Kind::Null) zoo::create_model(load_plugins().registry, loaded.typed.model);
     std::string text = cfg::to_yaml(loaded.resolved);
     std::cout << text;
     if (!args->out.empty()) write_text_atomic(args->out, text);

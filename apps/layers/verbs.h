@@ -22,6 +22,11 @@ struct Global {
 using VerbRun = std::function<int()>;
 
 VerbRun register_config(CLI::App& app, const Global& global);
+VerbRun register_export(CLI::App& app, const Global& global);
+VerbRun register_models(CLI::App& app, const Global& global);
+VerbRun register_info(CLI::App& app, const Global& global);
+VerbRun register_stats(CLI::App& app, const Global& global);
+VerbRun register_validate(CLI::App& app, const Global& global);
 
 // Exit codes of the CLI (README "Exit codes").
 enum Exit : int { kOk = 0, kFailure = 1, kUsage = 2 };

@@ -2,7 +2,9 @@
 // + KDTreeSingleIndexAdaptor, squared L2 distances inside).
 #include "layers/geometry/nearest.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 
 #include <nanoflann.hpp>
@@ -96,7 +98,7 @@ std::vector<Neighbour> PointIndex::within(const Eigen::RowVector3f& query, float
   return out;
 }
 
-Eigen::VectorXi PointIndex::nearest(const Points& queries, Eigen::VectorXf* distances) const {
+Eigen::VectorXi PointIndex::nearest_all(const Points& queries, Eigen::VectorXf* distances) const {
   Eigen::VectorXi idx(queries.rows());
   if (distances) distances->resize(queries.rows());
   for (Eigen::Index q = 0; q < queries.rows(); ++q) {

@@ -2,6 +2,8 @@
 // meshes with tiny faces keep their precision.
 #include "layers/geometry/normals.h"
 
+#include <Eigen/Geometry>
+
 namespace layers::geometry {
 namespace {
 

@@ -36,11 +36,11 @@ class PointIndex {
   Neighbour nearest(const Eigen::RowVector3f& query) const;
   // Up to k closest points, closest first (fewer if the set is smaller).
   std::vector<Neighbour> knn(const Eigen::RowVector3f& query, int k) const;
-  // All points with distance <= radius, closest first.
+  // All points with distance < radius (strictly), closest first.
   std::vector<Neighbour> within(const Eigen::RowVector3f& query, float radius) const;
-  // nearest() for every row of `queries`: indices (-1 where none), and the
+  // nearest() for each row of `queries`: indices (-1 where none), and the
   // distances if `distances` is given.
-  Eigen::VectorXi nearest(const Points& queries, Eigen::VectorXf* distances = nullptr) const;
+  Eigen::VectorXi nearest_all(const Points& queries, Eigen::VectorXf* distances = nullptr) const;
 
  private:
   struct Impl;

@@ -1,0 +1,33 @@
+// `layers export`: a sequence's meshes as OBJ (one file per frame) or PC2
+// (one point cache per mesh) for Blender.
+#include <cstdio>
+
+#include "frame_range.h"
+#include "layers/data/dataset.h"
+#include "layers/data/export.h"
+#include "verbs.h"
+
+namespace layers::app {
+
+VerbRun register_export(CLI::App& app, const Global&) {
+  auto* cmd = app.add_subcommand("export", "Export a sequence's body and garments as OBJ or PC2");
+  struct Args {
+    std::string path, sequence, format = "obj", frames = ":", out = "export";
+  };
+  auto args = std::make_shared<Args>();
+  cmd->add_option("dataset", args->path, "dataset folder or shard .h5 file")->required();
+  cmd->add_option("sequence", args->sequence, "sequence id")->required();
+  cmd->add_option("--format", args->format, "obj or pc2")->capture_default_str();
+  cmd->add_option("--frames", args->frames, "frames a:b (b excluded), a:, :b or a single frame")->capture_default_str();
+  cmd->add_option("--out", args->out, "output folder")->capture_default_str();
+  return [args]() {
+    auto format = data::parse_export_format(args->format);
+    FrameRange range = parse_frame_range(args->frames);
+    data::Dataset ds = data::Dataset::open(args->path);
+    auto files = data::export_sequence(ds, args->sequence, format, range.first, range.last, args->out);
+    std::printf("wrote %zu files to %s\n", files.size(), args->out.c_str());
+    return static_cast<int>(kOk);
+  };
+}
+
+}  // namespace layers::app

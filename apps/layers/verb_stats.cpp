@@ -1,0 +1,52 @@
+// `layers stats`: normalisation statistics of a dataset from its train
+// split, written to <dataset>/stats.h5 (or --out) and printed.
+#include <cstdio>
+#include <filesystem>
+
+#include "layers/data/dataset.h"
+#include "layers/data/stats.h"
+#include "verbs.h"
+
+namespace layers::app {
+namespace {
+void print_moments(const char* name, const data::Moments& m) {
+  std::printf("  %-22s mean % .6f % .6f % .6f   std %.6f %.6f %.6f\n", name, m.mean[0], m.mean[1], m.mean[2],
+              m.std[0], m.std[1], m.std[2]);
+}
+}  // namespace
+
+VerbRun register_stats(CLI::App& app, const Global&) {
+  auto* cmd = app.add_subcommand("stats", "Compute normalisation statistics (train split only) into stats.h5");
+  struct Args {
+    std::string path, out, split = "train";
+    bool dry_run = false;
+  };
+  auto args = std::make_shared<Args>();
+  cmd->add_option("dataset", args->path, "dataset folder")->required();
+  cmd->add_option("--split", args->split, "split to compute from")->capture_default_str();
+  cmd->add_option("--out", args->out, "output file (default <dataset>/stats.h5)");
+  cmd->add_flag("--print-only", args->dry_run, "print the statistics without writing them");
+  return [args]() {
+    data::Dataset ds = data::Dataset::open(args->path);
+    data::StatsOptions options;
+    options.split = args->split;
+    data::NormStats stats = data::compute_stats(ds, options);
+    std::printf("statistics of split '%s': %lld sequences, %lld frames (root-relative, per frame)\n",
+                stats.split.c_str(), static_cast<long long>(stats.n_sequences),
+                static_cast<long long>(stats.n_frames));
+    print_moments("garment position (m)", stats.garment_position);
+    print_moments("garment velocity", stats.garment_velocity);
+    print_moments("garment acceleration", stats.garment_acceleration);
+    print_moments("body position (m)", stats.body_position);
+    print_moments("body velocity", stats.body_velocity);
+    print_moments("body acceleration", stats.body_acceleration);
+    if (!args->dry_run) {
+      std::string out = args->out.empty() ? (std::filesystem::path(args->path) / "stats.h5").string() : args->out;
+      data::write_stats(out, stats);
+      std::printf("wrote %s\n", out.c_str());
+    }
+    return static_cast<int>(kOk);
+  };
+}
+
+}  // namespace layers::app

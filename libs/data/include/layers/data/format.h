@@ -1,0 +1,69 @@
+// layers/data/format.h -- the LAYERS-H5 format, version 1, as data.
+//
+// Constants of the root attributes and the schema of every array a
+// sequence holds (DESIGN.md section 2). The writer, the reader's index and
+// the validator all check files against these tables, so the format is
+// written down once. Dimension symbols in shapes:
+//   T  frames            Vb body vertices    Fb body faces   J joints
+//   V  garment vertices  F  garment faces    U  garment UV coordinates
+// and digits are fixed sizes. Layout of one shard:
+//   /                 attrs format="layers-h5", format_version=1, fps=30, units="m", up="y"
+//   /seq/<id>/        attrs n_frames (int), motion (string), seed (uint64),
+//                     tags (string array), and one float64 attr per body
+//                     shape parameter (any other numeric attribute)
+//   /seq/<id>/body/...        body arrays below
+//   /seq/<id>/wind/...        wind arrays below
+//   /seq/<id>/garments/<k>/   k = 0, 1, ...; attrs name, type, layer (0 inner,
+//                     1 outer) and one float64 attr per garment attribute
+//                     (mass, tension, ...: any other numeric attribute)
+// positions (and joints) are chunked by frame: chunk [1, V, 3].
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace layers::data {
+
+inline constexpr const char* kFormatName = "layers-h5";
+inline constexpr std::int64_t kFormatVersion = 1;
+inline constexpr std::int64_t kFps = 30;
+inline constexpr const char* kUnits = "m";
+inline constexpr const char* kUp = "y";
+inline constexpr double kMaxWindStrength = 400.0;
+// Allowed deviation of a quaternion's norm from 1.
+inline constexpr double kQuaternionTolerance = 1e-3;
+
+enum class DType { Float32, Float64, Int32, String };
+const char* dtype_name(DType type);
+
+// One array of the format: its path relative to its group (the sequence
+// group for body/ and wind/, a garment group for garment arrays), its
+// element type and its shape in dimension symbols.
+struct ArraySpec {
+  std::string path;
+  DType dtype;
+  std::vector<std::string> dims;
+  bool per_frame() const { return !dims.empty() && dims.front() == "T"; }
+  // "[T,Vb,3]"
+  std::string shape_text() const;
+};
+
+const std::vector<ArraySpec>& body_arrays();     // body/faces, body/positions, ...
+const std::vector<ArraySpec>& wind_arrays();     // wind/rotation, wind/strength
+const std::vector<ArraySpec>& garment_arrays();  // faces, rest, uv, uv_faces, panel, positions
+// Looks an array up by path in the three tables; throws layers::Error if unknown.
+const ArraySpec& array_spec(const std::string& path);
+
+// Garment types of DESIGN.md section 2 and the layer each belongs to.
+const std::vector<std::string>& garment_types();
+bool is_garment_type(const std::string& type);
+// 1 for outer types (jacket, jacket_hood), 0 for inner ones.
+int garment_type_layer(const std::string& type);
+
+// Attribute names with a fixed meaning (never taken as shape parameters or
+// garment attribute values).
+const std::vector<std::string>& sequence_reserved_attrs();  // n_frames, motion, seed, tags
+const std::vector<std::string>& garment_reserved_attrs();   // name, type, layer
+
+}  // namespace layers::data

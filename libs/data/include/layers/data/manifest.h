@@ -1,0 +1,33 @@
+// layers/data/manifest.h -- dataset.yaml: what a dataset folder holds.
+//
+//   format: layers-h5
+//   format_version: 1
+//   name: <name>
+//   seed: <generator seed>
+//   sequences_per_shard: <n>
+//   counts: {sequences: n, frames: n, garments: n, shards: n}
+//   generator: <the generator config, as a YAML mapping; optional>
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace layers::data {
+
+struct DatasetManifest {
+  std::string name;
+  std::uint64_t seed = 0;
+  std::int64_t format_version = 1;
+  std::int64_t sequences_per_shard = 0;
+  std::int64_t n_sequences = 0, n_frames = 0, n_garments = 0, n_shards = 0;
+  std::string generator_yaml;  // YAML text of the generator config; "" if none
+};
+
+std::string manifest_to_yaml(const DatasetManifest& manifest);
+// Throws InputError (with file:line) on malformed YAML, missing keys or
+// an unsupported format/version.
+DatasetManifest read_manifest(const std::string& path);
+// Atomic write. Throws InputError if generator_yaml is not valid YAML.
+void write_manifest(const std::string& path, const DatasetManifest& manifest);
+
+}  // namespace layers::data

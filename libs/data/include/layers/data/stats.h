@@ -1,0 +1,54 @@
+// layers/data/stats.h -- normalisation statistics (stats.h5).
+//
+// Mean and standard deviation per x/y/z component of garment and body
+// vertex positions, velocities and accelerations, all relative to the body
+// root of the same frame (p_rel(t) = p(t) - root(t)); velocity and
+// acceleration are per-frame differences (dt = 1 frame):
+//   v(t) = p_rel(t) - p_rel(t-1),  a(t) = v(t) - v(t-1).
+// Computed from one split (train) only, streaming over frame blocks with
+// double accumulators (pairwise mean/M2 merging). Standard deviations are
+// population ones, floored at std_floor so normalising never divides by 0.
+//
+// stats.h5 layout (all float64):
+//   /                         attrs format="layers-stats", format_version=1,
+//                             split, n_sequences, n_frames, std_floor
+//   /garment/position/mean [3], /garment/position/std [3], attr count
+//   /garment/velocity/...,  /garment/acceleration/...
+//   /body/position/..., /body/velocity/..., /body/acceleration/...
+// `count` is the number of xyz samples that went into the moments.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+namespace layers::data {
+
+class Dataset;
+
+struct Moments {
+  std::array<double, 3> mean{0, 0, 0};
+  std::array<double, 3> std{1, 1, 1};
+  std::int64_t count = 0;
+};
+
+struct NormStats {
+  Moments garment_position, garment_velocity, garment_acceleration;
+  Moments body_position, body_velocity, body_acceleration;
+  std::string split = "train";
+  std::int64_t n_sequences = 0, n_frames = 0;
+  double std_floor = 1e-6;
+};
+
+struct StatsOptions {
+  std::string split = "train";
+  double std_floor = 1e-6;
+};
+
+// Throws InputError if the split is missing or empty, a sequence has
+// fewer than 3 frames worth of data overall, or a value is not finite.
+NormStats compute_stats(const Dataset& dataset, const StatsOptions& options = {});
+void write_stats(const std::string& path, const NormStats& stats);  // atomic
+NormStats read_stats(const std::string& path);
+
+}  // namespace layers::data

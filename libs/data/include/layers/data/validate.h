@@ -1,0 +1,26 @@
+// layers/data/validate.h -- checking a dataset folder or shard file.
+//
+// validate_dataset reports every problem it finds, not just the first:
+// files that cannot be opened (not HDF5, truncated), missing or wrong root
+// attributes, missing datasets, wrong dtypes, ranks and shapes,
+// inconsistent sizes, non-finite values (streamed frame block by frame
+// block), indices out of range, wind outside 0..400 or non-unit
+// quaternions, malformed or missing dataset.yaml / splits.yaml, splits
+// naming unknown sequences, duplicate ids across shards.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace layers::data {
+
+struct Problem {
+  std::string file;     // file path (with :line for YAML files)
+  std::string object;   // HDF5 object path or YAML key; may be empty
+  std::string message;  // what is wrong: "expected ..., got ..." or free text
+  std::string to_string() const;  // "file: object: message"
+};
+
+std::vector<Problem> validate_dataset(const std::string& path);
+
+}  // namespace layers::data

@@ -1,0 +1,113 @@
+// Exporting sequences to OBJ frames or PC2 caches (see export.h).
+#include "layers/data/export.h"
+
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <set>
+
+#include "layers/core/error.h"
+#include "layers/data/dataset.h"
+#include "layers/data/obj.h"
+#include "layers/data/pc2.h"
+
+namespace layers::data {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string file_safe(const std::string& text) {
+  std::string out;
+  for (char c : text) out += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
+  return out;
+}
+
+// One exported mesh: its file-safe name, topology and where its positions
+// are in a Window (garment < 0: the body).
+struct MeshOut {
+  std::string name;
+  int garment;
+  ObjMesh topology;  // faces (+ uv) only; positions filled per frame
+  const std::vector<float>& positions(const Window& w) const {
+    return garment < 0 ? w.body.positions : w.garments[static_cast<std::size_t>(garment)];
+  }
+};
+
+std::vector<MeshOut> meshes_of(const SequenceStatic& statics) {
+  std::vector<MeshOut> meshes;
+  std::set<std::string> used{"body"};
+  meshes.push_back(MeshOut{"body", -1, ObjMesh{{}, statics.body.faces, {}, {}}});
+  for (std::size_t k = 0; k < statics.garments.size(); ++k) {
+    const GarmentStatic& g = statics.garments[k];
+    std::string name = g.name.empty() ? "garment" + std::to_string(k) : file_safe(g.name);
+    if (!used.insert(name).second) name += "_" + std::to_string(k);
+    used.insert(name);
+    meshes.push_back(MeshOut{name, static_cast<int>(k), ObjMesh{{}, g.faces, g.uv, g.uv_faces}});
+  }
+  return meshes;
+}
+
+std::string frame_text(std::int64_t frame) {
+  char buffer[24];
+  std::snprintf(buffer, sizeof(buffer), "%04lld", static_cast<long long>(frame));
+  return buffer;
+}
+
+}  // namespace
+
+ExportFormat parse_export_format(const std::string& text, const std::string& source) {
+  if (text == "obj") return ExportFormat::Obj;
+  if (text == "pc2") return ExportFormat::Pc2;
+  throw InputError(source, "", "obj or pc2", "'" + text + "'");
+}
+
+std::vector<std::string> export_sequence(const Dataset& dataset, const std::string& id, ExportFormat format,
+                                         std::int64_t first, std::int64_t last, const std::string& out_dir) {
+  const SequenceInfo& info = dataset.info(id);
+  if (last < 0) last = info.n_frames;
+  if (first < 0 || first >= last || last > info.n_frames) {
+    throw InputError(info.shard, "/seq/" + id + " export range",
+                     "[first,last) with 0 <= first < last <= " + std::to_string(info.n_frames),
+                     "[" + std::to_string(first) + "," + std::to_string(last) + ")");
+  }
+  std::error_code ec;
+  fs::create_directories(out_dir, ec);
+  if (!fs::is_directory(out_dir)) throw InputError::message(out_dir, "", "cannot create the output folder: " + ec.message());
+
+  const auto statics = dataset.statics(id);
+  std::vector<MeshOut> meshes = meshes_of(*statics);
+  const std::string prefix = (fs::path(out_dir) / file_safe(id)).string() + "_";
+  std::vector<std::string> written;
+
+  std::vector<std::unique_ptr<Pc2Writer>> caches;
+  if (format == ExportFormat::Pc2) {
+    for (const auto& mesh : meshes) {
+      const auto n_points = static_cast<std::int32_t>((mesh.garment < 0 ? info.body_vertices
+                                                                        : info.garments[static_cast<std::size_t>(mesh.garment)].n_vertices));
+      const Pc2Header header{n_points, static_cast<float>(first), 1.0f, static_cast<std::int32_t>(last - first)};
+      caches.push_back(std::make_unique<Pc2Writer>(prefix + mesh.name + ".pc2", header));
+    }
+  }
+  for (std::int64_t t = first; t < last; ++t) {
+    const Window w = dataset.read_frames(id, t, 1);
+    for (std::size_t m = 0; m < meshes.size(); ++m) {
+      MeshOut& mesh = meshes[m];
+      if (format == ExportFormat::Obj || t == first) {
+        mesh.topology.positions = mesh.positions(w);
+        const std::string path =
+            prefix + mesh.name + (format == ExportFormat::Obj ? "_" + frame_text(t) : std::string()) + ".obj";
+        write_obj(path, mesh.topology);
+        written.push_back(path);
+      }
+      if (format == ExportFormat::Pc2) caches[m]->append(mesh.positions(w).data());
+    }
+  }
+  for (std::size_t m = 0; m < caches.size(); ++m) {
+    caches[m]->commit();
+    written.push_back(prefix + meshes[m].name + ".pc2");
+  }
+  return written;
+}
+
+}  // namespace layers::data

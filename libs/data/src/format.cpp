@@ -1,0 +1,94 @@
+// The LAYERS-H5 schema tables and garment types (see format.h).
+#include "layers/data/format.h"
+
+#include <algorithm>
+
+#include "layers/core/error.h"
+
+namespace layers::data {
+
+const char* dtype_name(DType type) {
+  switch (type) {
+    case DType::Float32:
+      return "float32";
+    case DType::Float64:
+      return "float64";
+    case DType::Int32:
+      return "int32";
+    case DType::String:
+      return "string";
+  }
+  return "?";
+}
+
+std::string ArraySpec::shape_text() const {
+  std::string out = "[";
+  for (std::size_t i = 0; i < dims.size(); ++i) out += (i ? "," : "") + dims[i];
+  return out + "]";
+}
+
+const std::vector<ArraySpec>& body_arrays() {
+  static const std::vector<ArraySpec> specs{
+      {"body/faces", DType::Int32, {"Fb", "3"}},
+      {"body/positions", DType::Float32, {"T", "Vb", "3"}},
+      {"body/root", DType::Float32, {"T", "3"}},
+      {"body/root_rot", DType::Float32, {"T", "4"}},
+      {"body/joints", DType::Float32, {"T", "J", "3", "4"}},
+      {"body/joint_names", DType::String, {"J"}},
+      {"body/joint_parents", DType::Int32, {"J"}},
+      {"body/skin_index", DType::Int32, {"Vb", "4"}},
+      {"body/skin_weight", DType::Float32, {"Vb", "4"}},
+  };
+  return specs;
+}
+
+const std::vector<ArraySpec>& wind_arrays() {
+  static const std::vector<ArraySpec> specs{
+      {"wind/rotation", DType::Float32, {"T", "4"}},
+      {"wind/strength", DType::Float32, {"T"}},
+  };
+  return specs;
+}
+
+const std::vector<ArraySpec>& garment_arrays() {
+  static const std::vector<ArraySpec> specs{
+      {"faces", DType::Int32, {"F", "3"}},        {"rest", DType::Float32, {"V", "3"}},
+      {"uv", DType::Float32, {"U", "2"}},         {"uv_faces", DType::Int32, {"F", "3"}},
+      {"panel", DType::Int32, {"F"}},             {"positions", DType::Float32, {"T", "V", "3"}},
+  };
+  return specs;
+}
+
+const ArraySpec& array_spec(const std::string& path) {
+  for (const auto* table : {&body_arrays(), &wind_arrays(), &garment_arrays()}) {
+    for (const auto& spec : *table) {
+      if (spec.path == path) return spec;
+    }
+  }
+  throw Error("layers-h5 schema: unknown array '" + path + "'");
+}
+
+const std::vector<std::string>& garment_types() {
+  static const std::vector<std::string> types{"jacket", "jacket_hood", "dress", "dress_belt",
+                                              "jumpsuit", "tshirt", "pants", "skirt"};
+  return types;
+}
+
+bool is_garment_type(const std::string& type) {
+  const auto& types = garment_types();
+  return std::find(types.begin(), types.end(), type) != types.end();
+}
+
+int garment_type_layer(const std::string& type) { return type == "jacket" || type == "jacket_hood" ? 1 : 0; }
+
+const std::vector<std::string>& sequence_reserved_attrs() {
+  static const std::vector<std::string> names{"n_frames", "motion", "seed", "tags"};
+  return names;
+}
+
+const std::vector<std::string>& garment_reserved_attrs() {
+  static const std::vector<std::string> names{"name", "type", "layer"};
+  return names;
+}
+
+}  // namespace layers::data

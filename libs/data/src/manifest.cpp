@@ -1,0 +1,76 @@
+// dataset.yaml reading and writing (see manifest.h).
+#include "layers/data/manifest.h"
+
+#include "layers/core/atomic_file.h"
+#include "layers/core/error.h"
+#include "layers/data/format.h"
+#include "yaml_util.h"
+
+namespace layers::data {
+
+std::string manifest_to_yaml(const DatasetManifest& m) {
+  YAML::Emitter out;
+  out << YAML::BeginMap;
+  out << YAML::Key << "format" << YAML::Value << kFormatName;
+  out << YAML::Key << "format_version" << YAML::Value << m.format_version;
+  out << YAML::Key << "name" << YAML::Value << m.name;
+  out << YAML::Key << "seed" << YAML::Value << m.seed;
+  out << YAML::Key << "sequences_per_shard" << YAML::Value << m.sequences_per_shard;
+  out << YAML::Key << "counts" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "sequences" << YAML::Value << m.n_sequences;
+  out << YAML::Key << "frames" << YAML::Value << m.n_frames;
+  out << YAML::Key << "garments" << YAML::Value << m.n_garments;
+  out << YAML::Key << "shards" << YAML::Value << m.n_shards;
+  out << YAML::EndMap;
+  if (!m.generator_yaml.empty()) {
+    out << YAML::Key << "generator" << YAML::Value << parse_yaml_text(m.generator_yaml, "<generator config>");
+  }
+  out << YAML::EndMap;
+  return std::string("# layers dataset manifest (LAYERS-H5)\n") + out.c_str() + "\n";
+}
+
+DatasetManifest read_manifest(const std::string& path) {
+  const YAML::Node root = load_yaml_file(path);
+  if (!root.IsMap()) throw InputError(yaml_where(path, root), "", "a mapping (name, seed, counts, ...)", "something else");
+  DatasetManifest m;
+  auto required = [&](const char* key) {
+    const YAML::Node node = root[key];
+    if (!node) throw InputError(path, key, "a value", "nothing (missing key)");
+    return node;
+  };
+  const auto format = yaml_scalar<std::string>(required("format"), path, "format", "a string");
+  if (format != kFormatName) throw InputError(yaml_where(path, root["format"]), "format", kFormatName, "'" + format + "'");
+  m.format_version = yaml_scalar<std::int64_t>(required("format_version"), path, "format_version", "an integer");
+  if (m.format_version != kFormatVersion) {
+    throw InputError(yaml_where(path, root["format_version"]), "format_version", std::to_string(kFormatVersion),
+                     std::to_string(m.format_version));
+  }
+  m.name = yaml_scalar<std::string>(required("name"), path, "name", "a string");
+  if (root["seed"]) m.seed = yaml_scalar<std::uint64_t>(root["seed"], path, "seed", "a non-negative integer");
+  if (root["sequences_per_shard"]) {
+    m.sequences_per_shard =
+        yaml_scalar<std::int64_t>(root["sequences_per_shard"], path, "sequences_per_shard", "an integer");
+  }
+  if (const YAML::Node counts = root["counts"]) {
+    if (!counts.IsMap()) throw InputError(yaml_where(path, counts), "counts", "a mapping", "something else");
+    const std::pair<const char*, std::int64_t*> fields[] = {{"sequences", &m.n_sequences},
+                                                            {"frames", &m.n_frames},
+                                                            {"garments", &m.n_garments},
+                                                            {"shards", &m.n_shards}};
+    for (const auto& [key, target] : fields) {
+      if (counts[key]) *target = yaml_scalar<std::int64_t>(counts[key], path, std::string("counts.") + key, "an integer");
+    }
+  }
+  if (const YAML::Node generator = root["generator"]) {
+    YAML::Emitter out;
+    out << generator;
+    m.generator_yaml = out.c_str();
+  }
+  return m;
+}
+
+void write_manifest(const std::string& path, const DatasetManifest& manifest) {
+  write_text_atomic(path, manifest_to_yaml(manifest));
+}
+
+}  // namespace layers::data

@@ -1,0 +1,106 @@
+// In-memory consistency checks of a SequenceData before it is written
+// (see check_sequence in sequence.h).
+#include <limits>
+
+#include "dims.h"
+#include "layers/core/error.h"
+#include "layers/data/format.h"
+#include "layers/data/sequence.h"
+#include "sequence_rules.h"
+
+namespace layers::data {
+namespace {
+
+std::size_t body_array_size(const SequenceData& seq, const std::string& path) {
+  const BodyData& b = seq.body;
+  if (path == "body/faces") return b.faces.size();
+  if (path == "body/positions") return b.positions.size();
+  if (path == "body/root") return b.root.size();
+  if (path == "body/root_rot") return b.root_rot.size();
+  if (path == "body/joints") return b.joints.size();
+  if (path == "body/joint_names") return b.joint_names.size();
+  if (path == "body/joint_parents") return b.joint_parents.size();
+  if (path == "body/skin_index") return b.skin_index.size();
+  if (path == "body/skin_weight") return b.skin_weight.size();
+  if (path == "wind/rotation") return seq.wind.rotation.size();
+  if (path == "wind/strength") return seq.wind.strength.size();
+  throw Error("check_sequence: no member for " + path);
+}
+
+std::size_t garment_array_size(const GarmentData& g, const std::string& path) {
+  if (path == "faces") return g.faces.size();
+  if (path == "rest") return g.rest.size();
+  if (path == "uv") return g.uv.size();
+  if (path == "uv_faces") return g.uv_faces.size();
+  if (path == "panel") return g.panel.size();
+  if (path == "positions") return g.positions.size();
+  throw Error("check_sequence: no member for garment " + path);
+}
+
+class Checker {
+ public:
+  Checker(const std::string& file) : file_(file) {}
+
+  // Sizes of one flat array against its spec; binds its symbols.
+  void size(DimBinder& dims, const ArraySpec& spec, std::size_t size, const std::string& object) const {
+    std::string message;
+    const auto got = dims.infer(spec, size, message);
+    if (!got) throw InputError::message(file_, object, message);
+    if (auto mismatch = dims.match(spec, *got, object)) throw InputError::message(file_, object, *mismatch);
+  }
+
+  void rule(const std::optional<std::string>& problem, const std::string& object) const {
+    if (problem) throw InputError::message(file_, object, *problem);
+  }
+
+ private:
+  const std::string& file_;
+};
+
+}  // namespace
+
+void check_sequence(const SequenceData& seq, const std::string& file) {
+  const Checker check(file);
+  const std::string base = "/seq/" + seq.id;
+  check.rule(check_sequence_id(seq.id), base);
+  if (seq.n_frames < 1) throw InputError(file, base + " n_frames", "at least 1 frame", std::to_string(seq.n_frames));
+  for (const auto& [name, value] : seq.shape) {
+    if (name.empty() || is_reserved(name, sequence_reserved_attrs())) {
+      throw InputError(file, base + " shape parameter", "a name other than n_frames, motion, seed, tags",
+                       "'" + name + "'");
+    }
+  }
+
+  DimBinder dims;
+  dims.bind("T", seq.n_frames, base + " n_frames");
+  for (const auto* table : {&body_arrays(), &wind_arrays()}) {
+    for (const auto& spec : *table) check.size(dims, spec, body_array_size(seq, spec.path), base + "/" + spec.path);
+  }
+  const auto n_body = *dims.get("Vb");
+  const auto n_joints = *dims.get("J");
+  check.rule(check_index_range(seq.body.faces, 0, n_body, 3), base + "/body/faces");
+  check.rule(check_index_range(seq.body.skin_index, 0, n_joints, 4), base + "/body/skin_index");
+  check.rule(check_joint_parents(seq.body.joint_parents), base + "/body/joint_parents");
+
+  for (std::size_t k = 0; k < seq.garments.size(); ++k) {
+    const GarmentData& g = seq.garments[k];
+    const std::string gbase = base + "/garments/" + std::to_string(k);
+    check.rule(check_garment_type(g.type), gbase + " type");
+    check.rule(check_garment_layer(g.layer), gbase + " layer");
+    for (const auto& [name, value] : g.attributes) {
+      if (name.empty() || is_reserved(name, garment_reserved_attrs())) {
+        throw InputError(file, gbase + " attribute", "a name other than name, type, layer", "'" + name + "'");
+      }
+    }
+    DimBinder gdims;
+    gdims.bind("T", seq.n_frames, base + " n_frames");
+    for (const auto& spec : garment_arrays()) {
+      check.size(gdims, spec, garment_array_size(g, spec.path), gbase + "/" + spec.path);
+    }
+    check.rule(check_index_range(g.faces, 0, *gdims.get("V"), 3), gbase + "/faces");
+    check.rule(check_index_range(g.uv_faces, 0, *gdims.get("U"), 3), gbase + "/uv_faces");
+    check.rule(check_index_range(g.panel, 0, std::numeric_limits<std::int32_t>::max(), 1), gbase + "/panel");
+  }
+}
+
+}  // namespace layers::data

@@ -1,0 +1,53 @@
+// YAML loading with file:line errors (see yaml_util.h).
+#include "yaml_util.h"
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "layers/core/error.h"
+
+namespace layers::data {
+
+std::string yaml_where(const std::string& path, const YAML::Node& node) {
+  const YAML::Mark mark = node.Mark();
+  if (mark.is_null() || mark.line < 0) return path;
+  return path + ":" + std::to_string(mark.line + 1);
+}
+
+YAML::Node parse_yaml_text(const std::string& text, const std::string& name) {
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw InputError::message(name + ":" + std::to_string(e.mark.line + 1), "",
+                              "malformed YAML (column " + std::to_string(e.mark.column + 1) + "): " + e.msg);
+  }
+}
+
+YAML::Node load_yaml_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!std::filesystem::is_regular_file(path) || !in) throw InputError::message(path, "", "cannot read the file (missing?)");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_yaml_text(text.str(), path);
+}
+
+template <class T>
+T yaml_scalar(const YAML::Node& node, const std::string& path, const std::string& key, const char* expected) {
+  if (!node.IsScalar()) {
+    throw InputError(yaml_where(path, node), key, expected, node.IsNull() ? "nothing" : "a list or mapping");
+  }
+  try {
+    return node.as<T>();
+  } catch (const YAML::Exception&) {
+    throw InputError(yaml_where(path, node), key, expected, "'" + node.Scalar() + "'");
+  }
+}
+
+template std::string yaml_scalar<std::string>(const YAML::Node&, const std::string&, const std::string&, const char*);
+template std::int64_t yaml_scalar<std::int64_t>(const YAML::Node&, const std::string&, const std::string&, const char*);
+template std::uint64_t yaml_scalar<std::uint64_t>(const YAML::Node&, const std::string&, const std::string&,
+                                                  const char*);
+
+}  // namespace layers::data

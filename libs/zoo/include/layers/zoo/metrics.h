@@ -1,0 +1,48 @@
+// layers/zoo/metrics.h -- the paper's evaluation metrics (DESIGN.md
+// section 5), per frame, plus mean +- std aggregation over sequences.
+// Positions are metres; errors are reported in real-world millimetres
+// (the paper's "mm" are at 10x scale, i.e. 10x these numbers). Torch-free.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "layers/geometry/mesh.h"
+#include "layers/geometry/penetration.h"
+
+namespace layers::zoo {
+
+// Mean over vertices of |predicted - truth|, in mm. Row counts must match
+// (layers::Error otherwise); a non-finite prediction gives a non-finite
+// error, which rollouts use to detect divergence.
+double euclidean_error_mm(const geometry::Points& predicted, const geometry::Points& truth);
+
+// Share (0..1) of `points` behind `surface` (geometry::Surface: nearest
+// vertex h, normal n, behind if (x - h) . n < 0). Non-finite points count
+// as not behind. Zero points: layers::Error.
+double behind_share(const geometry::Points& points, const geometry::Surface& surface);
+
+// H-collision: share of garment vertices behind the body surface.
+double h_collision_rate(const geometry::Points& garment, const geometry::TriMesh& body);
+// L-collision: share of outer-garment vertices behind the inner garment
+// surface (with several inner garments, geometry::concatenate them).
+double l_collision_rate(const geometry::Points& outer, const geometry::TriMesh& inner);
+
+// Mean and population standard deviation (divided by n, as numpy's std) of
+// per-sequence values; count = number of values, all zero when empty.
+// Non-finite values propagate into mean and std.
+struct MeanStd {
+  double mean = 0.0;
+  double std = 0.0;
+  std::size_t count = 0;
+};
+MeanStd mean_std(const std::vector<double>& values);
+// "mean +- std" with `decimals` digits after the point, e.g. "611.3 +- 544.3".
+std::string format(const MeanStd& value, int decimals = 1);
+
+// Per-frame values of one sequence, reduced to the sequence's value (the
+// mean over its frames), then mean_std over sequences.
+double sequence_mean(const std::vector<double>& per_frame);
+
+}  // namespace layers::zoo

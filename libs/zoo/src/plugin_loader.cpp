@@ -1,0 +1,228 @@
+// Plugin discovery and loading with dlopen (see plugin_loader.h).
+#include "layers/zoo/plugin_loader.h"
+
+#include <dlfcn.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include "layers/core/error.h"
+#include "layers/zoo/plugin.h"
+
+namespace fs = std::filesystem;
+
+namespace layers::zoo {
+
+// The loader's side of a Registry: which plugin is registering, and undoing
+// its registrations when it fails.
+struct detail::RegistryLoading {
+  static void begin(Registry& r, const std::string& path) {
+    r.loading_ = path;
+    r.plugin_errors_.clear();
+  }
+  static std::vector<std::string> models_of(const Registry& r, const std::string& path) {
+    std::vector<std::string> out;
+    for (const auto& [name, entry] : r.entries_)
+      if (entry.plugin_path == path) out.push_back(name);
+    return out;
+  }
+  static void remove_models_of(Registry& r, const std::string& path) {
+    for (auto it = r.entries_.begin(); it != r.entries_.end();)
+      it = it->second.plugin_path == path ? r.entries_.erase(it) : std::next(it);
+  }
+  // Ends the registration; returns the errors the plugin reported.
+  static std::vector<std::string> end(Registry& r) {
+    r.loading_.clear();
+    return std::move(r.plugin_errors_);
+  }
+};
+
+namespace {
+
+using detail::RegistryLoading;
+
+constexpr const char* kPrefix = "liblayers_plugin_";
+constexpr const char* kSuffix = ".so";
+
+bool is_plugin_file_name(const std::string& name) {
+  const std::string prefix = kPrefix, suffix = kSuffix;
+  return name.size() > prefix.size() + suffix.size() && name.compare(0, prefix.size(), prefix) == 0 &&
+         name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+std::string canonical_or_absolute(const fs::path& p) {
+  std::error_code ec;
+  fs::path c = fs::canonical(p, ec);
+  return ec ? fs::absolute(p).lexically_normal().string() : c.string();
+}
+
+std::vector<std::string> split_path_list(const char* value) {
+  std::vector<std::string> out;
+  if (!value) return out;
+  std::stringstream in(value);
+  std::string item;
+  while (std::getline(in, item, ':'))
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+fs::path executable_dir() {
+  std::error_code ec;
+  fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? fs::path() : exe.parent_path();
+}
+
+// Candidate directories in search order, each with whether it came from
+// LAYERS_PLUGIN_PATH (those must exist).
+std::vector<std::pair<std::string, bool>> candidate_dirs() {
+  std::vector<std::pair<std::string, bool>> out;
+  for (const auto& dir : split_path_list(std::getenv("LAYERS_PLUGIN_PATH"))) out.emplace_back(dir, true);
+  fs::path exe_dir = executable_dir();
+  if (!exe_dir.empty()) {
+    out.emplace_back((exe_dir / "plugins").string(), false);
+    out.emplace_back(exe_dir.string(), false);
+  }
+  return out;
+}
+
+// Distinct existing directories of `dirs`, canonical, in order.
+std::vector<std::string> existing_unique(const std::vector<std::string>& dirs) {
+  std::vector<std::string> out;
+  for (const auto& d : dirs) {
+    std::error_code ec;
+    if (!fs::is_directory(d, ec)) continue;
+    std::string c = canonical_or_absolute(d);
+    if (std::find(out.begin(), out.end(), c) == out.end()) out.push_back(c);
+  }
+  return out;
+}
+
+std::vector<fs::path> plugin_files_in(const std::string& dir) {
+  std::vector<fs::path> out;
+  std::error_code ec;
+  for (const auto& item : fs::directory_iterator(dir, ec)) {
+    std::error_code type_ec;
+    if (is_plugin_file_name(item.path().filename().string()) && item.is_regular_file(type_ec))
+      out.push_back(item.path());
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+[[noreturn]] void refuse(const std::string& path, const std::string& text) {
+  throw InputError::message(path, "", text);
+}
+
+std::string join(const std::vector<std::string>& items, const char* sep) {
+  std::string out;
+  for (const auto& s : items) out += (out.empty() ? "" : sep) + s;
+  return out;
+}
+
+// Runs the entry point with the registry in loading state and turns its
+// outcome into models or an InputError (after undoing its registrations).
+std::vector<std::string> register_plugin(Registry& registry, const std::string& path, PluginEntry entry) {
+  RegistryLoading::begin(registry, path);
+  int rc = entry(&registry, api_version());
+  std::vector<std::string> errors = RegistryLoading::end(registry);
+  std::vector<std::string> models = RegistryLoading::models_of(registry, path);
+  std::string failure;
+  if (rc > 0) {
+    failure = "built for zoo API v" + std::to_string(rc) + ", this layers expects v" +
+              std::to_string(api_version()) + "; rebuild the plugin";
+  } else if (rc != 0) {
+    // Errors thrown by Registry::add already start with this plugin's path.
+    for (auto& e : errors)
+      if (e.rfind(path + ": ", 0) == 0) e.erase(0, path.size() + 2);
+    failure = "registration failed: " +
+              (errors.empty() ? "entry point returned " + std::to_string(rc) : join(errors, "; "));
+  } else if (models.empty()) {
+    failure = "registered no models";
+  }
+  if (!failure.empty()) {
+    RegistryLoading::remove_models_of(registry, path);
+    refuse(path, failure);
+  }
+  return models;
+}
+
+}  // namespace
+
+int api_version() { return LAYERS_ZOO_API_VERSION; }
+
+std::vector<std::string> plugin_search_path() {
+  std::vector<std::string> dirs;
+  for (const auto& [dir, from_env] : candidate_dirs()) dirs.push_back(dir);
+  return existing_unique(dirs);
+}
+
+LoadedPlugin load_file(Registry& registry, const std::string& file) {
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) refuse(file, "no such plugin file");
+  const std::string path = canonical_or_absolute(file);
+  if (auto already = RegistryLoading::models_of(registry, path); !already.empty()) return {path, already};
+
+  dlerror();
+  void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!handle) {
+    const char* why = dlerror();
+    refuse(path, std::string("cannot load plugin: ") + (why ? why : "dlopen failed"));
+  }
+  dlerror();
+  auto entry = reinterpret_cast<PluginEntry>(dlsym(handle, kPluginEntryPoint));
+  if (!entry) {
+    dlclose(handle);
+    refuse(path, std::string("not a layers plugin: no entry point '") + kPluginEntryPoint +
+                     "' (define it with LAYERS_PLUGIN from layers/zoo/plugin.h)");
+  }
+  try {
+    std::vector<std::string> models = register_plugin(registry, path, entry);
+    // Deliberately never closed: factories and model code live in it.
+    return {path, models};
+  } catch (...) {
+    dlclose(handle);  // nothing of it is left in the registry
+    throw;
+  }
+}
+
+LoadReport load_all(Registry& registry, const std::vector<std::string>& directories) {
+  LoadReport report;
+  report.searched = existing_unique(directories);
+  std::map<std::string, std::string> first_by_name;  // file name -> path loaded or refused
+  for (const auto& dir : report.searched) {
+    for (const auto& file : plugin_files_in(dir)) {
+      std::string name = file.filename().string();
+      auto [it, inserted] = first_by_name.emplace(name, file.string());
+      if (!inserted) {
+        report.shadowed.push_back({file.string(), file.string() + ": skipped, shadowed by " + it->second});
+        continue;
+      }
+      try {
+        report.loaded.push_back(load_file(registry, file.string()));
+      } catch (const std::exception& e) {
+        report.problems.push_back({file.string(), e.what()});
+      }
+    }
+  }
+  return report;
+}
+
+LoadReport load_all(Registry& registry) {
+  std::vector<PluginProblem> bad_env;
+  std::vector<std::string> dirs;
+  for (const auto& [dir, from_env] : candidate_dirs()) {
+    std::error_code ec;
+    if (from_env && !fs::is_directory(dir, ec)) {
+      bad_env.push_back({dir, dir + ": LAYERS_PLUGIN_PATH entry is not a directory"});
+    }
+    dirs.push_back(dir);
+  }
+  LoadReport report = load_all(registry, dirs);
+  report.problems.insert(report.problems.begin(), bad_env.begin(), bad_env.end());
+  return report;
+}
+
+}  // namespace layers::zoo

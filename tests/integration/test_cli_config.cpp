@@ -1,0 +1,51 @@
+// `layers` CLI: global behaviour (help, exit codes) and the `config` verb.
+#include <gtest/gtest.h>
+
+#include "run_command.h"
+#include "temp_dir.h"
+
+using layers::test::layers_bin;
+using layers::test::run_command;
+using layers::test::TempDir;
+
+TEST(CliGlobal, HelpAndUsageExitCodes) {
+  auto help = run_command(layers_bin() + " --help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.output.find("Exit codes"), std::string::npos) << help.output;
+  auto none = run_command(layers_bin());
+  EXPECT_EQ(none.exit_code, 2) << none.output;
+  auto unknown = run_command(layers_bin() + " frobnicate");
+  EXPECT_EQ(unknown.exit_code, 2) << unknown.output;
+  auto level = run_command(layers_bin() + " --log-level loud config --help");
+  EXPECT_EQ(level.exit_code, 0) << level.output;  // --help wins over everything
+}
+
+TEST(CliConfig, PrintsResolvedConfigWithIncludesAndSets) {
+  TempDir dir;
+  dir.write("base.yaml", "run: {seed: 5, threads: 1}\n");
+  std::string exp = dir.write("exp.yaml", "include: base.yaml\nrun: {threads: 2}\n");
+  std::string out = dir.file("resolved.yaml");
+  auto r = run_command(layers_bin() + " config " + exp + " --set run.seed=9 --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("seed: 9"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("threads: 2"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("device: cpu"), std::string::npos) << r.output;  // default filled in
+  auto again = run_command(layers_bin() + " config " + out);
+  EXPECT_EQ(again.exit_code, 0) << again.output;
+}
+
+TEST(CliConfig, BadConfigExitsOneWithPreciseMessage) {
+  TempDir dir;
+  std::string bad = dir.write("bad.yaml", "run:\n  threads: 1000\n");
+  auto r = run_command(layers_bin() + " config " + bad);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("bad.yaml:2: run.threads: expected an integer in [0, 256], got '1000'"),
+            std::string::npos)
+      << r.output;
+  std::string malformed = dir.write("malformed.yaml", "run: {seed: 1\n");
+  auto m = run_command(layers_bin() + " config " + malformed);
+  EXPECT_EQ(m.exit_code, 1);
+  EXPECT_NE(m.output.find("malformed YAML"), std::string::npos) << m.output;
+  auto missing = run_command(layers_bin() + " config " + dir.file("nope.yaml"));
+  EXPECT_EQ(missing.exit_code, 2) << missing.output;
+}

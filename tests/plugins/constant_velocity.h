@@ -1,0 +1,24 @@
+// tests/plugins/constant_velocity.h -- a tiny real model for the plugin
+// tests: p(t+1) = p(t) + (1 - damping) (p(t) - p(t-1)), with damping a
+// learnable scalar initialised from the `damping` parameter (0..1,
+// default 0: pure constant velocity). Torch-free declaration.
+#pragma once
+
+#include <memory>
+
+namespace layers::cfg {
+struct Node;
+}
+namespace layers::zoo {
+class Model;
+}
+
+namespace layers::test {
+
+inline constexpr const char* kConstantVelocityName = "test_constant_velocity";
+inline constexpr const char* kConstantVelocityDescription =
+    "test model: constant velocity with one learnable damping scalar";
+
+std::shared_ptr<zoo::Model> make_constant_velocity(const cfg::Node& params);
+
+}  // namespace layers::test

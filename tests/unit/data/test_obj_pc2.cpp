@@ -1,0 +1,183 @@
+// OBJ and PC2 import/export: round trips, every face form, malformed
+// inputs with line numbers or header fields, and sequence export.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "layers/core/error.h"
+#include "layers/data/dataset.h"
+#include "layers/data/dataset_writer.h"
+#include "layers/data/export.h"
+#include "layers/data/obj.h"
+#include "layers/data/pc2.h"
+#include "synthetic_sequence.h"
+
+namespace layers::data {
+namespace {
+
+using testing::TempDir;
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(DataObj, RoundTripWithUvIsBitIdentical) {
+  TempDir dir;
+  const auto seq = testing::make_sequence("o", 3);
+  const GarmentData& g = seq.garments[0];
+  const std::vector<float> positions(g.positions.begin(), g.positions.begin() + g.rest.size());
+  write_obj(dir.file("g.obj"), positions, g.faces, g.uv, g.uv_faces);
+  const ObjMesh back = read_obj(dir.file("g.obj"));
+  EXPECT_EQ(back.positions, positions);
+  EXPECT_EQ(back.faces, g.faces);
+  EXPECT_EQ(back.uv, g.uv);
+  EXPECT_EQ(back.uv_faces, g.uv_faces);
+
+  write_obj(dir.file("b.obj"), ObjMesh{{0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 2}, {}, {}});
+  const ObjMesh plain = read_obj(dir.file("b.obj"));
+  EXPECT_EQ(plain.faces, (std::vector<std::int32_t>{0, 1, 2}));
+  EXPECT_TRUE(plain.uv_faces.empty());
+}
+
+TEST(DataObj, ReadsEveryFaceFormPolygonsAndNegativeIndices) {
+  TempDir dir;
+  testing::write_text(dir.file("m.obj"),
+                      "# comment\r\nmtllib x.mtl\no thing\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0 1.0\n"
+                      "vn 0 0 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\ns off\n"
+                      "f 1/1 2/2 3/3\n"            // v/vt
+                      "f 1/1/1 3/3/1 4/4/1\n"      // v/vt/vn
+                      "f -4/-4 -3/-3 -2/-2 -1/-1\n"  // quad, negative indices
+                      "l 1 2\n");
+  const ObjMesh m = read_obj(dir.file("m.obj"));
+  EXPECT_EQ(m.n_vertices(), 4);
+  EXPECT_EQ(m.faces, (std::vector<std::int32_t>{0, 1, 2, 0, 2, 3, 0, 1, 2, 0, 2, 3}));
+  EXPECT_EQ(m.uv_faces, m.faces);
+
+  testing::write_text(dir.file("n.obj"), "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 2 0\nf 1//1 2//1 3//1\nf 1 3 4 5\n");
+  const ObjMesh n = read_obj(dir.file("n.obj"));
+  EXPECT_EQ(n.faces, (std::vector<std::int32_t>{0, 1, 2, 0, 2, 3, 0, 3, 4}));
+  EXPECT_TRUE(n.uv_faces.empty());
+}
+
+TEST(DataObj, MalformedInputsNameTheLine) {
+  TempDir dir;
+  const auto error_for = [&](const std::string& text) {
+    testing::write_text(dir.file("bad.obj"), text);
+    return error_of([&] { read_obj(dir.file("bad.obj")); });
+  };
+  std::string e = error_for("v 0 0 0\nv 1 x 0\n");
+  EXPECT_NE(e.find("bad.obj:2"), std::string::npos) << e;
+  EXPECT_NE(e.find("expected a number after 'v', got 'x'"), std::string::npos) << e;
+  e = error_for("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n");
+  EXPECT_NE(e.find("bad.obj:4"), std::string::npos) << e;
+  EXPECT_NE(e.find("vertex index 4 out of range (the file has 3 vertices)"), std::string::npos) << e;
+  e = error_for("v 0 0 0\nv 1 0 0\nf 1 2\n");
+  EXPECT_NE(e.find("bad.obj:3: expected a face of at least 3 vertices, got 2"), std::string::npos) << e;
+  e = error_for("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n");
+  EXPECT_NE(e.find("got 0"), std::string::npos) << e;
+  e = error_for("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -5 1 2\n");
+  EXPECT_NE(e.find("before the first element"), std::string::npos) << e;
+  e = error_for("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2 3\n");
+  EXPECT_NE(e.find("bad.obj:5"), std::string::npos) << e;
+  e = error_for("v 0 0\n");
+  EXPECT_NE(e.find("expected 3 numbers after 'v', got 2"), std::string::npos) << e;
+  EXPECT_NE(error_of([&] { read_obj(dir.file("missing.obj")); }).find("missing.obj"), std::string::npos);
+  EXPECT_NE(error_of([&] { write_obj(dir.file("w.obj"), {0, 0, 0}, {0, 0, 1}); }).find("faces"), std::string::npos);
+}
+
+TEST(DataPc2, RoundTripAndLayout) {
+  TempDir dir;
+  Pc2Cache cache;
+  cache.header = Pc2Header{5, 10.0f, 1.0f, 3};
+  for (int i = 0; i < 5 * 3 * 3; ++i) cache.positions.push_back(0.25f * float(i) - 3.0f);
+  write_pc2(dir.file("c.pc2"), cache);
+  EXPECT_EQ(std::filesystem::file_size(dir.file("c.pc2")), 32u + 12u * 5u * 3u);
+  const std::string bytes = testing::read_text(dir.file("c.pc2"));
+  EXPECT_EQ(bytes.substr(0, 12), std::string("POINTCACHE2\0", 12));
+  EXPECT_EQ(bytes[12], 1);  // version, little-endian
+  const Pc2Cache back = read_pc2(dir.file("c.pc2"));
+  EXPECT_EQ(back.header.n_points, 5);
+  EXPECT_EQ(back.header.n_samples, 3);
+  EXPECT_EQ(back.header.start_frame, 10.0f);
+  EXPECT_EQ(back.positions, cache.positions);
+}
+
+TEST(DataPc2, MalformedFilesAreRejected) {
+  TempDir dir;
+  Pc2Cache cache;
+  cache.header = Pc2Header{2, 0.0f, 1.0f, 2};
+  cache.positions.assign(12, 1.0f);
+  write_pc2(dir.file("good.pc2"), cache);
+  const std::string good = testing::read_text(dir.file("good.pc2"));
+
+  std::string bad = good;
+  bad[0] = 'X';
+  testing::write_text(dir.file("sig.pc2"), bad);
+  EXPECT_NE(error_of([&] { read_pc2(dir.file("sig.pc2")); }).find("signature: expected \"POINTCACHE2\\0\""),
+            std::string::npos);
+  bad = good;
+  bad[12] = 2;
+  testing::write_text(dir.file("ver.pc2"), bad);
+  EXPECT_NE(error_of([&] { read_pc2(dir.file("ver.pc2")); }).find("file version: expected 1, got 2"), std::string::npos);
+  testing::write_text(dir.file("short.pc2"), good.substr(0, good.size() - 4));
+  const std::string e = error_of([&] { read_pc2(dir.file("short.pc2")); });
+  EXPECT_NE(e.find("file size: expected 80 bytes (32 + 12 x 2 points x 2 samples), got 76 bytes"), std::string::npos) << e;
+  testing::write_text(dir.file("tiny.pc2"), good.substr(0, 20));
+  EXPECT_NE(error_of([&] { read_pc2(dir.file("tiny.pc2")); }).find("at least 32 bytes"), std::string::npos);
+  cache.positions.pop_back();
+  EXPECT_NE(error_of([&] { write_pc2(dir.file("w.pc2"), cache); }).find("12 floats"), std::string::npos);
+}
+
+class DataExport : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    seq = testing::make_sequence("s", 4);
+    DatasetWriter writer(dir.file("ds"));
+    writer.add(seq);
+    writer.set_split("train", {"s"});
+    writer.finish();
+  }
+  TempDir dir;
+  SequenceData seq;
+};
+
+TEST_F(DataExport, ObjFilePerFramePerMesh) {
+  const Dataset ds = Dataset::open(dir.file("ds"));
+  const auto files = export_sequence(ds, "s", ExportFormat::Obj, 2, 4, dir.file("out"));
+  EXPECT_EQ(files.size(), 3u * 2u);
+  const ObjMesh jacket = read_obj(dir.file("out/s_jacket_0003.obj"));
+  EXPECT_EQ(jacket.positions, testing::frames_of(seq.garments[1].positions, seq.n_frames, 3, 1));
+  EXPECT_EQ(jacket.uv, seq.garments[1].uv);
+  const ObjMesh body = read_obj(dir.file("out/s_body_0002.obj"));
+  EXPECT_EQ(body.positions, testing::frames_of(seq.body.positions, seq.n_frames, 2, 1));
+  EXPECT_EQ(body.faces, seq.body.faces);
+}
+
+TEST_F(DataExport, Pc2CachePlusObjAtFirstFrame) {
+  const Dataset ds = Dataset::open(dir.file("ds"));
+  export_sequence(ds, "s", parse_export_format("pc2"), 1, -1, dir.file("out"));
+  const Pc2Cache cache = read_pc2(dir.file("out/s_tshirt.pc2"));
+  EXPECT_EQ(cache.header.start_frame, 1.0f);
+  EXPECT_EQ(cache.header.n_samples, seq.n_frames - 1);
+  EXPECT_EQ(cache.positions, testing::frames_of(seq.garments[0].positions, seq.n_frames, 1, seq.n_frames - 1));
+  const ObjMesh mesh = read_obj(dir.file("out/s_tshirt.obj"));
+  EXPECT_EQ(mesh.positions, testing::frames_of(seq.garments[0].positions, seq.n_frames, 1, 1));
+  EXPECT_TRUE(std::filesystem::exists(dir.file("out/s_body.pc2")));
+  EXPECT_TRUE(std::filesystem::exists(dir.file("out/s_jacket.pc2")));
+}
+
+TEST_F(DataExport, BadRangeAndFormat) {
+  const Dataset ds = Dataset::open(dir.file("ds"));
+  const std::string e = error_of([&] { export_sequence(ds, "s", ExportFormat::Obj, 5, 20, dir.file("out")); });
+  EXPECT_NE(e.find("expected [first,last) with 0 <= first < last <= 12, got [5,20)"), std::string::npos) << e;
+  EXPECT_NE(error_of([&] { parse_export_format("fbx"); }).find("expected obj or pc2, got 'fbx'"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace layers::data

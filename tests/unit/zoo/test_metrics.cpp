@@ -1,0 +1,115 @@
+// Metrics on cases computable by hand.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "layers/core/error.h"
+#include "layers/zoo/metrics.h"
+
+namespace g = layers::geometry;
+namespace zoo = layers::zoo;
+
+namespace {
+
+// n x n grid over the unit square at height z, normals +z.
+g::TriMesh square(int n, float z) {
+  g::TriMesh m;
+  m.vertices.resize(n * n, 3);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) m.vertices.row(j * n + i) << i / float(n - 1), j / float(n - 1), z;
+  m.faces.resize(2 * (n - 1) * (n - 1), 3);
+  int f = 0;
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      int a = j * n + i;
+      m.faces.row(f++) << a, a + 1, a + n + 1;
+      m.faces.row(f++) << a, a + n + 1, a + n;
+    }
+  return m;
+}
+
+g::Points points(std::initializer_list<Eigen::RowVector3f> rows) {
+  g::Points p(static_cast<Eigen::Index>(rows.size()), 3);
+  Eigen::Index i = 0;
+  for (const auto& r : rows) p.row(i++) = r;
+  return p;
+}
+
+}  // namespace
+
+TEST(Metrics, TranslationBy3mmGives3mm) {
+  g::Points truth = g::Points::Zero(5, 3);
+  g::Points pred = truth;
+  pred.col(1).setConstant(0.003f);
+  EXPECT_NEAR(zoo::euclidean_error_mm(pred, truth), 3.0, 1e-6);
+
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-0.5f, 0.5f);
+  g::Points body_like(1000, 3);
+  for (int i = 0; i < 1000; ++i) body_like.row(i) << u(rng), u(rng) + 1.0f, u(rng);
+  g::Points moved = body_like.rowwise() + Eigen::RowVector3f(0.0018f, 0.0f, -0.0024f);  // |d| = 3 mm
+  EXPECT_NEAR(zoo::euclidean_error_mm(moved, body_like), 3.0, 1e-3);
+  EXPECT_DOUBLE_EQ(zoo::euclidean_error_mm(body_like, body_like), 0.0);
+}
+
+TEST(Metrics, ErrorChecksShapesAndPropagatesNaN) {
+  EXPECT_THROW(zoo::euclidean_error_mm(g::Points::Zero(3, 3), g::Points::Zero(4, 3)), layers::Error);
+  EXPECT_THROW(zoo::euclidean_error_mm(g::Points(0, 3), g::Points(0, 3)), layers::Error);
+  g::Points pred = g::Points::Zero(2, 3);
+  pred(1, 0) = std::nanf("");
+  EXPECT_TRUE(std::isnan(zoo::euclidean_error_mm(pred, g::Points::Zero(2, 3))));
+}
+
+TEST(Metrics, HCollisionAgainstABodyPlane) {
+  g::TriMesh body = square(11, 0.0f);
+  g::Points garment = points({{0.1f, 0.1f, 0.02f},
+                              {0.5f, 0.5f, -0.01f},
+                              {0.33f, 0.71f, 0.005f},
+                              {0.9f, 0.2f, -0.2f},
+                              {0.2f, 0.8f, 0.3f},
+                              {0.6f, 0.4f, 0.0f},  // on the surface: not behind
+                              {0.7f, 0.7f, 0.1f},
+                              {0.45f, 0.05f, -0.001f},
+                              {0.95f, 0.95f, 0.01f},
+                              {0.05f, 0.5f, 0.2f}});
+  EXPECT_DOUBLE_EQ(zoo::h_collision_rate(garment, body), 0.3);
+  garment(1, 0) = std::nanf("");  // a diverged vertex counts as not behind
+  EXPECT_DOUBLE_EQ(zoo::h_collision_rate(garment, body), 0.2);
+}
+
+TEST(Metrics, LCollisionAgainstAnInnerPlane) {
+  g::TriMesh inner = square(6, 0.1f);
+  g::Points outer = points({{0.5f, 0.5f, 0.12f}, {0.2f, 0.3f, 0.08f}, {0.7f, 0.1f, 0.15f}, {0.9f, 0.9f, 0.11f}});
+  EXPECT_DOUBLE_EQ(zoo::l_collision_rate(outer, inner), 0.25);
+  // Two inner garments joined into one surface: the second, higher one
+  // (z = 0.13) is nearest to the first outer vertex, now behind it.
+  g::TriMesh upper = square(6, 0.13f);
+  g::TriMesh both = g::concatenate({inner, upper});
+  EXPECT_DOUBLE_EQ(zoo::l_collision_rate(outer, both), 0.5);
+}
+
+TEST(Metrics, CollisionRateNeedsVerticesAndValidFaces) {
+  EXPECT_THROW(zoo::h_collision_rate(g::Points(0, 3), square(3, 0.0f)), layers::Error);
+  g::TriMesh bad = square(3, 0.0f);
+  bad.faces(0, 2) = 100;
+  EXPECT_THROW(zoo::h_collision_rate(g::Points::Zero(1, 3), bad), layers::InputError);
+}
+
+TEST(Metrics, MeanStdOverSequences) {
+  zoo::MeanStd s = zoo::mean_std({1.0, 2.0, 3.0, 4.0});
+  EXPECT_DOUBLE_EQ(s.mean, 2.5);
+  EXPECT_DOUBLE_EQ(s.std, std::sqrt(1.25));
+  EXPECT_EQ(s.count, 4u);
+  EXPECT_EQ(zoo::format(s), "2.5 +- 1.1");
+  EXPECT_EQ(zoo::format(zoo::mean_std({611.25, 611.35}), 2), "611.30 +- 0.05");
+  zoo::MeanStd empty = zoo::mean_std({});
+  EXPECT_EQ(empty.count, 0u);
+  EXPECT_EQ(empty.mean, 0.0);
+  // Per-frame values -> per-sequence means -> mean +- std.
+  double a = zoo::sequence_mean({2.0, 4.0}), b = zoo::sequence_mean({5.0, 7.0, 9.0});
+  zoo::MeanStd over = zoo::mean_std({a, b});
+  EXPECT_DOUBLE_EQ(over.mean, 5.0);
+  EXPECT_DOUBLE_EQ(over.std, 2.0);
+  EXPECT_THROW(zoo::sequence_mean({}), layers::Error);
+}

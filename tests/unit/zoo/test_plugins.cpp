@@ -1,0 +1,156 @@
+// Plugin loading through dlopen: the good plugin, a wrong API version, a
+// missing entry point, an unloadable file, a duplicate model name, and the
+// LAYERS_PLUGIN_PATH search.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+#include "layers/core/error.h"
+#include "layers/zoo/plugin_loader.h"
+#include "test_paths.h"
+#include "temp_dir.h"
+
+namespace fs = std::filesystem;
+namespace zoo = layers::zoo;
+using layers::test::plugin_file;
+
+namespace {
+
+std::string load_error(zoo::Registry& r, const std::string& path) {
+  try {
+    zoo::load_file(r, path);
+  } catch (const layers::InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+std::string canonical(const std::string& p) { return fs::canonical(p).string(); }
+
+// Sets LAYERS_PLUGIN_PATH for one test and restores it afterwards.
+class PluginPathEnv {
+ public:
+  explicit PluginPathEnv(const std::string& value) {
+    if (const char* old = std::getenv("LAYERS_PLUGIN_PATH")) old_ = old, had_ = true;
+    ::setenv("LAYERS_PLUGIN_PATH", value.c_str(), 1);
+  }
+  ~PluginPathEnv() {
+    if (had_)
+      ::setenv("LAYERS_PLUGIN_PATH", old_.c_str(), 1);
+    else
+      ::unsetenv("LAYERS_PLUGIN_PATH");
+  }
+
+ private:
+  std::string old_;
+  bool had_ = false;
+};
+
+}  // namespace
+
+TEST(PluginLoader, GoodPluginRegistersItsModel) {
+  zoo::Registry r;
+  zoo::LoadedPlugin p = zoo::load_file(r, plugin_file("test_constant_velocity"));
+  EXPECT_EQ(p.path, canonical(plugin_file("test_constant_velocity")));
+  EXPECT_EQ(p.models, std::vector<std::string>{"test_constant_velocity"});
+  ASSERT_TRUE(r.contains("test_constant_velocity"));
+  EXPECT_EQ(r.find("test_constant_velocity")->plugin_path, p.path);
+  EXPECT_EQ(r.find("test_constant_velocity")->description,
+            "test model: constant velocity with one learnable damping scalar");
+  // Loading it again into the same registry is harmless.
+  EXPECT_EQ(zoo::load_file(r, plugin_file("test_constant_velocity")).models, p.models);
+  EXPECT_EQ(r.names().size(), 1u);
+}
+
+TEST(PluginLoader, WrongApiVersionAsksForRebuild) {
+  zoo::Registry r;
+  std::string path = canonical(plugin_file("test_wrong_api"));
+  EXPECT_EQ(load_error(r, path), path + ": built for zoo API v999, this layers expects v" +
+                                     std::to_string(zoo::api_version()) + "; rebuild the plugin");
+  EXPECT_TRUE(r.names().empty());
+}
+
+TEST(PluginLoader, MissingEntryPointNamesFileAndSymbol) {
+  zoo::Registry r;
+  std::string path = canonical(plugin_file("test_no_entry"));
+  EXPECT_EQ(load_error(r, path), path +
+                                     ": not a layers plugin: no entry point 'layers_plugin_register' "
+                                     "(define it with LAYERS_PLUGIN from layers/zoo/plugin.h)");
+}
+
+TEST(PluginLoader, UnloadableFileGivesDlerror) {
+  layers::test::TempDir dir("layers-zoo");
+  std::string path = dir.write("liblayers_plugin_garbage.so", std::string(256, 'x'));
+  zoo::Registry r;
+  std::string message = load_error(r, path);
+  EXPECT_EQ(message.rfind(canonical(path) + ": cannot load plugin: ", 0), 0u) << message;
+  EXPECT_NE(message.find("invalid ELF header"), std::string::npos) << message;  // dlerror's words
+  EXPECT_EQ(load_error(r, dir.file("liblayers_plugin_missing.so")),
+            dir.file("liblayers_plugin_missing.so") + ": no such plugin file");
+}
+
+TEST(PluginLoader, DuplicateNameNamesBothFilesAndRollsBack) {
+  zoo::Registry r;
+  zoo::load_file(r, plugin_file("test_constant_velocity"));
+  std::string good = canonical(plugin_file("test_constant_velocity"));
+  std::string dup = canonical(plugin_file("test_duplicate"));
+  EXPECT_EQ(load_error(r, dup), dup + ": registration failed: model 'test_constant_velocity': registered twice: by " + good +
+                                    " and by " + dup +
+                                    "; model names must be unique, remove or rename one of the plugins");
+  // The model it registered before failing was removed with it.
+  EXPECT_EQ(r.names(), std::vector<std::string>{"test_constant_velocity"});
+  EXPECT_EQ(r.find("test_constant_velocity")->plugin_path, good);
+}
+
+TEST(PluginLoader, LoadAllReportsEveryProblem) {
+  zoo::Registry r;
+  zoo::LoadReport report = zoo::load_all(r, {layers::test::plugin_dir(), "/nonexistent/plugins"});
+  ASSERT_EQ(report.searched, std::vector<std::string>{canonical(layers::test::plugin_dir())});
+  ASSERT_EQ(report.loaded.size(), 1u);
+  EXPECT_EQ(report.loaded[0].models, std::vector<std::string>{"test_constant_velocity"});
+  // Files load in name order: duplicate (after the good one), no_entry, wrong_api.
+  ASSERT_EQ(report.problems.size(), 3u);
+  EXPECT_EQ(report.problems[0].path, canonical(plugin_file("test_duplicate")));
+  EXPECT_NE(report.problems[0].message.find("registered twice"), std::string::npos);
+  EXPECT_NE(report.problems[1].message.find("no entry point"), std::string::npos);
+  EXPECT_NE(report.problems[2].message.find("built for zoo API v999"), std::string::npos);
+  EXPECT_EQ(r.names(), std::vector<std::string>{"test_constant_velocity"});
+}
+
+TEST(PluginLoader, SearchesLayersPluginPathFirstAndShadows) {
+  layers::test::TempDir first("layers-zoo-a"), second("layers-zoo-b");
+  const std::string name = "liblayers_plugin_test_constant_velocity.so";
+  fs::copy_file(plugin_file("test_constant_velocity"), first.file(name));
+  fs::copy_file(plugin_file("test_constant_velocity"), second.file(name));
+  PluginPathEnv env(first.path() + "::" + second.path() + ":/nonexistent/layers");
+
+  std::vector<std::string> path = zoo::plugin_search_path();
+  ASSERT_GE(path.size(), 2u);
+  EXPECT_EQ(path[0], canonical(first.path()));
+  EXPECT_EQ(path[1], canonical(second.path()));
+  // Then plugins/ next to the test binary and its own folder, when present.
+  fs::path exe_dir = fs::read_symlink("/proc/self/exe").parent_path();
+  EXPECT_EQ(path.back(), canonical(exe_dir.string()));
+
+  zoo::Registry r;
+  zoo::LoadReport report = zoo::load_all(r);
+  EXPECT_EQ(report.searched, path);
+  ASSERT_FALSE(report.loaded.empty());
+  EXPECT_EQ(report.loaded[0].path, canonical(first.file(name)));
+  EXPECT_EQ(r.find("test_constant_velocity")->plugin_path, canonical(first.file(name)));
+  ASSERT_EQ(report.shadowed.size(), 1u);
+  EXPECT_EQ(report.shadowed[0].message,
+            canonical(second.file(name)) + ": skipped, shadowed by " + canonical(first.file(name)));
+  ASSERT_FALSE(report.problems.empty());
+  EXPECT_EQ(report.problems[0].message, "/nonexistent/layers: LAYERS_PLUGIN_PATH entry is not a directory");
+}
+
+TEST(PluginLoader, EmptyPluginPathFindsNothingThere) {
+  layers::test::TempDir empty("layers-zoo-empty");
+  PluginPathEnv env(empty.path());
+  zoo::Registry r;
+  zoo::LoadReport report = zoo::load_all(r);
+  EXPECT_EQ(report.searched.front(), canonical(empty.path()));
+  for (const auto& p : report.loaded) EXPECT_NE(p.path.rfind(canonical(empty.path()), 0), 0u);
+}
