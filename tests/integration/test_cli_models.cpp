@@ -1,0 +1,53 @@
+// `layers models` and model sections of configs, with the test plugins of
+// tests/plugins found through LAYERS_PLUGIN_PATH.
+#include <gtest/gtest.h>
+
+#include "run_command.h"
+#include "temp_dir.h"
+
+using namespace layers;
+using test::run_command;
+
+namespace {
+std::string with_test_plugins(const std::string& args) {
+  return "LAYERS_PLUGIN_PATH=" + test::plugin_dir() + " " + test::layers_bin() + " " + args;
+}
+}  // namespace
+
+TEST(CliModels, ListsTestPluginLoadedThroughDlopen) {
+  auto r = run_command(with_test_plugins("models"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("test_constant_velocity"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("liblayers_plugin_test_constant_velocity.so"), std::string::npos) << r.output;
+  // The deliberately broken plugins are refused with their reasons.
+  EXPECT_NE(r.output.find("built for zoo API v999, this layers expects v1"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("no entry point"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("registered twice"), std::string::npos) << r.output;
+  auto strict = run_command(with_test_plugins("models --strict"));
+  EXPECT_EQ(strict.exit_code, 1) << strict.output;
+}
+
+TEST(CliModels, ConfigChecksModelNameAndParameters) {
+  test::TempDir dir;
+  std::string good = dir.write("good.yaml", "model:\n  name: test_constant_velocity\n  params: {damping: 0.25}\n");
+  auto ok = run_command(with_test_plugins("config " + good));
+  EXPECT_EQ(ok.exit_code, 0) << ok.output;
+  EXPECT_NE(ok.output.find("damping: 0.25"), std::string::npos) << ok.output;
+
+  std::string unknown = dir.write("unknown.yaml", "run: {seed: 1}\nmodel:\n  name: layersnet_typo\n");
+  auto u = run_command(with_test_plugins("config " + unknown));
+  EXPECT_EQ(u.exit_code, 1) << u.output;
+  EXPECT_NE(u.output.find("unknown.yaml:3: model.name: unknown model 'layersnet_typo'"), std::string::npos)
+      << u.output;
+  EXPECT_NE(u.output.find("registered models: test_constant_velocity"), std::string::npos) << u.output;
+
+  std::string bad = dir.write("bad.yaml", "model:\n  name: test_constant_velocity\n  params:\n    damping: 3\n");
+  auto b = run_command(with_test_plugins("config " + bad));
+  EXPECT_EQ(b.exit_code, 1) << b.output;
+  EXPECT_NE(b.output.find("bad.yaml:4: model.params.damping"), std::string::npos) << b.output;
+
+  // Without plugins, the message says none is registered and where to look.
+  auto none = run_command("LAYERS_PLUGIN_PATH=" + dir.path() + " " + test::layers_bin() + " config " + unknown);
+  EXPECT_EQ(none.exit_code, 1) << none.output;
+  EXPECT_NE(none.output.find("LAYERS_PLUGIN_PATH"), std::string::npos) << none.output;
+}
