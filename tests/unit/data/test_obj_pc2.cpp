@@ -12,20 +12,12 @@
 #include "layers/data/obj.h"
 #include "layers/data/pc2.h"
 #include "synthetic_sequence.h"
+#include "error_of.h"
 
 namespace layers::data {
 namespace {
 
 using testing::TempDir;
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
 
 TEST(DataObj, RoundTripWithUvIsBitIdentical) {
   TempDir dir;
@@ -69,7 +61,7 @@ TEST(DataObj, MalformedInputsNameTheLine) {
   TempDir dir;
   const auto error_for = [&](const std::string& text) {
     testing::write_text(dir.file("bad.obj"), text);
-    return error_of([&] { read_obj(dir.file("bad.obj")); });
+    return test::error_of<InputError>([&] { read_obj(dir.file("bad.obj")); });
   };
   std::string e = error_for("v 0 0 0\nv 1 x 0\n");
   EXPECT_NE(e.find("bad.obj:2"), std::string::npos) << e;
@@ -87,8 +79,8 @@ TEST(DataObj, MalformedInputsNameTheLine) {
   EXPECT_NE(e.find("bad.obj:5"), std::string::npos) << e;
   e = error_for("v 0 0\n");
   EXPECT_NE(e.find("expected 3 numbers after 'v', got 2"), std::string::npos) << e;
-  EXPECT_NE(error_of([&] { read_obj(dir.file("missing.obj")); }).find("missing.obj"), std::string::npos);
-  EXPECT_NE(error_of([&] { write_obj(dir.file("w.obj"), {0, 0, 0}, {0, 0, 1}); }).find("faces"), std::string::npos);
+  EXPECT_NE(test::error_of<InputError>([&] { read_obj(dir.file("missing.obj")); }).find("missing.obj"), std::string::npos);
+  EXPECT_NE(test::error_of<InputError>([&] { write_obj(dir.file("w.obj"), {0, 0, 0}, {0, 0, 1}); }).find("faces"), std::string::npos);
 }
 
 TEST(DataPc2, RoundTripAndLayout) {
@@ -119,19 +111,19 @@ TEST(DataPc2, MalformedFilesAreRejected) {
   std::string bad = good;
   bad[0] = 'X';
   testing::write_text(dir.file("sig.pc2"), bad);
-  EXPECT_NE(error_of([&] { read_pc2(dir.file("sig.pc2")); }).find("signature: expected \"POINTCACHE2\\0\""),
+  EXPECT_NE(test::error_of<InputError>([&] { read_pc2(dir.file("sig.pc2")); }).find("signature: expected \"POINTCACHE2\\0\""),
             std::string::npos);
   bad = good;
   bad[12] = 2;
   testing::write_text(dir.file("ver.pc2"), bad);
-  EXPECT_NE(error_of([&] { read_pc2(dir.file("ver.pc2")); }).find("file version: expected 1, got 2"), std::string::npos);
+  EXPECT_NE(test::error_of<InputError>([&] { read_pc2(dir.file("ver.pc2")); }).find("file version: expected 1, got 2"), std::string::npos);
   testing::write_text(dir.file("short.pc2"), good.substr(0, good.size() - 4));
-  const std::string e = error_of([&] { read_pc2(dir.file("short.pc2")); });
+  const std::string e = test::error_of<InputError>([&] { read_pc2(dir.file("short.pc2")); });
   EXPECT_NE(e.find("file size: expected 80 bytes (32 + 12 x 2 points x 2 samples), got 76 bytes"), std::string::npos) << e;
   testing::write_text(dir.file("tiny.pc2"), good.substr(0, 20));
-  EXPECT_NE(error_of([&] { read_pc2(dir.file("tiny.pc2")); }).find("at least 32 bytes"), std::string::npos);
+  EXPECT_NE(test::error_of<InputError>([&] { read_pc2(dir.file("tiny.pc2")); }).find("at least 32 bytes"), std::string::npos);
   cache.positions.pop_back();
-  EXPECT_NE(error_of([&] { write_pc2(dir.file("w.pc2"), cache); }).find("12 floats"), std::string::npos);
+  EXPECT_NE(test::error_of<InputError>([&] { write_pc2(dir.file("w.pc2"), cache); }).find("12 floats"), std::string::npos);
 }
 
 class DataExport : public ::testing::Test {
@@ -174,9 +166,9 @@ TEST_F(DataExport, Pc2CachePlusObjAtFirstFrame) {
 
 TEST_F(DataExport, BadRangeAndFormat) {
   const Dataset ds = Dataset::open(dir.file("ds"));
-  const std::string e = error_of([&] { export_sequence(ds, "s", ExportFormat::Obj, 5, 20, dir.file("out")); });
+  const std::string e = test::error_of<InputError>([&] { export_sequence(ds, "s", ExportFormat::Obj, 5, 20, dir.file("out")); });
   EXPECT_NE(e.find("expected [first,last) with 0 <= first < last <= 12, got [5,20)"), std::string::npos) << e;
-  EXPECT_NE(error_of([&] { parse_export_format("fbx"); }).find("expected obj or pc2, got 'fbx'"), std::string::npos);
+  EXPECT_NE(test::error_of<InputError>([&] { parse_export_format("fbx"); }).find("expected obj or pc2, got 'fbx'"), std::string::npos);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "layers/data/manifest.h"
 #include "layers/data/shard_writer.h"
 #include "synthetic_sequence.h"
+#include "error_of.h"
 
 namespace layers::data {
 namespace {
@@ -42,15 +43,6 @@ std::vector<SequenceData> write_dataset(const std::string& folder, int n, std::i
   writer.set_split("T+W", {seqs.front().id});
   writer.finish();
   return seqs;
-}
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
 }
 
 TEST(DataRoundTrip, TwoSequencesReadBackBitIdentical) {
@@ -174,15 +166,15 @@ TEST(DataReader, WindowOutOfRangeNamesSequenceAndRanges) {
   TempDir dir;
   write_dataset(dir.path(), 2);
   const Dataset ds = Dataset::open(dir.path());
-  const std::string before = error_of([&] { ds.read_window("s1", 0, 1, 2); });
+  const std::string before = test::error_of<InputError>([&] { ds.read_window("s1", 0, 1, 2); });
   EXPECT_NE(before.find("/seq/s1"), std::string::npos) << before;
   EXPECT_NE(before.find("expected frames within [0,11]"), std::string::npos) << before;
   EXPECT_NE(before.find("got frames [-1,2]"), std::string::npos) << before;
-  const std::string after = error_of([&] { ds.read_window("s1", 10, 1, 2); });
+  const std::string after = test::error_of<InputError>([&] { ds.read_window("s1", 10, 1, 2); });
   EXPECT_NE(after.find("got frames [9,12]"), std::string::npos) << after;
-  const std::string frames = error_of([&] { ds.read_frames("s0", 12, 1); });
+  const std::string frames = test::error_of<InputError>([&] { ds.read_frames("s0", 12, 1); });
   EXPECT_NE(frames.find("frames [12,12]"), std::string::npos) << frames;
-  const std::string unknown = error_of([&] { ds.statics("nope"); });
+  const std::string unknown = test::error_of<InputError>([&] { ds.statics("nope"); });
   EXPECT_NE(unknown.find("'nope'"), std::string::npos) << unknown;
 }
 
@@ -235,7 +227,7 @@ TEST(DataWriter, FailedWriteLeavesPreviousFileIntact) {
 
   auto bad = make_sequence("bad", 2);
   bad.garments[0].positions.pop_back();
-  const std::string message = error_of([&] { write_shard(path, {make_sequence("other", 3), bad}); });
+  const std::string message = test::error_of<InputError>([&] { write_shard(path, {make_sequence("other", 3), bad}); });
   EXPECT_NE(message.find("/seq/bad/garments/0/positions"), std::string::npos) << message;
   EXPECT_EQ(testing::read_text(path), before);
   for (const auto& entry : std::filesystem::directory_iterator(dir.path())) {
@@ -248,29 +240,29 @@ TEST(DataWriter, RejectsInconsistentSequencesWithPreciseMessages) {
   TempDir dir;
   auto seq = make_sequence("x", 1);
   seq.body.skin_index.resize(seq.body.skin_index.size() - 4);  // one body vertex short
-  std::string message = error_of([&] { check_sequence(seq, "out.h5"); });
+  std::string message = test::error_of<InputError>([&] { check_sequence(seq, "out.h5"); });
   EXPECT_NE(message.find("/seq/x/body/skin_index"), std::string::npos) << message;
   EXPECT_NE(message.find("Vb=200"), std::string::npos) << message;
 
   seq = make_sequence("x", 1);
   seq.garments[1].faces[5] = 100000;
-  message = error_of([&] { check_sequence(seq, "out.h5"); });
+  message = test::error_of<InputError>([&] { check_sequence(seq, "out.h5"); });
   EXPECT_NE(message.find("/seq/x/garments/1/faces"), std::string::npos) << message;
   EXPECT_NE(message.find("100000"), std::string::npos) << message;
 
   seq = make_sequence("x", 1);
   seq.garments[0].type = "cape";
-  message = error_of([&] { check_sequence(seq, "out.h5"); });
+  message = test::error_of<InputError>([&] { check_sequence(seq, "out.h5"); });
   EXPECT_NE(message.find("'cape'"), std::string::npos) << message;
 
   seq = make_sequence("x/y", 1);
-  EXPECT_NE(error_of([&] { check_sequence(seq, "out.h5"); }).find("no '/'"), std::string::npos);
+  EXPECT_NE(test::error_of<InputError>([&] { check_sequence(seq, "out.h5"); }).find("no '/'"), std::string::npos);
 
   DatasetWriter writer(dir.path());
   writer.add(make_sequence("a", 1));
-  EXPECT_NE(error_of([&] { writer.add(make_sequence("a", 2)); }).find("duplicate"), std::string::npos);
+  EXPECT_NE(test::error_of<InputError>([&] { writer.add(make_sequence("a", 2)); }).find("duplicate"), std::string::npos);
   writer.set_split("train", {"a", "ghost"});
-  message = error_of([&] { writer.finish(); });
+  message = test::error_of<InputError>([&] { writer.finish(); });
   EXPECT_NE(message.find("'ghost'"), std::string::npos) << message;
 }
 
@@ -285,7 +277,7 @@ TEST(DataWriter, ResumeKeepsFinishedShards) {
   }
   EXPECT_TRUE(std::filesystem::exists(dir.file("shard-00000.h5")));
   EXPECT_FALSE(std::filesystem::exists(dir.file("shard-00001.h5")));
-  EXPECT_NE(error_of([&] { DatasetWriter again(dir.path()); }).find("resume"), std::string::npos);
+  EXPECT_NE(test::error_of<InputError>([&] { DatasetWriter again(dir.path()); }).find("resume"), std::string::npos);
 
   DatasetWriterOptions options;
   options.sequences_per_shard = 2;

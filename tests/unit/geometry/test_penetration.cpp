@@ -3,33 +3,12 @@
 
 #include "layers/core/error.h"
 #include "layers/geometry/penetration.h"
+#include "grid_mesh.h"
 
 namespace g = layers::geometry;
 
-namespace {
-
-// A grid of n x n vertices on the square [0,1]^2 at height z, wound so that
-// the normals point up (+z).
-g::TriMesh plane(int n, float z) {
-  g::TriMesh m;
-  m.vertices.resize(n * n, 3);
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) m.vertices.row(j * n + i) << i / float(n - 1), j / float(n - 1), z;
-  m.faces.resize(2 * (n - 1) * (n - 1), 3);
-  int f = 0;
-  for (int j = 0; j + 1 < n; ++j)
-    for (int i = 0; i + 1 < n; ++i) {
-      int a = j * n + i, b = a + 1, c = a + n, d = c + 1;
-      m.faces.row(f++) << a, b, d;
-      m.faces.row(f++) << a, d, c;
-    }
-  return m;
-}
-
-}  // namespace
-
 TEST(Surface, PlaneAboveAndBelow) {
-  g::Surface s = g::Surface::from_mesh(plane(5, 0.0f));
+  g::Surface s = g::Surface::from_mesh(layers::test::unit_square_grid(5, 0.0f));
   EXPECT_EQ(s.size(), 25);
   EXPECT_TRUE(s.normals().row(12).isApprox(Eigen::RowVector3f(0, 0, 1)));
   EXPECT_FLOAT_EQ(s.offset(Eigen::RowVector3f(0.3f, 0.6f, 0.25f)), 0.25f);
@@ -69,7 +48,7 @@ TEST(Surface, EmptyAndMismatched) {
   EXPECT_FALSE(empty.behind(Eigen::RowVector3f(0, 0, 0)));
   EXPECT_TRUE(std::isnan(empty.offset(Eigen::RowVector3f(0, 0, 0))));
   EXPECT_THROW(g::Surface(g::Points::Zero(3, 3), g::Points::Zero(2, 3)), layers::Error);
-  g::TriMesh bad = plane(2, 0.0f);
+  g::TriMesh bad = layers::test::unit_square_grid(2, 0.0f);
   bad.faces(0, 0) = 9;
   EXPECT_THROW(g::Surface::from_mesh(bad, "body"), layers::InputError);
 }

@@ -6,28 +6,12 @@
 
 #include "layers/core/error.h"
 #include "layers/zoo/metrics.h"
+#include "grid_mesh.h"
 
 namespace g = layers::geometry;
 namespace zoo = layers::zoo;
 
 namespace {
-
-// n x n grid over the unit square at height z, normals +z.
-g::TriMesh square(int n, float z) {
-  g::TriMesh m;
-  m.vertices.resize(n * n, 3);
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) m.vertices.row(j * n + i) << i / float(n - 1), j / float(n - 1), z;
-  m.faces.resize(2 * (n - 1) * (n - 1), 3);
-  int f = 0;
-  for (int j = 0; j + 1 < n; ++j)
-    for (int i = 0; i + 1 < n; ++i) {
-      int a = j * n + i;
-      m.faces.row(f++) << a, a + 1, a + n + 1;
-      m.faces.row(f++) << a, a + n + 1, a + n;
-    }
-  return m;
-}
 
 g::Points points(std::initializer_list<Eigen::RowVector3f> rows) {
   g::Points p(static_cast<Eigen::Index>(rows.size()), 3);
@@ -62,7 +46,7 @@ TEST(Metrics, ErrorChecksShapesAndPropagatesNaN) {
 }
 
 TEST(Metrics, HCollisionAgainstABodyPlane) {
-  g::TriMesh body = square(11, 0.0f);
+  g::TriMesh body = layers::test::unit_square_grid(11, 0.0f);
   g::Points garment = points({{0.1f, 0.1f, 0.02f},
                               {0.5f, 0.5f, -0.01f},
                               {0.33f, 0.71f, 0.005f},
@@ -79,19 +63,19 @@ TEST(Metrics, HCollisionAgainstABodyPlane) {
 }
 
 TEST(Metrics, LCollisionAgainstAnInnerPlane) {
-  g::TriMesh inner = square(6, 0.1f);
+  g::TriMesh inner = layers::test::unit_square_grid(6, 0.1f);
   g::Points outer = points({{0.5f, 0.5f, 0.12f}, {0.2f, 0.3f, 0.08f}, {0.7f, 0.1f, 0.15f}, {0.9f, 0.9f, 0.11f}});
   EXPECT_DOUBLE_EQ(zoo::l_collision_rate(outer, inner), 0.25);
   // Two inner garments joined into one surface: the second, higher one
   // (z = 0.13) is nearest to the first outer vertex, now behind it.
-  g::TriMesh upper = square(6, 0.13f);
+  g::TriMesh upper = layers::test::unit_square_grid(6, 0.13f);
   g::TriMesh both = g::concatenate({inner, upper});
   EXPECT_DOUBLE_EQ(zoo::l_collision_rate(outer, both), 0.5);
 }
 
 TEST(Metrics, CollisionRateNeedsVerticesAndValidFaces) {
-  EXPECT_THROW(zoo::h_collision_rate(g::Points(0, 3), square(3, 0.0f)), layers::Error);
-  g::TriMesh bad = square(3, 0.0f);
+  EXPECT_THROW(zoo::h_collision_rate(g::Points(0, 3), layers::test::unit_square_grid(3, 0.0f)), layers::Error);
+  g::TriMesh bad = layers::test::unit_square_grid(3, 0.0f);
   bad.faces(0, 2) = 100;
   EXPECT_THROW(zoo::h_collision_rate(g::Points::Zero(1, 3), bad), layers::InputError);
 }

@@ -8,6 +8,7 @@
 #include "layers/zoo/model.h"
 #include "layers/zoo/plugin_loader.h"
 #include "test_paths.h"
+#include "error_of.h"
 
 namespace zoo = layers::zoo;
 namespace cfg = layers::cfg;
@@ -43,15 +44,6 @@ zoo::StepInput triangle_input(const at::Tensor& prev, const at::Tensor& current)
   in.wind_rotation = at::zeros({2, 4});
   in.wind_strength = at::zeros({2});
   return in;
-}
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "(no error)";
 }
 
 std::shared_ptr<zoo::Model> plugin_model(zoo::Registry& r, const std::string& yaml) {
@@ -112,19 +104,19 @@ TEST(Model, PluginModelRunsOneStep) {
 
 TEST(Model, PluginModelRejectsBadParameters) {
   zoo::Registry r;
-  std::string unknown = error_of([&] { plugin_model(r, "dampng: 0.1\n"); });
+  std::string unknown = layers::test::error_of([&] { plugin_model(r, "dampng: 0.1\n"); });
   EXPECT_NE(unknown.find("dampng"), std::string::npos) << unknown;
   EXPECT_NE(unknown.find("exp.yaml"), std::string::npos) << unknown;
   zoo::Registry r2;
   EXPECT_THROW(plugin_model(r2, "damping: -1\n"), layers::InputError);  // the type survives the plugin
-  std::string range = error_of([&] { plugin_model(r2, "damping: 2\n"); });
+  std::string range = layers::test::error_of([&] { plugin_model(r2, "damping: 2\n"); });
   EXPECT_NE(range.find("exp.yaml:1: damping: expected a number in [0, 1], got '2'"), std::string::npos)
       << range;
 }
 
 TEST(Model, PrepareConvertsAndValidatesStaticData) {
   CountingModel m;
-  EXPECT_EQ(error_of([&] { m.sequence(); }), "model 'counting': step or sequence() before prepare()");
+  EXPECT_EQ(layers::test::error_of([&] { m.sequence(); }), "model 'counting': step or sequence() before prepare()");
   m.prepare(triangle_sequence("s"));
   EXPECT_EQ(m.sequence().garments[0].faces.scalar_type(), at::kLong);
   EXPECT_EQ(m.sequence().body_faces.scalar_type(), at::kLong);
@@ -132,16 +124,16 @@ TEST(Model, PrepareConvertsAndValidatesStaticData) {
 
   zoo::SequenceStatic bad = triangle_sequence("bad");
   bad.garments[0].faces[0][2] = 5;
-  EXPECT_EQ(error_of([&] { m.prepare(bad); }),
+  EXPECT_EQ(layers::test::error_of([&] { m.prepare(bad); }),
             "sequence 'bad': garments[0] (shirt).faces: expected indices in [0, 3), got values in [0, 5]");
   bad = triangle_sequence("bad");
   bad.garments[0].rest = at::zeros({3, 2});
-  EXPECT_EQ(error_of([&] { m.prepare(bad); }),
+  EXPECT_EQ(layers::test::error_of([&] { m.prepare(bad); }),
             "sequence 'bad': garments[0] (shirt).rest: expected a floating-point tensor [*, 3], got Float "
             "tensor [3, 2] on cpu");
   bad = triangle_sequence("bad");
   bad.garments[0].attributes[3] = std::nanf("");
-  EXPECT_EQ(error_of([&] { m.prepare(bad); }),
+  EXPECT_EQ(layers::test::error_of([&] { m.prepare(bad); }),
             "sequence 'bad': garments[0] (shirt).attributes: expected finite values, got NaN or infinity");
   bad = triangle_sequence("bad");
   bad.garments[0].layer = 2;
@@ -172,18 +164,18 @@ TEST(Model, StepChecksInputAndOutput) {
   m.prepare(triangle_sequence("s"));
   at::Tensor p = at::zeros({3, 3});
   zoo::StepInput in = triangle_input(p, at::zeros({4, 3}));
-  EXPECT_EQ(error_of([&] { m.step(in); }),
+  EXPECT_EQ(layers::test::error_of([&] { m.step(in); }),
             "model 'counting': step input garments[0].current: expected a floating-point tensor [3, 3] on "
             "cpu, got Float tensor [4, 3] on cpu");
   in = triangle_input(p, p);
   in.wind_strength = at::Tensor();
-  EXPECT_EQ(error_of([&] { m.step(in); }),
+  EXPECT_EQ(layers::test::error_of([&] { m.step(in); }),
             "model 'counting': step input wind_strength: expected a floating-point tensor [2] on cpu, got "
             "nothing (undefined tensor)");
   in = triangle_input(p, p);
   in.garments.clear();
-  EXPECT_EQ(error_of([&] { m.step(in); }),
+  EXPECT_EQ(layers::test::error_of([&] { m.step(in); }),
             "model 'counting': step input garments: expected 1 garments (as prepared), got 0");
-  EXPECT_EQ(error_of([&] { m.step(triangle_input(p, p)); }),
+  EXPECT_EQ(layers::test::error_of([&] { m.step(triangle_input(p, p)); }),
             "model 'counting': step output garments: expected 1 garments (as prepared), got 2");
 }

@@ -4,6 +4,7 @@
 #include "layers/core/config_node.h"
 #include "layers/core/error.h"
 #include "layers/zoo/registry.h"
+#include "error_of.h"
 
 using layers::zoo::Registry;
 
@@ -11,15 +12,6 @@ namespace {
 
 layers::zoo::ModelFactory null_factory() {
   return [](const layers::cfg::Node&) { return std::shared_ptr<layers::zoo::Model>(); };
-}
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "(no error)";
 }
 
 }  // namespace
@@ -40,7 +32,7 @@ TEST(Registry, NamesAreSortedAndEntriesKeepPaths) {
 TEST(Registry, DuplicateNamesBothFiles) {
   Registry r;
   r.add("layersnet", "", null_factory(), "/a/liblayers_plugin_layersnet.so");
-  EXPECT_EQ(error_of([&] { r.add("layersnet", "", null_factory(), "/b/liblayers_plugin_other.so"); }),
+  EXPECT_EQ(layers::test::error_of([&] { r.add("layersnet", "", null_factory(), "/b/liblayers_plugin_other.so"); }),
             "/b/liblayers_plugin_other.so: model 'layersnet': registered twice: by "
             "/a/liblayers_plugin_layersnet.so and by /b/liblayers_plugin_other.so; model names must be "
             "unique, remove or rename one of the plugins");
@@ -72,7 +64,7 @@ TEST(Registry, UnknownModelListsRegisteredOnes) {
 
 TEST(Registry, UnknownModelWithNothingRegistered) {
   Registry r;
-  std::string message = error_of([&] { r.create("layersnet", layers::cfg::Node{}); });
+  std::string message = layers::test::error_of([&] { r.create("layersnet", layers::cfg::Node{}); });
   EXPECT_NE(message.find("unknown model 'layersnet'; no models registered; check LAYERS_PLUGIN_PATH"),
             std::string::npos)
       << message;
@@ -81,6 +73,6 @@ TEST(Registry, UnknownModelWithNothingRegistered) {
 TEST(Registry, FactoryReturningNothingIsAnError) {
   Registry r;
   r.add("empty", "", null_factory(), "/x/liblayers_plugin_empty.so");
-  EXPECT_EQ(error_of([&] { r.create("empty", layers::cfg::Node{}); }),
+  EXPECT_EQ(layers::test::error_of([&] { r.create("empty", layers::cfg::Node{}); }),
             "/x/liblayers_plugin_empty.so: the factory of model 'empty' returned no model");
 }
