@@ -1,0 +1,23 @@
+// layers/generate/body_data.h -- the body part of a LAYERS-H5 sequence
+// from a generated body (layers::scene -> layers::data).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "layers/data/sequence.h"
+#include "layers/scene/body_config.h"
+
+namespace layers::generate {
+
+// Fills body/faces, positions, root, root_rot, joints, joint names and
+// parents and skinning, and the sequence's shape parameters and frame
+// count, from `generated`.
+void fill_body(data::SequenceData& seq, const scene::GeneratedBody& generated);
+
+// A sequence with the body only: no garments, and no wind (strength 0,
+// identity rotation) for every frame.
+data::SequenceData body_only_sequence(const scene::GeneratedBody& generated, const std::string& id,
+                                      std::uint64_t seed);
+
+}  // namespace layers::generate

@@ -1,0 +1,78 @@
+// layers/scene/body_sequence.h -- the body part of a LAYERS-H5 sequence:
+// per-frame skinned vertices, root translation and rotation, and joint
+// transforms, with body self-intersections detected, small ones resolved
+// (the offending arm abducted or swung forward / backward, the legs
+// abducted, by the smallest angle that clears the frame, the correction
+// spread smoothly over neighbouring frames) and frames that stay
+// intersecting handled by a policy.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "layers/scene/body_model.h"
+#include "layers/scene/motion.h"
+#include "layers/scene/self_intersection.h"
+
+namespace layers::scene {
+
+// One posed frame.
+struct BodyFrame {
+  geometry::Points vertices;  // [Vb, 3]
+  JointTransforms joints;
+};
+BodyFrame pose_body(const Body& body, const Pose& pose);
+
+struct SequenceOptions {
+  IntersectionOptions intersection;
+  bool resolve = true;              // try to resolve intersecting frames
+  double max_arm_correction = 0.9;  // rad an arm may be turned at most
+  double max_leg_correction = 0.35; // rad of extra leg abduction at most
+  // What happens to frames still intersecting after resolution:
+  // "longest_run" keeps the longest run of consecutive clean frames,
+  // "drop" removes the bad frames (the sequence then skips in time),
+  // "keep" keeps them (only reported).
+  std::string on_intersection = "longest_run";
+};
+
+struct IntersectionReport {
+  int frames = 0;          // frames of the motion checked
+  int intersecting = 0;    // frames deeper than the tolerance before resolution
+  int resolved = 0;        // of those, frames clean after resolution
+  int remaining = 0;       // frames still intersecting after resolution
+  int dropped = 0;         // frames removed by the policy
+  double worst_before = 0.0, worst_after = 0.0;  // deepest penetration (m), before and after resolution
+  double share_intersecting() const { return frames ? static_cast<double>(intersecting) / frames : 0.0; }
+};
+
+struct BodySequence {
+  int num_frames = 0, num_vertices = 0, num_joints = 0;
+  std::string motion;              // MotionSource::describe()
+  std::vector<float> positions;    // [T, Vb, 3]
+  std::vector<float> root;         // [T, 3]  root joint (pelvis) position
+  std::vector<float> root_rot;     // [T, 4]  root rotation relative to rest, w x y z
+  std::vector<float> joints;       // [T, J, 3, 4]  see joint_matrices()
+  std::vector<int> source_frame;   // [T] motion frame each output frame comes from
+  IntersectionReport intersection;
+};
+
+// Poses, checks and (per options) repairs every frame of `motion`. Throws
+// InputError when the policy leaves no frame.
+BodySequence generate_body_sequence(const Body& body, const MotionSource& motion, const SequenceOptions& options = {});
+
+// Per-body arrays of LAYERS-H5 (`body/faces`, `body/joint_names`,
+// `body/joint_parents`, `body/skin_index`, `body/skin_weight`), plus the
+// rest pose a skinning model needs to use `body/joints`: with joint j's
+// frame [R | p], a rest point x moves to R (x - rest_joints[j]) + p.
+struct BodyArrays {
+  std::vector<int> faces;             // [Fb, 3]
+  std::vector<std::string> joint_names;
+  std::vector<int> joint_parents;     // -1 for the root
+  std::vector<int> skin_index;        // [Vb, 4]
+  std::vector<float> skin_weight;     // [Vb, 4]
+  std::vector<float> rest_joints;     // [J, 3]
+  std::vector<float> rest_vertices;   // [Vb, 3]
+};
+BodyArrays body_arrays(const Body& body);
+
+}  // namespace layers::scene

@@ -1,0 +1,53 @@
+// `layers body` end to end on the shared MPFB2 body and CMU clips: writes a
+// valid LAYERS-H5 body sequence, exports it, and rejects bad input.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "run_command.h"
+#include "temp_dir.h"
+
+namespace fs = std::filesystem;
+using namespace layers;
+using test::run_command;
+
+TEST(CliBody, ProceduralWalkToShardValidatesAndExports) {
+  test::TempDir dir;
+  std::string out = dir.file("walk/body.h5");
+  auto r = run_command(test::layers_bin() + " body --shape gender=0.2,height=0.6 --motion procedural:walk --frames 24 " +
+                       "--transition 6 --seed 3 --out " + out + " --export obj");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("24 frames of procedural:walk"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("13380 body vertices, 31 joints"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("exported 24 files"), std::string::npos) << r.output;
+  auto v = run_command(test::layers_bin() + " validate " + out);
+  EXPECT_EQ(v.exit_code, 0) << v.output;
+  EXPECT_TRUE(fs::exists(dir.file("walk/body_export/body-0000_body_0023.obj")));
+}
+
+TEST(CliBody, BvhClipToDatasetFolder) {
+  test::TempDir dir;
+  auto r = run_command(test::layers_bin() + " body --motion 131_02_start_walk_stop.bvh --frames 20 --out " +
+                       dir.file("ds"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("self-intersection:"), std::string::npos) << r.output;
+  auto info = run_command(test::layers_bin() + " info " + dir.file("ds"));
+  EXPECT_EQ(info.exit_code, 0) << info.output;
+  EXPECT_NE(info.output.find("train=1"), std::string::npos) << info.output;
+}
+
+TEST(CliBody, BadInputNamesTheProblem) {
+  test::TempDir dir;
+  auto shape = run_command(test::layers_bin() + " body --shape weight=1.5 --out " + dir.file("x.h5"));
+  EXPECT_EQ(shape.exit_code, 1);
+  EXPECT_NE(shape.output.find("body.shape.weight: expected a number in [0, 1], got '1.5'"), std::string::npos)
+      << shape.output;
+  auto kind = run_command(test::layers_bin() + " body --motion procedural:moonwalk --out " + dir.file("x.h5"));
+  EXPECT_EQ(kind.exit_code, 1);
+  EXPECT_NE(kind.output.find("moonwalk"), std::string::npos) << kind.output;
+  std::string bvh = dir.write("broken.bvh", "HIERARCHY\nROOT Hips\n{\n  OFFSET 0 0 0\n  CHANNELS 3 Xposition\n}\n");
+  auto broken = run_command(test::layers_bin() + " body --motion " + bvh + " --out " + dir.file("x.h5"));
+  EXPECT_EQ(broken.exit_code, 1);
+  EXPECT_NE(broken.output.find("broken.bvh: line 5"), std::string::npos) << broken.output;
+  EXPECT_FALSE(fs::exists(dir.file("x.h5")));
+}
