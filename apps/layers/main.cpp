@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   };
 
   try {
+    add(app::register_generate);
     add(app::register_body);
     add(app::register_info);
     add(app::register_validate);

@@ -24,6 +24,7 @@ using VerbRun = std::function<int()>;
 VerbRun register_config(CLI::App& app, const Global& global);
 VerbRun register_export(CLI::App& app, const Global& global);
 VerbRun register_body(CLI::App& app, const Global& global);
+VerbRun register_generate(CLI::App& app, const Global& global);
 VerbRun register_models(CLI::App& app, const Global& global);
 VerbRun register_info(CLI::App& app, const Global& global);
 VerbRun register_stats(CLI::App& app, const Global& global);

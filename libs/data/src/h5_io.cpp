@@ -222,18 +222,27 @@ std::vector<std::string> member_names(const H5::Group& group) {
   return names;
 }
 
-H5::Group create_ordered_group(H5::Group& parent, const std::string& name) {
+namespace {
+// Groups without modification times, so the same data gives the same bytes.
+H5::Group create_group_with(H5::Group& parent, const std::string& name, bool ordered) {
   Lock lock;
-  H5::LinkCreatPropList lcpl;
   const hid_t gcpl = H5Pcreate(H5P_GROUP_CREATE);
-  H5Pset_link_creation_order(gcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED);
+  H5Pset_obj_track_times(gcpl, false);
+  if (ordered) H5Pset_link_creation_order(gcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED);
   const hid_t id = H5Gcreate2(parent.getId(), name.c_str(), H5P_DEFAULT, gcpl, H5P_DEFAULT);
   H5Pclose(gcpl);
-  if (id < 0) throw H5::GroupIException("create_ordered_group", "H5Gcreate2 failed for " + name);
+  if (id < 0) throw H5::GroupIException("create_group", "H5Gcreate2 failed for " + name);
   H5::Group group(id);
   H5Gclose(id);  // the C++ object took its own reference
   return group;
 }
+}  // namespace
+
+H5::Group create_ordered_group(H5::Group& parent, const std::string& name) {
+  return create_group_with(parent, name, true);
+}
+
+H5::Group create_group(H5::Group& parent, const std::string& name) { return create_group_with(parent, name, false); }
 
 Dims dims_of(const H5::DataSet& ds) {
   H5::DataSpace space = ds.getSpace();
@@ -327,6 +336,7 @@ void write(H5::Group& loc, const std::string& name, const std::vector<T>& data, 
   Lock lock;
   H5::DataSpace space(static_cast<int>(dims.size()), dims.data());
   H5::DSetCreatPropList plist;
+  H5Pset_obj_track_times(plist.getId(), false);  // same data, same bytes
   bool any_zero = false;
   for (hsize_t d : dims) any_zero |= d == 0;
   if (chunk_by_frame && !dims.empty() && !any_zero) {
@@ -342,7 +352,9 @@ void write_strings(H5::Group& loc, const std::string& name, const std::vector<st
   Lock lock;
   const H5::StrType type = vlen_utf8();
   const Dims dims{values.size()};
-  H5::DataSet ds = loc.createDataSet(name, type, H5::DataSpace(1, dims.data()));
+  H5::DSetCreatPropList plist;
+  H5Pset_obj_track_times(plist.getId(), false);
+  H5::DataSet ds = loc.createDataSet(name, type, H5::DataSpace(1, dims.data()), plist);
   std::vector<const char*> pointers;
   for (const auto& v : values) pointers.push_back(v.c_str());
   if (!pointers.empty()) ds.write(pointers.data(), type);

@@ -83,6 +83,8 @@ bool is_dataset(const H5::Group& loc, const std::string& path);
 std::vector<std::string> member_names(const H5::Group& group);
 // A group that tracks the creation order of its members.
 H5::Group create_ordered_group(H5::Group& parent, const std::string& name);
+// A group without modification times (deterministic bytes).
+H5::Group create_group(H5::Group& parent, const std::string& name);
 Dims dims_of(const H5::DataSet& ds);
 
 // A dataset to read: file (for messages), the dataset's full HDF5 path

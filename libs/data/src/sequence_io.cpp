@@ -115,14 +115,14 @@ void write_sequence(H5::Group& seqs, const SequenceData& seq) {
   const auto Vb = static_cast<hsize_t>(b.n_vertices());
   const auto J = static_cast<hsize_t>(b.n_joints());
 
-  H5::Group group = seqs.createGroup(seq.id);
+  H5::Group group = h5::create_group(seqs, seq.id);
   h5::set_attr(group, "n_frames", static_cast<std::int64_t>(seq.n_frames));
   h5::set_attr(group, "motion", seq.motion);
   h5::set_attr(group, "seed", static_cast<std::uint64_t>(seq.seed));
   h5::set_attr(group, "tags", seq.tags);
   for (const auto& [name, value] : seq.shape) h5::set_attr(group, name, value);
 
-  H5::Group body = group.createGroup("body");
+  H5::Group body = h5::create_group(group, "body");
   h5::write(body, "faces", b.faces, {static_cast<hsize_t>(b.n_faces()), 3});
   h5::write(body, "positions", b.positions, {T, Vb, 3}, true);
   h5::write(body, "root", b.root, {T, 3});
@@ -133,7 +133,7 @@ void write_sequence(H5::Group& seqs, const SequenceData& seq) {
   h5::write(body, "skin_index", b.skin_index, {Vb, 4});
   h5::write(body, "skin_weight", b.skin_weight, {Vb, 4});
 
-  H5::Group wind = group.createGroup("wind");
+  H5::Group wind = h5::create_group(group, "wind");
   h5::write(wind, "rotation", seq.wind.rotation, {T, 4});
   h5::write(wind, "strength", seq.wind.strength, {T});
 
@@ -142,7 +142,7 @@ void write_sequence(H5::Group& seqs, const SequenceData& seq) {
     const GarmentData& g = seq.garments[k];
     const auto V = static_cast<hsize_t>(g.n_vertices());
     const auto F = static_cast<hsize_t>(g.n_faces());
-    H5::Group gg = garments.createGroup(std::to_string(k));
+    H5::Group gg = h5::create_group(garments, std::to_string(k));
     h5::set_attr(gg, "name", g.name);
     h5::set_attr(gg, "type", g.type);
     h5::set_attr(gg, "layer", static_cast<std::int64_t>(g.layer));

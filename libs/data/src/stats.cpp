@@ -192,9 +192,9 @@ void write_stats(const std::string& path, const NormStats& stats) {
       h5::set_attr(root, "n_sequences", stats.n_sequences);
       h5::set_attr(root, "n_frames", stats.n_frames);
       h5::set_attr(root, "std_floor", stats.std_floor);
-      for (const char* top : {"garment", "body"}) root.createGroup(top);
+      for (const char* top : {"garment", "body"}) h5::create_group(root, top);
       for_each_quantity(stats, [&](const char* name, const Moments& m) {
-        H5::Group group = root.createGroup(name);
+        H5::Group group = h5::create_group(root, name);
         h5::write(group, "mean", std::vector<double>(m.mean.begin(), m.mean.end()), {3});
         h5::write(group, "std", std::vector<double>(m.std.begin(), m.std.end()), {3});
         h5::set_attr(group, "count", m.count);

@@ -1,12 +1,27 @@
 // Conversion of a generated body into LAYERS-H5 arrays (see body_data.h).
 #include "layers/generate/body_data.h"
 
+#include "layers/core/error.h"
+
 namespace layers::generate {
 
-void fill_body(data::SequenceData& seq, const scene::GeneratedBody& generated) {
+namespace {
+// Frames [first, first + count) of a [T, ...] array with `per_frame` values a frame.
+template <class T>
+std::vector<T> frames(const std::vector<T>& all, std::size_t per_frame, int first, int count) {
+  return std::vector<T>(all.begin() + static_cast<std::ptrdiff_t>(per_frame * first),
+                        all.begin() + static_cast<std::ptrdiff_t>(per_frame * (first + count)));
+}
+}  // namespace
+
+void fill_body(data::SequenceData& seq, const scene::GeneratedBody& generated, int first, int count) {
   const scene::BodySequence& s = generated.sequence;
+  if (count < 0) count = s.num_frames - first;
+  if (first < 0 || first + count > s.num_frames)
+    throw Error("fill_body: frames [" + std::to_string(first) + ", " + std::to_string(first + count) +
+                ") outside the body sequence of " + std::to_string(s.num_frames) + " frames");
   const scene::BodyArrays arrays = scene::body_arrays(generated.body);
-  seq.n_frames = s.num_frames;
+  seq.n_frames = count;
   seq.motion = s.motion;
   seq.shape = {{"gender", generated.body.shape.gender},
                {"muscle", generated.body.shape.muscle},
@@ -18,10 +33,11 @@ void fill_body(data::SequenceData& seq, const scene::GeneratedBody& generated) {
   b.joint_parents.assign(arrays.joint_parents.begin(), arrays.joint_parents.end());
   b.skin_index.assign(arrays.skin_index.begin(), arrays.skin_index.end());
   b.skin_weight = arrays.skin_weight;
-  b.positions = s.positions;
-  b.root = s.root;
-  b.root_rot = s.root_rot;
-  b.joints = s.joints;
+  const std::size_t vertices = static_cast<std::size_t>(s.num_vertices), joints = static_cast<std::size_t>(s.num_joints);
+  b.positions = frames(s.positions, vertices * 3, first, count);
+  b.root = frames(s.root, 3, first, count);
+  b.root_rot = frames(s.root_rot, 4, first, count);
+  b.joints = frames(s.joints, joints * 12, first, count);
 }
 
 data::SequenceData body_only_sequence(const scene::GeneratedBody& generated, const std::string& id,

@@ -12,8 +12,9 @@ namespace layers::generate {
 
 // Fills body/faces, positions, root, root_rot, joints, joint names and
 // parents and skinning, and the sequence's shape parameters and frame
-// count, from `generated`.
-void fill_body(data::SequenceData& seq, const scene::GeneratedBody& generated);
+// count, from frames [first, first + count) of `generated` (count < 0: to
+// the end).
+void fill_body(data::SequenceData& seq, const scene::GeneratedBody& generated, int first = 0, int count = -1);
 
 // A sequence with the body only: no garments, and no wind (strength 0,
 // identity rotation) for every frame.

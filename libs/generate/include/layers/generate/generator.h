@@ -1,0 +1,50 @@
+// layers/generate/generator.h -- `layers generate`: a whole dataset folder
+// from a generator config.
+//
+// Scene i goes to shard i / sequences_per_shard. Each finished scene is
+// kept at once as parts/<id>.h5 (or parts/<id>.skipped with the reasons it
+// failed validation), so an interrupted run resumes where it stopped; when
+// every scene of a shard is done, its parts are merged into
+// shard-NNNNN.h5 (atomically) and removed. `--shard k/n` makes this
+// process do only the shards j with j % n == k, so several processes or
+// machines can share the work; whichever finds every shard present writes
+// dataset.yaml, splits.yaml (train/val/test and the T, T+W, L, L+W
+// subsets) and stats.h5 (train split only). The resolved config is saved
+// as generator.yaml; resuming with a different config is an error.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "layers/generate/generator_config.h"
+
+namespace layers::generate {
+
+struct GenerateOptions {
+  std::string out;      // dataset folder
+  int shard_index = 0;  // k of --shard k/n
+  int shard_count = 1;  // n
+  int threads = 1;      // scenes simulated in parallel
+  bool progress = true;
+};
+
+struct GenerateReport {
+  int scenes = 0;        // scenes of this process's shards
+  int simulated = 0;     // simulated by this run
+  int reused = 0;        // found finished (resume)
+  int written = 0, skipped = 0;  // of those simulated now
+  std::vector<std::string> skip_reasons;  // "<id>: <reason>"
+  int simulated_frames = 0;
+  double simulate_seconds = 0;  // summed over scenes (all threads)
+  double seconds = 0;           // wall clock
+  bool finalized = false;       // dataset.yaml, splits.yaml and stats.h5 written
+};
+
+// `config_yaml` is the resolved config (saved and compared on resume).
+GenerateReport generate_dataset(const GeneratorConfig& config, const std::string& config_yaml,
+                                const GenerateOptions& options);
+
+// "k/n" -> (k, n); InputError naming --shard otherwise.
+std::pair<int, int> parse_shard(const std::string& text);
+
+}  // namespace layers::generate

@@ -1,0 +1,148 @@
+// layers/generate/generator_config.h -- the typed config of `layers
+// generate` (configs/data/*.yaml): how many scenes, how long, which bodies,
+// motions, outfits, attribute ranges, wind regimes, splits, and the solver.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "layers/core/config.h"
+#include "layers/scene/body_config.h"
+#include "layers/scene/garment.h"
+#include "layers/sim/config.h"
+#include "layers/sim/material.h"
+
+namespace layers::generate {
+
+// One outfit: inner garment types (a t-shirt goes with pants or a skirt)
+// under one outer garment type.
+struct OutfitConfig {
+  std::vector<std::string> inner{"jumpsuit"};
+  std::string outer = "jacket";
+  double weight = 1.0;  // relative sampling weight
+
+  template <class V>
+  void visit(V& v) {
+    v("inner", inner, cfg::opt().help("inner garment types: dress, dress_belt, jumpsuit, tshirt, pants, skirt"));
+    v("outer", outer, cfg::opt().choices({"jacket", "jacket_hood", "none"}).help("outer garment type"));
+    v("weight", weight, cfg::opt().min(0).help("relative sampling weight"));
+  }
+};
+
+// A range [lo, hi] for each of the paper's garment attributes.
+struct AttributeRanges {
+  std::vector<double> mass{0.2, 0.8};
+  std::vector<double> stiffness{15, 100};  // tension, compression, shear (drawn separately)
+  std::vector<double> bending{15, 200};
+  std::vector<double> friction{40, 80};    // friction and self-friction (drawn separately)
+
+  template <class V>
+  void visit(V& v) {
+    v("mass", mass, cfg::opt().min(0.001).help("[lo, hi]"));
+    v("stiffness", stiffness, cfg::opt().min(0).help("[lo, hi] for tension, compression and shear"));
+    v("bending", bending, cfg::opt().min(0).help("[lo, hi]"));
+    v("friction", friction, cfg::opt().range(0, 80).help("[lo, hi] for friction and self-friction"));
+  }
+};
+
+// Wind: each scene draws a regime (calm, strong or mixed by the weights),
+// then cuts its frames into spans of span_frames [lo, hi] frames, each with
+// a random horizontal-ish direction and a strength drawn from the regime's
+// range (Blender units).
+struct WindConfig {
+  double calm_weight = 1, strong_weight = 1, mixed_weight = 1;
+  std::vector<double> calm{0, 50};
+  std::vector<double> strong{250, 400};
+  std::vector<double> mixed{0, 400};
+  std::vector<int> span_frames{20, 60};
+  double max_elevation_deg = 20;  // wind direction within this angle of horizontal
+
+  template <class V>
+  void visit(V& v) {
+    v("calm_weight", calm_weight, cfg::opt().min(0));
+    v("strong_weight", strong_weight, cfg::opt().min(0));
+    v("mixed_weight", mixed_weight, cfg::opt().min(0));
+    v("calm", calm, cfg::opt().range(0, 400).help("[lo, hi] strength of calm scenes (<= 50: the T and L subsets)"));
+    v("strong", strong, cfg::opt().range(0, 400).help("[lo, hi] strength of windy scenes (> 250: T+W and L+W)"));
+    v("mixed", mixed, cfg::opt().range(0, 400).help("[lo, hi] strength of mixed scenes"));
+    v("span_frames", span_frames, cfg::opt().min(1).help("[lo, hi] frames per wind span"));
+    v("max_elevation_deg", max_elevation_deg, cfg::opt().range(0, 90));
+  }
+};
+
+struct BodySampling {
+  scene::ShapeSampling shape;
+  std::vector<std::string> motions{"procedural:walk"};  // drawn uniformly per scene
+  int transition_frames = 10;                           // T-pose -> motion blend (part of warm-up)
+  double intersection_tolerance_mm = 4.0;
+
+  template <class V>
+  void visit(V& v) {
+    v("shape", shape);
+    v("motions", motions, cfg::opt().help("motion specs: procedural:<kind>, bvh:<path> or a .bvh file"));
+    v("transition_frames", transition_frames, cfg::opt().range(1, 300).help("frames blending from the T-pose into the motion"));
+    v("intersection_tolerance_mm", intersection_tolerance_mm, cfg::opt().range(0.5, 50));
+  }
+};
+
+struct GarmentSampling {
+  scene::GarmentParams fit;  // templates: edge length, ease, lengths, clearances
+  std::vector<OutfitConfig> outfits{OutfitConfig{}};
+  AttributeRanges attributes;
+
+  template <class V>
+  void visit(V& v) {
+    v("fit", fit);
+    v("outfits", outfits);
+    v("attributes", attributes);
+  }
+};
+
+struct SplitConfig {
+  double val = 0.1;   // share of scenes in val
+  double test = 0.1;  // share in test; the rest is train
+
+  template <class V>
+  void visit(V& v) {
+    v("val", val, cfg::opt().range(0, 1));
+    v("test", test, cfg::opt().range(0, 1));
+  }
+};
+
+struct GeneratorConfig {
+  std::string name = "layers";
+  std::uint64_t seed = 0;
+  int sequences = 6;
+  int frames = 30;          // recorded frames per sequence
+  int drape_frames = 30;    // T-pose frames simulated before the transition (not recorded)
+  int sequences_per_shard = 16;
+  BodySampling body;
+  GarmentSampling garments;
+  WindConfig wind;
+  SplitConfig splits;
+  sim::SolverConfig sim;
+
+  template <class V>
+  void visit(V& v) {
+    v("name", name, cfg::opt().help("dataset name"));
+    v("seed", seed, cfg::opt().help("seed of the whole dataset; scene i uses a seed derived from it"));
+    v("sequences", sequences, cfg::opt().range(1, 10000000));
+    v("frames", frames, cfg::opt().range(3, 100000).help("recorded frames per sequence (30 fps)"));
+    v("drape_frames", drape_frames, cfg::opt().range(1, 10000).help("T-pose settling frames before recording"));
+    v("sequences_per_shard", sequences_per_shard, cfg::opt().range(1, 100000));
+    v("body", body);
+    v("garments", garments);
+    v("wind", wind);
+    v("splits", splits);
+    v("sim", sim);
+  }
+};
+
+// Cross-field checks the per-field ranges cannot express (ranges are
+// [lo, hi] pairs, weights not all zero, known garment types, outfits with
+// at least one inner garment, val + test < 1). InputError naming `file`
+// and the key path.
+void check(const GeneratorConfig& config, const std::string& file);
+
+}  // namespace layers::generate

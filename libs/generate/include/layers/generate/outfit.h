@@ -1,0 +1,23 @@
+// layers/generate/outfit.h -- the garments of a scene, fitted around the
+// body in its T-pose (layers::scene garment templates), as LAYERS-H5
+// garment arrays.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "layers/data/sequence.h"
+#include "layers/generate/scene_spec.h"
+#include "layers/scene/body_model.h"
+#include "layers/scene/garment.h"
+
+namespace layers::generate {
+
+// One garment per spec.garments entry (the templates' order: inner ones
+// first, a bottom before the t-shirt over it, then the outer one), with
+// rest shape, faces, UVs, panels, type, layer and attributes filled in
+// and no positions yet. The outer garment is fitted over the inner ones.
+std::vector<data::GarmentData> fit_outfit(const scene::Body& body, const SceneSpec& spec,
+                                          const scene::GarmentParams& params);
+
+}  // namespace layers::generate

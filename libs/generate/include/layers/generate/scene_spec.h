@@ -1,0 +1,51 @@
+// layers/generate/scene_spec.h -- what one scene of a dataset is, drawn
+// deterministically from the dataset seed and the scene's index: body
+// shape, motion, outfit with per-garment attributes, wind schedule, the
+// split it belongs to and its subset tags (T, T+W, L, L+W).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "layers/generate/generator_config.h"
+#include "layers/scene/body_model.h"
+#include "layers/sim/material.h"
+#include "layers/sim/wind.h"
+
+namespace layers::generate {
+
+struct GarmentSpec {
+  std::string type;
+  int layer = 0;  // 0 inner, 1 outer
+  sim::GarmentAttributes attributes;
+};
+
+struct SceneSpec {
+  int index = 0;
+  std::string id;            // "seq-000042"
+  std::uint64_t seed = 0;    // the scene's own seed (motion, garment sizes)
+  scene::ShapeParams shape;
+  std::string motion;
+  std::vector<GarmentSpec> garments;  // inner garments first, then the outer one
+  std::string wind_regime;            // calm, strong or mixed
+  std::vector<sim::WindSpan> wind;    // over the recorded frames [0, frames)
+  std::string split;                  // train, val or test
+  std::vector<std::string> tags;      // subsets: T, T+W, L, L+W (or none)
+};
+
+// Scene `index` (0-based) of the dataset `config` describes.
+SceneSpec sample_scene(const GeneratorConfig& config, int index);
+
+// The split of every scene: a seeded permutation of the indices, the first
+// round(test * n) are test, the next round(val * n) val, the rest train.
+std::vector<std::string> assign_splits(const GeneratorConfig& config);
+
+// The paper's subsets (PAPER_NOTES.md, Table 2): a jumpsuit (tight) or a
+// dress (loose) under a jacket, with all wind <= 50 (T, L) or all > 250
+// (T+W, L+W).
+std::vector<std::string> subset_tags(const std::vector<GarmentSpec>& garments, const std::vector<sim::WindSpan>& wind);
+
+std::string scene_id(int index);
+
+}  // namespace layers::generate

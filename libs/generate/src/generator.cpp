@@ -1,0 +1,232 @@
+// The dataset loop of `layers generate`: resume, shards, threads, merging
+// parts into shards, and the final manifest, splits and statistics (see
+// generator.h).
+#include "layers/generate/generator.h"
+
+#include <spdlog/spdlog.h>
+
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "layers/core/atomic_file.h"
+#include "layers/core/error.h"
+#include "layers/core/progress.h"
+#include "layers/data/dataset.h"
+#include "layers/data/dataset_writer.h"
+#include "layers/data/manifest.h"
+#include "layers/data/shard_writer.h"
+#include "layers/data/splits.h"
+#include "layers/data/stats.h"
+#include "layers/generate/scene_spec.h"
+#include "layers/generate/simulate.h"
+
+namespace fs = std::filesystem;
+
+namespace layers::generate {
+namespace {
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+struct Layout {
+  fs::path out;
+  const GeneratorConfig& config;
+  int n_shards() const { return (config.sequences + config.sequences_per_shard - 1) / config.sequences_per_shard; }
+  fs::path shard(int j) const { return out / data::shard_file_name(j); }
+  fs::path part(const std::string& id) const { return out / "parts" / (id + ".h5"); }
+  fs::path skipped(const std::string& id) const { return out / "parts" / (id + ".skipped"); }
+  int first(int j) const { return j * config.sequences_per_shard; }
+  int end(int j) const { return std::min(config.sequences, (j + 1) * config.sequences_per_shard); }
+  bool scene_done(int i) const {
+    std::string id = scene_id(i);
+    return fs::exists(part(id)) || fs::exists(skipped(id));
+  }
+};
+
+// Saves the resolved config, or checks it against the one a previous run
+// of this folder saved.
+void claim_folder(const Layout& layout, const std::string& config_yaml) {
+  fs::create_directories(layout.out / "parts");
+  fs::path saved = layout.out / "generator.yaml";
+  if (fs::exists(saved)) {
+    if (read_text(saved) != config_yaml)
+      throw InputError::message(saved.string(), "",
+                                "this dataset folder was started with a different generator config; use the same "
+                                "config to resume, or another --out");
+    return;
+  }
+  write_text_atomic(saved.string(), config_yaml);
+}
+
+// Merges the finished parts of shard j into its shard file (if all its
+// scenes are done and it does not exist yet), then removes the parts.
+void merge_shard(const Layout& layout, int j) {
+  if (fs::exists(layout.shard(j))) return;
+  for (int i = layout.first(j); i < layout.end(j); ++i)
+    if (!layout.scene_done(i)) return;
+  std::vector<data::SequenceData> sequences;
+  for (int i = layout.first(j); i < layout.end(j); ++i) {
+    fs::path part = layout.part(scene_id(i));
+    if (fs::exists(part)) sequences.push_back(data::Dataset::open(part.string()).read_sequence(scene_id(i)));
+  }
+  data::write_shard(layout.shard(j).string(), sequences);
+  for (int i = layout.first(j); i < layout.end(j); ++i) fs::remove(layout.part(scene_id(i)));
+}
+
+// dataset.yaml, splits.yaml and stats.h5, once every shard exists.
+bool finalize(const Layout& layout, const std::string& config_yaml) {
+  for (int j = 0; j < layout.n_shards(); ++j)
+    if (!fs::exists(layout.shard(j))) return false;
+  std::map<std::string, std::vector<std::string>> splits;
+  std::int64_t sequences = 0, frames = 0, garments = 0;
+  {
+    // Index every shard (metadata only) to count and to split what exists.
+    for (int j = 0; j < layout.n_shards(); ++j) {
+      data::Dataset shard = data::Dataset::open(layout.shard(j).string());
+      for (const auto& id : shard.ids()) {
+        const auto& info = shard.info(id);
+        ++sequences;
+        frames += info.n_frames;
+        garments += static_cast<std::int64_t>(info.garments.size());
+      }
+    }
+    const std::vector<std::string> split_of = assign_splits(layout.config);
+    for (int j = 0; j < layout.n_shards(); ++j) {
+      data::Dataset shard = data::Dataset::open(layout.shard(j).string());
+      for (const auto& id : shard.ids()) {
+        int index = std::stoi(id.substr(4));
+        splits[split_of.at(index)].push_back(id);
+        for (const auto& tag : shard.info(id).tags) splits[tag].push_back(id);
+      }
+    }
+  }
+  data::Splits out;
+  for (const char* name : {"train", "val", "test"}) out.set(name, splits[name]);
+  for (const char* name : {"T", "T+W", "L", "L+W"}) out.set(name, splits[name]);
+  data::write_splits((layout.out / "splits.yaml").string(), out);
+  data::DatasetManifest manifest;
+  manifest.name = layout.config.name;
+  manifest.seed = layout.config.seed;
+  manifest.sequences_per_shard = layout.config.sequences_per_shard;
+  manifest.n_sequences = sequences;
+  manifest.n_frames = frames;
+  manifest.n_garments = garments;
+  manifest.n_shards = layout.n_shards();
+  manifest.generator_yaml = config_yaml;
+  data::write_manifest((layout.out / "dataset.yaml").string(), manifest);
+  if (!out.get("train").empty()) {
+    data::Dataset ds = data::Dataset::open(layout.out.string());
+    data::write_stats((layout.out / "stats.h5").string(), data::compute_stats(ds));
+  } else {
+    spdlog::warn("{}: no train sequence was written; stats.h5 not computed", layout.out.string());
+  }
+  std::error_code ec;
+  fs::remove(layout.out / "parts", ec);  // only when empty (skipped markers stay)
+  return true;
+}
+
+}  // namespace
+
+std::pair<int, int> parse_shard(const std::string& text) {
+  auto slash = text.find('/');
+  try {
+    if (slash != std::string::npos) {
+      std::size_t a = 0, b = 0;
+      int k = std::stoi(text.substr(0, slash), &a);
+      int n = std::stoi(text.substr(slash + 1), &b);
+      if (a == slash && b == text.size() - slash - 1 && n >= 1 && k >= 0 && k < n) return {k, n};
+    }
+  } catch (const std::exception&) {
+  }
+  throw InputError("--shard", "", "k/n with 0 <= k < n (e.g. 0/4)", "'" + text + "'");
+}
+
+GenerateReport generate_dataset(const GeneratorConfig& config, const std::string& config_yaml,
+                                const GenerateOptions& options) {
+  Timer wall;
+  Layout layout{options.out, config};
+  claim_folder(layout, config_yaml);
+  GenerateReport report;
+
+  std::vector<int> todo;
+  for (int j = options.shard_index; j < layout.n_shards(); j += options.shard_count) {
+    for (int i = layout.first(j); i < layout.end(j); ++i) {
+      ++report.scenes;
+      if (fs::exists(layout.shard(j)) || layout.scene_done(i))
+        ++report.reused;
+      else
+        todo.push_back(i);
+    }
+    merge_shard(layout, j);  // a shard whose parts were all finished before
+  }
+
+  Progress progress("generate " + config.name, todo.size(), "scenes");
+  std::atomic<std::size_t> next{0};
+  std::mutex mutex;  // report, progress, shard merging
+  std::exception_ptr failure;
+  auto worker = [&]() {
+    while (true) {
+      std::size_t k = next++;
+      if (k >= todo.size()) return;
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (failure) return;
+      }
+      try {
+        const SceneSpec spec = sample_scene(config, todo[k]);
+        SceneResult result = simulate_scene(config, spec);
+        if (result.ok) {
+          data::write_shard(layout.part(spec.id).string(), {result.sequence});
+        } else {
+          std::string reasons;
+          for (const auto& v : result.violations) reasons += v + "\n";
+          write_text_atomic(layout.skipped(spec.id).string(), reasons);
+        }
+        std::lock_guard<std::mutex> lock(mutex);
+        ++report.simulated;
+        report.simulated_frames += result.simulated_frames;
+        report.simulate_seconds += result.seconds;
+        if (result.ok) {
+          ++report.written;
+        } else {
+          ++report.skipped;
+          std::string reasons;
+          for (const auto& v : result.violations) reasons += (reasons.empty() ? "" : "; ") + v;
+          report.skip_reasons.push_back(spec.id + ": " + reasons);
+          spdlog::warn("{} skipped: {}", spec.id, reasons);
+        }
+        merge_shard(layout, todo[k] / config.sequences_per_shard);
+        if (options.progress)
+          progress.advance(1, "h-pen " + std::to_string(100.0 * result.mean_h_penetration).substr(0, 4) + "% skipped " +
+                                  std::to_string(report.skipped));
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (!failure) failure = std::current_exception();
+        return;
+      }
+    }
+  };
+  const int threads = std::max(1, std::min<int>(options.threads, static_cast<int>(todo.size())));
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
+  if (options.progress && !todo.empty()) progress.finish();
+
+  report.finalized = finalize(layout, config_yaml);
+  report.seconds = wall.seconds();
+  return report;
+}
+
+}  // namespace layers::generate

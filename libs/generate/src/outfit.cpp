@@ -1,0 +1,53 @@
+// A scene's outfit from the garment templates, as LAYERS-H5 garment
+// arrays (see outfit.h).
+#include "layers/generate/outfit.h"
+
+#include "layers/core/error.h"
+
+namespace layers::generate {
+namespace {
+
+std::map<std::string, double> attribute_map(const sim::GarmentAttributes& a) {
+  return {{"mass", a.mass},         {"tension", a.tension},   {"compression", a.compression},
+          {"shear", a.shear},       {"bending", a.bending},   {"friction", a.friction},
+          {"self_friction", a.self_friction}};
+}
+
+template <class Matrix, class T>
+std::vector<T> flat(const Matrix& m) {
+  std::vector<T> out(static_cast<std::size_t>(m.size()));
+  Eigen::Map<Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(out.data(), m.rows(), m.cols()) =
+      m.template cast<T>();
+  return out;
+}
+
+}  // namespace
+
+std::vector<data::GarmentData> fit_outfit(const scene::Body& body, const SceneSpec& spec,
+                                          const scene::GarmentParams& params) {
+  std::vector<std::string> inner;
+  std::string outer;
+  for (const auto& g : spec.garments) (g.layer == 0 ? inner.push_back(g.type) : void(outer = g.type));
+  const auto meshes = scene::build_outfit(inner, outer, scene::t_pose_body(body), params, spec.seed);
+  std::vector<data::GarmentData> out;
+  for (const auto& m : meshes) {
+    const GarmentSpec* g = nullptr;
+    for (const auto& candidate : spec.garments)
+      if (candidate.type == m.type) g = &candidate;
+    if (!g) throw Error("fit_outfit: the templates built a '" + m.type + "' the scene did not ask for");
+    data::GarmentData d;
+    d.name = m.type;
+    d.type = m.type;
+    d.layer = m.layer;
+    d.attributes = attribute_map(g->attributes);
+    d.faces = flat<geometry::Faces, std::int32_t>(m.faces);
+    d.rest = flat<geometry::Points, float>(m.vertices);
+    d.uv = flat<scene::garment::UVs, float>(m.uv);
+    d.uv_faces = flat<geometry::Faces, std::int32_t>(m.uv_faces);
+    d.panel.assign(m.panel.data(), m.panel.data() + m.panel.size());
+    out.push_back(std::move(d));
+  }
+  return out;
+}
+
+}  // namespace layers::generate

@@ -1,0 +1,67 @@
+// layers/sim/config.h -- typed settings of the cloth solver and of the
+// per-sequence validation (cfg::read<SolverConfig>(node, "sim") fills them
+// from YAML; every field has a default that the tests and docs/sim.md use).
+#pragma once
+
+#include <vector>
+
+#include "layers/core/config.h"
+
+namespace layers::sim {
+
+// Thresholds a simulated sequence must stay under to be written
+// (DESIGN.md section 5 definitions; rates are fractions, not percent).
+struct ValidationConfig {
+  double max_h_penetration = 0.005;  // mean over frames of the H-penetration rate
+  double max_l_penetration = 0.005;  // mean over frames of the L-penetration rate
+  double max_stretch = 0.10;         // max over frames and edges of |l|/l0 - 1
+
+  template <class V>
+  void visit(V& v) {
+    v("max_h_penetration", max_h_penetration, cfg::opt().range(0, 1).help("mean share of garment vertices behind the body"));
+    v("max_l_penetration", max_l_penetration, cfg::opt().range(0, 1).help("mean share of outer vertices behind the inner layer"));
+    v("max_stretch", max_stretch, cfg::opt().min(0).help("largest allowed |l|/l0 - 1 of any edge"));
+  }
+};
+
+struct SolverConfig {
+  double fps = 30;                 // frames per second; one step() is one frame
+  int substeps = 10;               // substeps per frame
+  int iterations = 2;              // local/global iterations per substep
+  std::vector<double> gravity = {0.0, -9.81, 0.0};  // m/s^2
+  double air_damping = 0.5;        // 1/s: velocities decay as exp(-air_damping t)
+  double max_speed = 30;           // m/s cap on vertex speed (0: none); a guard against blow-ups
+  double body_thickness = 0.005;   // m kept between garments and the body surface
+  double layer_thickness = 0.004;  // m kept between an inner and an outer garment
+  double self_thickness = 0.004;   // m kept between two parts of one garment
+  double max_strain = 0.08;        // strain limiting: edges are capped at (1 + max_strain) x rest (0: off)
+  double support_stiffness = 1;    // body-contact support weight / the vertex's own stiffness (docs/sim.md)
+  bool self_contact = true;        // master switch; each cloth also opts in (ClothOptions)
+  double wind_pressure = 0.004;    // Pa per unit of Blender wind strength (docs/sim.md)
+  ValidationConfig validation;
+
+  template <class V>
+  void visit(V& v) {
+    v("fps", fps, cfg::opt().range(1, 1000).help("frames per second"));
+    v("substeps", substeps, cfg::opt().range(1, 1000).help("solver substeps per frame"));
+    v("iterations", iterations, cfg::opt().range(1, 100).help("projective dynamics iterations per substep"));
+    v("gravity", gravity, cfg::opt().help("gravity vector (m/s^2), three numbers"));
+    v("air_damping", air_damping, cfg::opt().range(0, 1000).help("velocity decay rate (1/s)"));
+    v("max_speed", max_speed, cfg::opt().min(0).help("vertex speed cap in m/s (0: none)"));
+    v("body_thickness", body_thickness, cfg::opt().range(0, 0.1).help("garment-body distance (m)"));
+    v("layer_thickness", layer_thickness, cfg::opt().range(0, 0.1).help("inner-outer garment distance (m)"));
+    v("self_thickness", self_thickness, cfg::opt().range(0, 0.1).help("distance within one garment (m)"));
+    v("max_strain", max_strain, cfg::opt().range(0, 10).help("edge strain cap after the elastic solve (0: off)"));
+    v("support_stiffness", support_stiffness,
+      cfg::opt().range(0, 100).help("weight of body-contact supports in the elastic solve, relative to each vertex's stiffness (0: projection only)"));
+    v("self_contact", self_contact, cfg::opt().help("allow self-contact for cloths that ask for it"));
+    v("wind_pressure", wind_pressure, cfg::opt().min(0).help("pressure (Pa) per unit of wind strength"));
+    v("validation", validation);
+  }
+};
+
+// Throws layers::InputError naming `what` if the config is inconsistent
+// beyond the per-field ranges (gravity must have three finite numbers).
+void check(const SolverConfig& config, const std::string& what = "sim");
+
+}  // namespace layers::sim

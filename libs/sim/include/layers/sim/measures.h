@@ -1,0 +1,83 @@
+// layers/sim/measures.h -- validation measures of a simulated frame and of
+// a whole sequence (DESIGN.md section 5 definitions).
+//
+//  - H-penetration: share of garment vertices behind the body surface (for
+//    the nearest body vertex h with area-weighted normal n: (x - h) . n < 0).
+//  - L-penetration: share of outer-garment vertices behind the inner
+//    garment surface (the same test against the inner garments' vertices).
+//  - maximum edge stretch: max over edges of |l| / l0 - 1 (compression does
+//    not count).
+//  - non-finite count: NaN or infinite coordinates.
+// A sequence passes when the mean H- and L-penetration over its frames and
+// its maximum stretch stay under the ValidationConfig thresholds and no
+// value is non-finite.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "layers/geometry/mesh.h"
+#include "layers/geometry/penetration.h"
+#include "layers/sim/config.h"
+
+namespace layers::sim {
+
+class Solver;
+
+// Share of the rows of `points` behind `surface` (0 when there are none).
+double penetration_rate(const geometry::Points& points, const geometry::Surface& surface);
+// Garment vertices (all garments together) behind the body.
+double h_penetration_rate(const std::vector<geometry::Points>& garments, const geometry::TriMesh& body);
+// Outer vertices behind the inner garments (joined into one surface).
+double l_penetration_rate(const std::vector<geometry::Points>& outer, const std::vector<geometry::TriMesh>& inner);
+// max(0, max over edges of |x_i - x_j| / l0 - 1); edges and rest lengths as
+// a Cloth gives them.
+double max_edge_stretch(const geometry::Points& positions, const geometry::Edges& edges,
+                        const Eigen::VectorXd& rest_lengths);
+std::int64_t count_nonfinite(const geometry::Points& points);
+
+struct FrameMeasures {
+  double h_penetration = 0;  // NaN when not measurable (non-finite positions)
+  double l_penetration = 0;  // 0 with a single layer; NaN when not measurable
+  double max_stretch = 0;
+  std::int64_t nonfinite = 0;
+};
+
+// One garment as measured: its positions, its edges with rest lengths and
+// whether it is an outer garment (dataset layer 1) or an inner one.
+struct MeasuredGarment {
+  geometry::Points positions;
+  geometry::Faces faces;
+  geometry::Edges edges;
+  Eigen::VectorXd rest_lengths;
+  bool outer = false;
+};
+
+FrameMeasures measure_frame(const geometry::TriMesh& body, const std::vector<MeasuredGarment>& garments);
+// The solver's current frame: its body and cloths; the cloths of the
+// highest layer are the outer garments, all others inner.
+FrameMeasures measure_frame(const Solver& solver);
+
+// Running totals over the frames of a sequence.
+class SequenceMeasures {
+ public:
+  void add(const FrameMeasures& frame);
+  int frames() const { return frames_; }
+  double mean_h_penetration() const;  // over measurable frames
+  double mean_l_penetration() const;
+  double max_stretch() const { return max_stretch_; }
+  std::int64_t nonfinite() const { return nonfinite_; }
+  // Empty when the sequence passes; else one sentence per violated threshold
+  // (e.g. "mean H-penetration 0.81% exceeds 0.50%").
+  std::vector<std::string> violations(const ValidationConfig& thresholds) const;
+
+ private:
+  int frames_ = 0, measured_ = 0;
+  double sum_h_ = 0, sum_l_ = 0, max_stretch_ = 0;
+  std::int64_t nonfinite_ = 0;
+};
+
+}  // namespace layers::sim

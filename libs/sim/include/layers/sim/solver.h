@@ -1,0 +1,101 @@
+// layers/sim/solver.h -- the multi-garment cloth solver.
+//
+// Substepped projective dynamics with position-based contacts (docs/sim.md):
+// each frame (1/fps s) is split into `substeps` substeps; each substep
+// predicts positions from velocities, gravity, wind and air damping, runs
+// `iterations` local/global projective-dynamics iterations for the membrane
+// (stretch, shear) and bending energies (implicit Euler) -- in which the body
+// and inner garments support what rests on them (attachments fixed per
+// frame) -- caps edge strain, then projects the contacts: inner/outer
+// layers (two-way), self-contact, the body (kinematic), and the outer layers
+// once more against the inner ones; velocities follow from the position
+// change (cloth-cloth pushes add none). The body is a triangle mesh
+// whose vertices move linearly from one frame's pose to the next across the
+// substeps, so fast limbs advance only a fraction of a frame per substep.
+// Everything runs on one thread in a fixed order: the same inputs give
+// bit-identical outputs.
+//
+//   sim::Solver solver(config);
+//   int inner = solver.add_cloth(sim::Cloth(rest_inner, material, sim::ClothOptions("tshirt", 0)));
+//   int outer = solver.add_cloth(sim::Cloth(rest_outer, material2, sim::ClothOptions("jacket", 1)));
+//   solver.set_body(body_mesh_frame0);
+//   for (frame ...) solver.step(body_positions[frame + 1], schedule.at(frame));
+//   geometry::Points p = solver.cloth(outer).positions();
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "layers/geometry/mesh.h"
+#include "layers/sim/cloth.h"
+#include "layers/sim/config.h"
+#include "layers/sim/wind.h"
+
+namespace layers::sim {
+
+// Wall-clock seconds spent per phase since the last reset_timings().
+struct StepTimings {
+  double predict = 0;        // forces, damping, prediction, velocity update
+  double elastic = 0;        // supports and refactorisation, stretch/shear/bending iterations, strain caps
+  double layer_contact = 0;  // inner/outer garments
+  double self_contact = 0;
+  double body_contact = 0;   // including the per-substep body interpolation and grid
+  double total = 0;
+  long frames = 0;
+};
+
+class Solver {
+ public:
+  // Throws InputError if the config is invalid (see check()).
+  explicit Solver(SolverConfig config = {});
+  ~Solver();
+  Solver(Solver&&) noexcept;
+  Solver& operator=(Solver&&) noexcept;
+  Solver(const Solver&) = delete;
+  Solver& operator=(const Solver&) = delete;
+
+  // Adds a garment; returns its index. Cloths are simulated together.
+  int add_cloth(Cloth cloth);
+  int num_cloths() const { return static_cast<int>(cloths_.size()); }
+  Cloth& cloth(int index);
+  const Cloth& cloth(int index) const;
+
+  // The body collider: faces (wound outwards) and its current pose.
+  // Replaces any previous body. InputError for invalid faces or positions.
+  void set_body(const geometry::TriMesh& body);
+  // Moves the body to a pose at once (no motion is implied, nothing is
+  // pushed): e.g. to restart at another frame. Same vertex count.
+  void set_body_positions(const geometry::Points& positions);
+  bool has_body() const;
+  const geometry::TriMesh& body() const { return body_; }
+
+  // Advances one frame. The body moves linearly from its current pose to
+  // `body_next` across the substeps and ends there. InputError if there is
+  // no body or body_next has the wrong size or non-finite values.
+  void step(const geometry::Points& body_next, const Wind& wind = {});
+  // Advances one frame with the body (if any) standing still.
+  void step(const Wind& wind = {});
+
+  const SolverConfig& config() const { return config_; }
+  // Replaces the settings between frames (e.g. more damping for a warm-up).
+  void set_config(const SolverConfig& config);
+  long frame() const { return frame_; }
+
+  const StepTimings& timings() const { return timings_; }
+  void reset_timings() { timings_ = {}; }
+
+ private:
+  struct Impl;
+  void advance(const geometry::Points* body_next, const Wind& wind);
+  template <class F>
+  void for_each_layer_pair(F&& f);
+
+  SolverConfig config_;
+  std::vector<Cloth> cloths_;
+  geometry::TriMesh body_;
+  long frame_ = 0;
+  StepTimings timings_;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace layers::sim

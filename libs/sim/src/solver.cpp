@@ -1,0 +1,297 @@
+// The frame loop of the solver (see solver.h): frame set-up (supports,
+// refactorisation), then per substep prediction, elastic iterations with
+// supports, contact projections and velocities, in a fixed order.
+#include "layers/sim/solver.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <numeric>
+#include <string>
+#include <utility>
+
+#include "body_collider.h"
+#include "cloth_contact.h"
+#include "layers/core/error.h"
+#include "projective.h"
+#include "strain_limit.h"
+
+namespace layers::sim {
+
+// Per-cloth solver state and the contact machinery.
+struct Solver::Impl {
+  detail::BodyCollider body;
+  detail::LayerContact layers;
+  detail::SelfContact self;
+  std::vector<std::unique_ptr<detail::ProjectiveSystem>> elastic;
+  std::vector<detail::BodyCollider::Memory> body_memory;
+  std::vector<detail::LayerContact::Memory> layer_memory;
+  std::vector<Vec3s> forces;     // wind forces of the substep
+  std::vector<Vec3s> rhs;        // extra right-hand side of the current iteration
+  std::vector<Vec3s> reactions;  // forces from outer garments' supports, previous iteration
+  std::vector<Vec3s> next_reactions;
+  std::vector<Vec3s> push;       // cloth-cloth contact pushes of the substep (no velocity)
+  std::vector<int> order;        // cloths by layer, then index
+  std::vector<double> body_push; // largest body push per cloth in the substep
+  std::vector<std::vector<std::uint8_t>> claimed;  // per cloth: attachment aimed this iteration
+
+  void add(int n) {
+    elastic.push_back(std::make_unique<detail::ProjectiveSystem>());
+    body_memory.emplace_back();
+    body_memory.back().resize(n);
+    layer_memory.emplace_back();
+    layer_memory.back().resize(n);
+    for (auto* v : {&forces, &rhs, &reactions, &next_reactions, &push}) v->emplace_back(n, Vec3::Zero());
+    claimed.emplace_back(n, 0);
+  }
+};
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point& t) {
+  const Clock::time_point now = Clock::now();
+  const double s = std::chrono::duration<double>(now - t).count();
+  t = now;
+  return s;
+}
+
+}  // namespace
+
+Solver::Solver(SolverConfig config) : config_(std::move(config)), impl_(std::make_unique<Impl>()) {
+  check(config_);
+}
+
+Solver::~Solver() = default;
+Solver::Solver(Solver&&) noexcept = default;
+Solver& Solver::operator=(Solver&&) noexcept = default;
+
+void Solver::set_config(const SolverConfig& config) {
+  check(config);
+  config_ = config;
+}
+
+int Solver::add_cloth(Cloth cloth) {
+  impl_->add(cloth.num_vertices());
+  cloths_.push_back(std::move(cloth));
+  impl_->order.resize(cloths_.size());
+  std::iota(impl_->order.begin(), impl_->order.end(), 0);
+  std::stable_sort(impl_->order.begin(), impl_->order.end(),
+                   [&](int a, int b) { return cloths_[a].layer() < cloths_[b].layer(); });
+  return num_cloths() - 1;
+}
+
+Cloth& Solver::cloth(int index) {
+  if (index < 0 || index >= num_cloths()) {
+    throw Error("Solver::cloth: index " + std::to_string(index) + " out of range [0, " +
+                std::to_string(num_cloths()) + ")");
+  }
+  return cloths_[index];
+}
+
+const Cloth& Solver::cloth(int index) const { return const_cast<Solver*>(this)->cloth(index); }
+
+void Solver::set_body(const geometry::TriMesh& body) {
+  impl_->body.reset(body);
+  body_ = body;
+  for (std::size_t i = 0; i < cloths_.size(); ++i) impl_->body_memory[i].resize(cloths_[i].num_vertices());
+}
+
+void Solver::set_body_positions(const geometry::Points& positions) {
+  if (!has_body()) throw InputError("body", "positions", "set_body() before set_body_positions()", "no body");
+  impl_->body.set_pose(positions);
+  body_.vertices = positions;
+}
+
+bool Solver::has_body() const { return !impl_->body.empty(); }
+
+void Solver::step(const geometry::Points& body_next, const Wind& wind) {
+  if (!has_body()) throw InputError("body", "next positions", "set_body() before step(body_next)", "no body");
+  advance(&body_next, wind);
+}
+
+void Solver::step(const Wind& wind) { advance(nullptr, wind); }
+
+template <class F>
+void Solver::for_each_layer_pair(F&& f) {
+  // Every (inner, outer) pair of cloths on different layers, inner first;
+  // friction is the mean of their self-friction coefficients.
+  for (int a : impl_->order) {
+    for (int b : impl_->order) {
+      if (cloths_[a].layer() >= cloths_[b].layer()) continue;
+      f(a, b, 0.5 * (cloths_[a].material().self_friction + cloths_[b].material().self_friction));
+    }
+  }
+}
+
+void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
+  Clock::time_point start = Clock::now(), t = start;
+  if (!std::isfinite(wind.strength) || wind.strength < 0 || !wind.direction.allFinite()) {
+    throw InputError("wind", "strength", "a finite number >= 0 and a finite direction", std::to_string(wind.strength));
+  }
+  Impl& m = *impl_;
+  const bool body = has_body();
+  if (body) m.body.begin_frame(body_next);
+  const SolverConfig& c = config_;
+  const int n = c.substeps;
+  const double h = 1.0 / (c.fps * n);
+  const Vec3 gravity(c.gravity[0], c.gravity[1], c.gravity[2]);
+  const double damping = std::exp(-c.air_damping * h);
+  Wind unit_wind = wind;
+  if (wind.direction.norm() > 0) unit_wind.direction.normalize();
+
+  // Frame set-up: supports of this frame, and the factorisations they need.
+  for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
+    detail::ProjectiveSystem& system = *m.elastic[ci];
+    if (!system.current(cloths_[ci], h)) system.build(cloths_[ci], h);
+    const Cloth::State& s = cloths_[ci].state_;
+    detail::BodyCollider::Memory& bm = m.body_memory[ci];
+    detail::LayerContact::Memory& lm = m.layer_memory[ci];
+    if (body) m.body.make_supports(s, bm);
+    detail::LayerContact::make_supports(s, lm);
+    std::vector<std::uint8_t>& wanted = m.claimed[ci];
+    wanted.assign(s.x.size(), 0);
+    for (std::size_t i = 0; i < wanted.size(); ++i) wanted[i] = (body && bm.wanted[i]) || lm.wanted[i];
+    system.update_attachments(wanted, c.support_stiffness);
+  }
+  timings_.elastic += seconds_since(t);
+
+  for (int k = 0; k < n; ++k) {
+    // Prediction: gravity, wind, air damping.
+    double step2 = 0;
+    for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
+      Cloth::State& s = cloths_[ci].state_;
+      Vec3s& force = m.forces[ci];
+      std::fill(force.begin(), force.end(), Vec3::Zero());
+      add_wind_forces(cloths_[ci].topology().faces, s.x, unit_wind, c.wind_pressure, force);
+      for (std::size_t i = 0; i < s.x.size(); ++i) {
+        s.x_start[i] = s.x[i];
+        if (s.inv_mass[i] == 0.0) continue;
+        Vec3 v = (s.v[i] + h * (gravity + s.inv_mass[i] * force[i])) * damping;
+        const double speed = v.norm();
+        if (c.max_speed > 0 && speed > c.max_speed) v *= c.max_speed / speed;
+        s.v[i] = v;
+        s.x[i] += h * v;
+        step2 = std::max(step2, (h * v).squaredNorm());
+      }
+      m.elastic[ci]->begin(s);
+    }
+    timings_.predict += seconds_since(t);
+
+    if (body) {
+      m.body.begin_substep(static_cast<double>(k + 1) / n, 2 * std::sqrt(step2) + c.body_thickness, c.body_thickness);
+      for (std::size_t ci = 0; ci < cloths_.size(); ++ci) m.body.locate_supports(cloths_[ci].state_, m.body_memory[ci]);
+    }
+    timings_.body_contact += seconds_since(t);
+
+    // Elastic iterations, inner garments first; outer garments' supports
+    // load the inner ones through `reactions` (one iteration behind).
+    for (int it = 0; it < c.iterations; ++it) {
+      std::swap(m.reactions, m.next_reactions);
+      for (Vec3s& r : m.next_reactions) std::fill(r.begin(), r.end(), Vec3::Zero());
+      for (int ci : m.order) {
+        Cloth::State& s = cloths_[ci].state_;
+        detail::ProjectiveSystem& system = *m.elastic[ci];
+        const std::vector<double>& weights = system.attachment_weights();
+        std::vector<std::uint8_t>& claimed = m.claimed[ci];
+        std::fill(claimed.begin(), claimed.end(), 0);
+        Vec3s& rhs = m.rhs[ci];
+        rhs = m.reactions[ci];
+        if (body) m.body.aim_supports(s, m.body_memory[ci], weights, c.body_thickness, rhs, claimed);
+        detail::LayerContact::aim_supports(s, m.layer_memory[ci], weights, cloths_, c.layer_thickness, rhs, claimed);
+        // Attached in the matrix but no longer supported: follow inertia.
+        const Vec3s& y = system.predicted();
+        for (std::size_t i = 0; i < rhs.size(); ++i) {
+          if (weights[i] != 0.0 && !claimed[i]) rhs[i] += weights[i] * y[i];
+        }
+        system.iterate(cloths_[ci], s, rhs);
+        if (body) m.body.record_supports(s, m.body_memory[ci], weights, claimed);
+        detail::LayerContact::record_supports(s, m.layer_memory[ci], weights, cloths_, m.next_reactions);
+      }
+    }
+    if (c.max_strain > 0) {
+      for (Cloth& cloth : cloths_) detail::limit_strain(cloth, cloth.state_, c.max_strain, 2);
+    }
+    timings_.elastic += seconds_since(t);
+
+    // Contact projections: layers (two-way), self, the body, and last the
+    // outer layers once more against the inner ones (one-way), so that a
+    // body push on an inner garment cannot leave the layers crossed.
+    for (auto& lm : m.layer_memory) lm.forget_touching();
+    for (Vec3s& p : m.push) std::fill(p.begin(), p.end(), Vec3::Zero());
+    for_each_layer_pair([&](int a, int b, double mu) {
+      m.layers.collide(a, cloths_[a], cloths_[a].state_, m.layer_memory[a], b, cloths_[b], cloths_[b].state_,
+                       m.layer_memory[b], m.body_memory[a].touching, c.layer_thickness, mu, m.push[a], m.push[b]);
+    });
+    timings_.layer_contact += seconds_since(t);
+
+    if (c.self_contact) {
+      for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
+        Cloth& cloth = cloths_[ci];
+        if (cloth.self_contact()) {
+          m.self.collide(cloth, cloth.state_, c.self_thickness, cloth.material().self_friction, m.push[ci]);
+        }
+      }
+    }
+    timings_.self_contact += seconds_since(t);
+
+    std::vector<double>& body_push = m.body_push;
+    body_push.assign(cloths_.size(), 0.0);
+    if (body) {
+      for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
+        body_push[ci] = m.body.collide(cloths_[ci].state_, m.body_memory[ci], c.body_thickness,
+                                       cloths_[ci].material().friction, h);
+      }
+    }
+    timings_.body_contact += seconds_since(t);
+    for_each_layer_pair([&](int a, int b, double mu) {
+      // Only needed where the body moved the inner garment noticeably.
+      if (body_push[a] < 0.05 * c.layer_thickness) return;
+      m.layers.settle_outer(a, cloths_[a], cloths_[a].state_, cloths_[b], cloths_[b].state_, m.layer_memory[b],
+                            c.layer_thickness, mu, m.push[b]);
+    });
+    // The strain cap once more: contact pushes can stretch edges near
+    // contacts (it moves vertices along edges, so the thickness margins
+    // absorb what little it moves them towards a surface).
+    if (c.max_strain > 0) {
+      for (Cloth& cloth : cloths_) detail::limit_strain(cloth, cloth.state_, c.max_strain, 6);
+    }
+    timings_.layer_contact += seconds_since(t);
+
+    // Velocities from the position change, except that cloth-cloth pushes
+    // move positions without adding velocity: they only remove the part of
+    // the velocity that approached the contact (inelastic). Otherwise an
+    // overlap left from an earlier substep would launch the layers apart.
+    const double inv_h = 1.0 / h;
+    for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
+      Cloth::State& s = cloths_[ci].state_;
+      const Vec3s& push = m.push[ci];
+      for (std::size_t i = 0; i < s.x.size(); ++i) {
+        if (s.inv_mass[i] == 0.0) {
+          s.v[i] = Vec3::Zero();
+          continue;
+        }
+        Vec3 v = (s.x[i] - s.x_start[i] - push[i]) * inv_h;
+        const double len = push[i].norm();
+        if (len > 0) {
+          const Vec3 n = push[i] / len;
+          v -= std::min(0.0, v.dot(n)) * n;
+        }
+        s.v[i] = v;
+      }
+    }
+    timings_.predict += seconds_since(t);
+  }
+
+  if (body) {
+    m.body.end_frame();
+    if (body_next) body_.vertices = *body_next;
+  }
+  ++frame_;
+  ++timings_.frames;
+  timings_.total += std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+}  // namespace layers::sim

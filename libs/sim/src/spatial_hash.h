@@ -1,0 +1,54 @@
+// spatial_hash.h (internal) -- a uniform grid hashed into a table, rebuilt
+// from scratch whenever the points move (counting sort: O(n), no
+// allocation once warm). Within a slot, points keep their index order, so
+// visiting is deterministic. Two cells may share a slot: callers filter by
+// distance, and nearest-point searches are unaffected by repeats.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "layers/sim/cloth.h"
+
+namespace layers::sim::detail {
+
+class SpatialHash {
+ public:
+  // Indexes `points` with cubic cells of side `cell` (> 0). Non-finite
+  // points are left out.
+  void build(const Vec3s& points, double cell);
+  double cell() const { return cell_; }
+
+  // Calls f(index) for every point in the cells overlapping the cube of
+  // half-side `radius` around p.
+  template <class F>
+  void visit(const Vec3& p, double radius, F&& f) const {
+    if (entries_.empty() || !std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z())) return;
+    const std::int64_t x0 = coord(p.x() - radius), x1 = coord(p.x() + radius);
+    const std::int64_t y0 = coord(p.y() - radius), y1 = coord(p.y() + radius);
+    const std::int64_t z0 = coord(p.z() - radius), z1 = coord(p.z() + radius);
+    for (std::int64_t ix = x0; ix <= x1; ++ix)
+      for (std::int64_t iy = y0; iy <= y1; ++iy)
+        for (std::int64_t iz = z0; iz <= z1; ++iz) {
+          const std::uint32_t s = slot(ix, iy, iz);
+          for (int e = start_[s]; e < start_[s + 1]; ++e) f(entries_[e]);
+        }
+  }
+
+ private:
+  std::int64_t coord(double v) const { return static_cast<std::int64_t>(std::floor(v * inv_cell_)); }
+  std::uint32_t slot(std::int64_t ix, std::int64_t iy, std::int64_t iz) const {
+    const std::uint64_t h = static_cast<std::uint64_t>(ix) * 73856093ULL ^ static_cast<std::uint64_t>(iy) * 19349663ULL ^
+                            static_cast<std::uint64_t>(iz) * 83492791ULL;
+    return static_cast<std::uint32_t>(h & mask_);
+  }
+
+  double cell_ = 1, inv_cell_ = 1;
+  std::uint64_t mask_ = 0;
+  std::vector<int> start_;          // mask_ + 2 entries
+  std::vector<int> entries_;        // point indices grouped by slot
+  std::vector<std::uint32_t> slots_;  // scratch: slot per point (mask_ + 1: left out)
+};
+
+}  // namespace layers::sim::detail

@@ -1,0 +1,95 @@
+// Validation measures: penetration rates, stretch, non-finite values, the
+// per-sequence verdict and measure_frame() on a solver.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "scenes.h"
+
+namespace layers::sim {
+namespace {
+
+using geometry::Points;
+using test::V3;
+
+Points rows(std::initializer_list<V3> list) {
+  Points p(static_cast<Eigen::Index>(list.size()), 3);
+  Eigen::Index i = 0;
+  for (const V3& v : list) p.row(i++) = v.cast<float>().transpose();
+  return p;
+}
+
+// A unit square grid at height y, normals up.
+geometry::TriMesh floor_at(double y) { return test::grid(V3(0, y, 1), V3(1, 0, 0), V3(0, 0, -1), 10, 10); }
+
+TEST(Measures, PenetrationRates) {
+  const geometry::TriMesh body = floor_at(0);
+  EXPECT_DOUBLE_EQ(h_penetration_rate({rows({{0.3, 0.01, 0.3}, {0.5, -0.02, 0.5}}), rows({{0.7, 0.2, 0.1}, {0.2, -0.1, 0.8}})},
+                                      body),
+                   0.5);
+  const geometry::TriMesh inner = floor_at(0.1);
+  EXPECT_DOUBLE_EQ(l_penetration_rate({rows({{0.5, 0.12, 0.5}, {0.2, 0.08, 0.3}, {0.6, 0.15, 0.6}, {0.9, 0.11, 0.9}})},
+                                      {inner}),
+                   0.25);
+  EXPECT_DOUBLE_EQ(l_penetration_rate({rows({{0.5, 0.12, 0.5}})}, {}), 0.0);
+  EXPECT_DOUBLE_EQ(penetration_rate(Points(0, 3), geometry::Surface::from_mesh(body)), 0.0);
+}
+
+TEST(Measures, StretchAndNonFinite) {
+  const Points rest = rows({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+  geometry::Edges edges(3, 2);
+  edges << 0, 1, 0, 2, 1, 2;
+  Eigen::VectorXd l0(3);
+  l0 << 1, 1, std::sqrt(2.0);
+  EXPECT_NEAR(max_edge_stretch(rest, edges, l0), 0.0, 1e-7);
+  const Points stretched = rows({{0, 0, 0}, {1.1, 0, 0}, {0, 0.5, 0}});  // +10% and -50%
+  EXPECT_NEAR(max_edge_stretch(stretched, edges, l0), 0.1, 1e-6);
+  Points bad = rest;
+  bad(1, 2) = std::numeric_limits<float>::quiet_NaN();
+  bad(2, 0) = std::numeric_limits<float>::infinity();
+  EXPECT_EQ(count_nonfinite(bad), 2);
+  EXPECT_TRUE(std::isnan(max_edge_stretch(bad, edges, l0)));
+}
+
+TEST(Measures, SequenceVerdict) {
+  SequenceMeasures good;
+  good.add({0.001, 0.002, 0.05, 0});
+  good.add({0.003, 0.004, 0.07, 0});
+  EXPECT_EQ(good.frames(), 2);
+  EXPECT_NEAR(good.mean_h_penetration(), 0.002, 1e-12);
+  EXPECT_NEAR(good.mean_l_penetration(), 0.003, 1e-12);
+  EXPECT_DOUBLE_EQ(good.max_stretch(), 0.07);
+  EXPECT_TRUE(good.violations(ValidationConfig{}).empty());
+
+  SequenceMeasures bad = good;
+  bad.add({0.03, 0.0, 0.2, 0});
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  bad.add({nan, nan, nan, 5});
+  const auto v = bad.violations(ValidationConfig{});
+  ASSERT_EQ(v.size(), 3u);
+  EXPECT_EQ(v[0], "5 non-finite coordinates");
+  EXPECT_EQ(v[1], "mean H-penetration 1.13% exceeds 0.50%");
+  EXPECT_EQ(v[2], "maximum edge stretch 20.00% exceeds 10.00%");
+}
+
+TEST(Measures, FrameOfASolverUsesTheTopLayerAsOuter) {
+  Solver s;
+  s.set_body(floor_at(0));
+  s.add_cloth(Cloth(test::grid(V3(0.2, 0.05, 0.8), V3(0.6, 0, 0), V3(0, 0, -0.6), 6, 6), Material{}, ClothOptions("inner", 0)));
+  // The outer sheet is placed below the inner one: every vertex is behind it.
+  s.add_cloth(Cloth(test::grid(V3(0.2, 0.03, 0.8), V3(0.6, 0, 0), V3(0, 0, -0.6), 6, 6), Material{}, ClothOptions("outer", 1)));
+  const FrameMeasures m = measure_frame(s);
+  EXPECT_DOUBLE_EQ(m.h_penetration, 0.0);
+  EXPECT_DOUBLE_EQ(m.l_penetration, 1.0);
+  EXPECT_NEAR(m.max_stretch, 0.0, 1e-6);
+  EXPECT_EQ(m.nonfinite, 0);
+  // A single layer has no L-penetration.
+  Solver one;
+  one.add_cloth(Cloth(test::grid(V3(0, 1, 0), V3(0.3, 0, 0), V3(0, 0, 0.3), 3, 3), Material{}));
+  EXPECT_DOUBLE_EQ(measure_frame(one).l_penetration, 0.0);
+  EXPECT_DOUBLE_EQ(measure_frame(one).h_penetration, 0.0);
+}
+
+}  // namespace
+}  // namespace layers::sim
