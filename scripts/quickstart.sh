@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # scripts/quickstart.sh -- from a fresh machine to the main job on the
-# embedded default: install dependencies and build (scripts/setup.sh), then
-# run what the toolkit can do today on a small dataset it makes, and say
-# where the results are. Output goes to runs/quickstart (override with
-# LAYERS_QUICKSTART_OUT).
+# embedded default: install dependencies and build (scripts/setup.sh),
+# generate the `tiny` LAYERS dataset (simulated inner + outer garments on
+# moving bodies), check it, and export a sequence for Blender. Training,
+# evaluation and reports join this script as they are built. Output goes
+# to runs/quickstart (override with LAYERS_QUICKSTART_OUT). Re-running
+# reuses what is already generated.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -12,13 +14,23 @@ bash "$root/scripts/setup.sh"
 layers="${LAYERS_BUILD_DIR:-$root/build}/bin/layers"
 mkdir -p "$out"
 
+echo "== generate the tiny dataset ($root/configs/data/tiny.yaml)"
+"$layers" generate --config "$root/configs/data/tiny.yaml" --out "$out/data" --threads "$(nproc)"
+
+echo "== check it"
+"$layers" validate "$out/data"
+"$layers" info "$out/data"
+
+first=$("$layers" info "$out/data" | awk '/^  seq-/{print $1; exit}')
+if [ -n "$first" ]; then
+  echo "== export $first for Blender (PC2 point caches + OBJ meshes)"
+  "$layers" export "$out/data" "$first" --format pc2 --out "$out/export"
+fi
+
 echo "== registered models"
 "$layers" models
 
-echo "== resolved default config"
-"$layers" config "$root/configs/default.yaml" --out "$out/config.yaml"
-
 echo
-echo "quickstart: done; resolved config in $out/config.yaml"
-echo "Not built yet: the dataset generator (issues 2-3 of docs/roadmap.md), training,"
-echo "evaluation and reports. This script grows into generate -> train -> evaluate -> report."
+echo "quickstart: done. Dataset in $out/data (layers info / validate / export work on it),"
+echo "Blender files in $out/export."
+echo "Not built yet: training, evaluation and the report (see README, Status)."

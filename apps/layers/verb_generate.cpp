@@ -18,7 +18,7 @@ VerbRun register_generate(CLI::App& app, const Global&) {
     std::string config, out, shard = "0/1";
     std::vector<std::string> sets;
     int threads = 1;
-    bool quiet = false;
+    bool quiet = false, print_config = false;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--config", a->config, "generator config (configs/data/<name>.yaml)")->required()->check(CLI::ExistingFile);
@@ -27,6 +27,7 @@ VerbRun register_generate(CLI::App& app, const Global&) {
   cmd->add_option("--shard", a->shard, "generate only shards j with j % n == k: k/n")->capture_default_str();
   cmd->add_option("--threads", a->threads, "scenes simulated in parallel")->capture_default_str()->check(CLI::Range(1, 256));
   cmd->add_flag("--quiet", a->quiet, "no progress line");
+  cmd->add_flag("--print-config", a->print_config, "print the resolved config (it is always saved as generator.yaml)");
   return [a]() {
     cfg::Node tree = cfg::load_file(a->config);
     for (const auto& s : a->sets) cfg::apply_set(tree, s);
@@ -39,7 +40,8 @@ VerbRun register_generate(CLI::App& app, const Global&) {
     std::tie(options.shard_index, options.shard_count) = generate::parse_shard(a->shard);
     options.threads = a->threads;
     options.progress = !a->quiet;
-    std::printf("# resolved generator config (saved as %s/generator.yaml)\n%s", options.out.c_str(), resolved.c_str());
+    if (a->print_config) std::printf("%s", resolved.c_str());
+    std::printf("resolved config: %s/generator.yaml\n", options.out.c_str());
     std::fflush(stdout);
     auto report = generate::generate_dataset(config, resolved, options);
     std::printf("%s: %d scenes in shard %s: %d simulated now (%d written, %d skipped), %d finished before\n",
