@@ -91,7 +91,8 @@ void validate(const GarmentParams& p) {
   check_range(p.sleeve_long, "sleeve_long");
   check_range(p.belt_width, "belt_width");
   check_range(p.hood_ease, "hood_ease");
-  if (!(p.edge_length > 0)) throw InputError(kConfig, "edge_length", "a positive length (m)", std::to_string(p.edge_length));
+  if (!(p.edge_length >= 0.004 && p.edge_length <= 0.1))
+    throw InputError(kConfig, "edge_length", "a length in [0.004, 0.1] (m)", std::to_string(p.edge_length));
 }
 
 const std::vector<std::string>& garment_types() {

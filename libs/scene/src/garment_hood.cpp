@@ -72,7 +72,7 @@ PanelGrid hood_panel(const FitContext& ctx, const HeadShape& head, const std::ve
   // runs from its neckline point past a waypoint halfway up between its
   // ends (behind the head for j = 0, round the side, beside the cheek for
   // the face opening, j = cols) to its centre-seam point.
-  const double cheek = 0.9 + 0.5 * (1.0 - spec.opening);
+  const double cheek = 0.9 + 0.5 * spec.opening;  // 52 to 80 degrees round from the front
   std::vector<std::vector<Vec3>> columns(cols + 1);
   int n = 2;
   for (int j = 0; j <= cols; ++j) {

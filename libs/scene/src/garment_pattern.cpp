@@ -1,5 +1,5 @@
 // garment_pattern.cpp -- from placed panel grids to one sewn garment mesh:
-// arc-length development (UVs), outward orientation, outline sampling with
+// outward orientation of each flattened panel, outline sampling with
 // matched seam counts, planar meshing, lifting onto the 3D grid surface,
 // seam merging and the UV atlas.
 #include "layers/scene/garment_pattern.h"
@@ -10,9 +10,6 @@
 #include <map>
 #include <numeric>
 #include <string>
-
-#include <Eigen/SVD>
-#include <Eigen/Sparse>
 
 #include "layers/core/error.h"
 #include "layers/scene/garment_triangulate.h"
@@ -172,133 +169,109 @@ double GarmentMesh::style_value(const std::string& key) const {
 
 namespace {
 
-// UVs by arc length: u along each row from the middle column, v along
-// each column from the first row (the initial guess for develop()).
-std::vector<Vec2> arc_length_net(const PanelGrid& g) {
-  std::vector<Vec2> uv(g.points.size(), Vec2::Zero());
-  const int mid = g.cols / 2;
-  for (int i = 0; i < g.rows; ++i) {
-    for (int j = mid + 1; j < g.cols; ++j)
-      uv[i * g.cols + j].x() = uv[i * g.cols + j - 1].x() + (g.at(i, j) - g.at(i, j - 1)).norm();
-    for (int j = mid - 1; j >= 0; --j)
-      uv[i * g.cols + j].x() = uv[i * g.cols + j + 1].x() - (g.at(i, j) - g.at(i, j + 1)).norm();
-  }
-  for (int j = 0; j < g.cols; ++j)
-    for (int i = 1; i < g.rows; ++i)
-      uv[i * g.cols + j].y() = uv[(i - 1) * g.cols + j].y() + (g.at(i, j) - g.at(i - 1, j)).norm();
+// A panel's UVs, mirrored when needed so that counter-clockwise cells in
+// UV face away from the body in 3D (their 3D normal is
+// (P[i][j+1] - P) x (P[i+1][j] - P)).
+std::vector<Vec2> flat_panel(const PanelGrid& g, const geometry::PointIndex& body) {
+  std::vector<Vec2> uv = develop(g);
+  double outward = 0;
+  for (int i = 0; i + 1 < g.rows; ++i)
+    for (int j = 0; j + 1 < g.cols; ++j) {
+      const Vec3 n = (g.at(i, j + 1) - g.at(i, j)).cross(g.at(i + 1, j) - g.at(i, j));
+      const Vec3 centre = 0.25 * (g.at(i, j) + g.at(i + 1, j) + g.at(i, j + 1) + g.at(i + 1, j + 1));
+      const auto near = body.nearest(centre.cast<float>().transpose());
+      if (near.index < 0) continue;
+      outward += n.dot(centre - body.points().row(near.index).transpose().cast<double>());
+    }
+  if (outward < 0)
+    for (Vec2& q : uv) q.x() = -q.x();
   return uv;
 }
 
-// Every `stride`-th index of 0..n-1, the last one always included.
-std::vector<int> subsample(int n, int stride) {
-  std::vector<int> out;
-  for (int k = 0; k < n - 1; k += stride) out.push_back(k);
-  out.push_back(n - 1);
+// The grid polyline (3D and UV) of an edge, in walk order.
+EdgeSamples edge_samples(const Pattern& pattern, const std::vector<Walk>& walks,
+                         const std::vector<std::vector<Vec2>>& uvs, const Edge& e) {
+  const int np = static_cast<int>(pattern.panels.size());
+  if (e.panel < 0 || e.panel >= np) throw Error("garment pattern: edge on a missing panel");
+  const Walk& w = walks[e.panel];
+  const PanelGrid& g = pattern.panels[e.panel];
+  if (e.from == e.to || std::min(e.from, e.to) < 0 || std::max(e.from, e.to) > w.side_length(e.side))
+    throw Error("garment panel '" + g.name + "': bad edge on its " + side_name(e.side) + " side");
+  EdgeSamples s;
+  s.panel = e.panel;
+  const int a = w.pos(e.side, e.from), b = w.pos(e.side, e.to);
+  s.w0 = std::min(a, b);
+  s.w1 = std::max(a, b);
+  s.reversed = a > b;
+  for (int k = s.w0; k <= s.w1; ++k) {
+    const auto [i, j] = w.cell(k);
+    s.line3.push_back(g.at(i, j));
+    s.line2.push_back(uvs[e.panel][i * g.cols + j]);
+  }
+  s.length = cumulative(s.line3).back();
+  return s;
+}
+
+// One meshed panel: points (outline first) in UV and 3D, CCW triangles.
+struct PanelMesh {
+  std::vector<Vec2> uv;
+  std::vector<Vec3> xyz;
+  std::vector<std::array<int, 3>> triangles;
+};
+
+// Samples the outline of panel `g` along its edges (sorted by walk
+// position and covering it exactly once), meshes the flat panel and lifts
+// the interior points onto the grid's 3D surface. Records in every edge
+// the outline index of each of its samples.
+PanelMesh mesh_panel(const PanelGrid& g, const Walk& walk, const std::vector<Vec2>& uv,
+                     const std::vector<EdgeSamples*>& mine, double h) {
+  int expect = 0;
+  for (const EdgeSamples* e : mine) {
+    if (e->w0 != expect)
+      throw Error("garment panel '" + g.name + "': outline not covered exactly once near walk position " + std::to_string(expect));
+    expect = e->w1;
+  }
+  if (expect != 2 * walk.I + 2 * walk.J) throw Error("garment panel '" + g.name + "': outline not closed by its edges");
+
+  // Outline samples, uniform in 3D arc length along each edge.
+  std::vector<Vec2> outline2;
+  std::vector<Vec3> outline3;
+  for (EdgeSamples* s : mine) {
+    const std::vector<double> c3 = cumulative(s->line3);
+    s->outline.clear();
+    for (int k = 0; k < s->segments; ++k) {
+      const double t = c3.back() * k / s->segments;
+      s->outline.push_back(static_cast<int>(outline2.size()));
+      outline3.push_back(along(s->line3, c3, t));
+      outline2.push_back(along(s->line2, c3, t));
+    }
+    s->outline.push_back(s == mine.back() ? 0 : static_cast<int>(outline2.size()));  // the next edge's first
+  }
+  const int nb = static_cast<int>(outline2.size());
+  // Mesh counter-clockwise in UV (a mirrored panel walks clockwise).
+  const bool clockwise = signed_area2(outline2) < 0;
+  std::vector<Vec2> ccw = outline2;
+  if (clockwise) std::reverse(ccw.begin(), ccw.end());
+  PlanarMesh pm;
+  try {
+    pm = mesh_polygon(ccw, h);
+  } catch (const Error& e) {
+    throw Error("garment panel '" + g.name + "': " + e.what());
+  }
+  auto local = [&](int k) { return k < nb && clockwise ? nb - 1 - k : k; };
+  const Lifter lifter(g, uv);
+  PanelMesh out;
+  out.uv.resize(pm.points.size());
+  out.xyz.resize(pm.points.size());
+  for (int k = 0; k < static_cast<int>(pm.points.size()); ++k) {
+    out.uv[local(k)] = pm.points[k];
+    out.xyz[local(k)] = local(k) < nb ? outline3[local(k)] : lifter.lift(pm.points[k]);
+  }
+  for (const auto& t : pm.triangles) out.triangles.push_back({local(t[0]), local(t[1]), local(t[2])});
   return out;
 }
 
-// As-rigid-as-possible flattening (local/global) of a triangulated grid,
-// starting from `uv`.
-void arap(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& tris, std::vector<Vec2>& uv,
-          int iterations) {
-  const int n = static_cast<int>(points.size());
-  struct Local {
-    std::array<Vec2, 3> x;       // the 3D triangle laid flat
-    std::array<double, 3> w;     // weight of the edge opposite corner k
-  };
-  std::vector<Local> local(tris.size());
-  std::vector<Eigen::Triplet<double>> entries;
-  for (std::size_t t = 0; t < tris.size(); ++t) {
-    const Vec3 &a = points[tris[t][0]], &b = points[tris[t][1]], &c = points[tris[t][2]];
-    const Vec3 e1 = b - a, e2 = c - a;
-    const double l1 = e1.norm();
-    const Vec3 n3 = e1.cross(e2);
-    Local& L = local[t];
-    L.x = {Vec2::Zero(), Vec2(l1, 0.0), l1 > 0 ? Vec2(e1.dot(e2) / l1, n3.norm() / l1) : Vec2::Zero()};
-    for (int k = 0; k < 3; ++k) {
-      const Vec2 u = L.x[(k + 1) % 3] - L.x[k], v = L.x[(k + 2) % 3] - L.x[k];
-      const double cross = std::abs(u.x() * v.y() - u.y() * v.x());
-      const double cot = cross > 1e-14 ? u.dot(v) / cross : 0.0;
-      L.w[k] = 0.5 * std::clamp(cot, 0.01, 10.0);
-      const int i = tris[t][(k + 1) % 3], j = tris[t][(k + 2) % 3];
-      entries.emplace_back(i, i, L.w[k]);
-      entries.emplace_back(j, j, L.w[k]);
-      entries.emplace_back(i, j, -L.w[k]);
-      entries.emplace_back(j, i, -L.w[k]);
-    }
-  }
-  const double pin = 1e6;
-  entries.emplace_back(0, 0, pin);
-  Eigen::SparseMatrix<double> A(n, n);
-  A.setFromTriplets(entries.begin(), entries.end());
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(A);
-  if (solver.info() != Eigen::Success) return;  // keep the initial guess
-  Eigen::MatrixXd rhs(n, 2), sol(n, 2);
-  for (int it = 0; it < iterations; ++it) {
-    rhs.setZero();
-    for (std::size_t t = 0; t < tris.size(); ++t) {
-      const Local& L = local[t];
-      Eigen::Matrix2d S = Eigen::Matrix2d::Zero();
-      for (int k = 0; k < 3; ++k) {
-        const int a = (k + 1) % 3, b = (k + 2) % 3;
-        S += L.w[k] * (uv[tris[t][a]] - uv[tris[t][b]]) * (L.x[a] - L.x[b]).transpose();
-      }
-      Eigen::JacobiSVD<Eigen::Matrix2d> svd(S, Eigen::ComputeFullU | Eigen::ComputeFullV);
-      Eigen::Matrix2d U = svd.matrixU();
-      if ((U * svd.matrixV().transpose()).determinant() < 0) U.col(1) *= -1;
-      const Eigen::Matrix2d R = U * svd.matrixV().transpose();
-      for (int k = 0; k < 3; ++k) {
-        const int a = (k + 1) % 3, b = (k + 2) % 3;
-        const Vec2 d = L.w[k] * (R * (L.x[a] - L.x[b]));
-        rhs.row(tris[t][a]) += d.transpose();
-        rhs.row(tris[t][b]) -= d.transpose();
-      }
-    }
-    rhs.row(0) += pin * uv[0].transpose();
-    sol = solver.solve(rhs);
-    for (int i = 0; i < n; ++i) uv[i] = sol.row(i).transpose();
-  }
-}
-
 }  // namespace
-
-std::vector<Vec2> develop(const PanelGrid& g) {
-  // Flatten a grid of about 2 x the spacing, then interpolate.
-  const std::vector<int> rows = subsample(g.rows, 2), cols = subsample(g.cols, 2);
-  PanelGrid coarse(g.name, static_cast<int>(rows.size()), static_cast<int>(cols.size()));
-  for (int i = 0; i < coarse.rows; ++i)
-    for (int j = 0; j < coarse.cols; ++j) coarse.at(i, j) = g.at(rows[i], cols[j]);
-  std::vector<Vec2> cuv = arc_length_net(coarse);
-  std::vector<std::array<int, 3>> tris;
-  for (int i = 0; i + 1 < coarse.rows; ++i)
-    for (int j = 0; j + 1 < coarse.cols; ++j) {
-      const int a = i * coarse.cols + j, b = a + 1, c = a + coarse.cols + 1, d = a + coarse.cols;
-      tris.push_back({a, b, c});
-      tris.push_back({a, c, d});
-    }
-  arap(coarse.points, tris, cuv, 12);
-  // Hem (first row) along +u.
-  const Vec2 dir = (cuv[coarse.cols - 1] - cuv[0]).normalized();
-  const Eigen::Matrix2d rot = (Eigen::Matrix2d() << dir.x(), dir.y(), -dir.y(), dir.x()).finished();
-  for (Vec2& q : cuv) q = rot * q;
-  // Bilinear interpolation back onto every grid point.
-  std::vector<Vec2> uv(g.points.size());
-  auto locate = [](const std::vector<int>& ks, int k) {
-    const int c = static_cast<int>(std::upper_bound(ks.begin(), ks.end(), k) - ks.begin()) - 1;
-    const int c0 = std::min(c, static_cast<int>(ks.size()) - 2);
-    return std::make_pair(c0, static_cast<double>(k - ks[c0]) / (ks[c0 + 1] - ks[c0]));
-  };
-  for (int i = 0; i < g.rows; ++i) {
-    const auto [ci, fi] = locate(rows, i);
-    for (int j = 0; j < g.cols; ++j) {
-      const auto [cj, fj] = locate(cols, j);
-      const int a = ci * coarse.cols + cj;
-      uv[i * g.cols + j] = (1 - fi) * ((1 - fj) * cuv[a] + fj * cuv[a + 1]) +
-                           fi * ((1 - fj) * cuv[a + coarse.cols] + fj * cuv[a + coarse.cols + 1]);
-    }
-  }
-  return uv;
-}
 
 GarmentMesh sew(const Pattern& pattern, double h, const geometry::PointIndex& body) {
   const int np = static_cast<int>(pattern.panels.size());
@@ -308,134 +281,54 @@ GarmentMesh sew(const Pattern& pattern, double h, const geometry::PointIndex& bo
     const PanelGrid& g = pattern.panels[p];
     if (g.rows < 2 || g.cols < 2) throw Error("garment panel '" + g.name + "' has fewer than 2 rows or columns");
     walks[p] = {g.rows - 1, g.cols - 1};
-    uvs[p] = develop(g);
-    // Outward test: CCW cells in UV have 3D normal (P[j+1]-P) x (P[i+1]-P).
-    double outward = 0;
-    for (int i = 0; i + 1 < g.rows; ++i)
-      for (int j = 0; j + 1 < g.cols; ++j) {
-        const Vec3 n = (g.at(i, j + 1) - g.at(i, j)).cross(g.at(i + 1, j) - g.at(i, j));
-        const Vec3 centre = 0.25 * (g.at(i, j) + g.at(i + 1, j) + g.at(i, j + 1) + g.at(i + 1, j + 1));
-        const auto near = body.nearest(centre.cast<float>().transpose());
-        if (near.index < 0) continue;
-        outward += n.dot(centre - body.points().row(near.index).transpose().cast<double>());
-      }
-    if (outward < 0)
-      for (Vec2& q : uvs[p]) q.x() = -q.x();
+    uvs[p] = flat_panel(g, body);
   }
 
-  // Edges: walk intervals and grid polylines.
+  // Edges, with the sample count of a seam shared by both sides.
   std::vector<EdgeSamples> edges;
-  auto add_edge = [&](const Edge& e) {
-    if (e.panel < 0 || e.panel >= np) throw Error("garment pattern: edge on a missing panel");
-    const Walk& w = walks[e.panel];
-    const int len = w.side_length(e.side);
-    if (e.from == e.to || std::min(e.from, e.to) < 0 || std::max(e.from, e.to) > len)
-      throw Error("garment panel '" + pattern.panels[e.panel].name + "': bad edge on its " + side_name(e.side) + " side");
-    EdgeSamples s;
-    s.panel = e.panel;
-    const int a = w.pos(e.side, e.from), b = w.pos(e.side, e.to);
-    s.w0 = std::min(a, b);
-    s.w1 = std::max(a, b);
-    s.reversed = a > b;
-    const PanelGrid& g = pattern.panels[e.panel];
-    for (int k = s.w0; k <= s.w1; ++k) {
-      const auto [i, j] = w.cell(k);
-      s.line3.push_back(g.at(i, j));
-      s.line2.push_back(uvs[e.panel][i * g.cols + j]);
-    }
-    s.length = cumulative(s.line3).back();
-    edges.push_back(std::move(s));
-    return static_cast<int>(edges.size()) - 1;
-  };
   std::vector<std::pair<int, int>> seam_edges;
   for (const Seam& seam : pattern.seams) {
-    const int a = add_edge(seam.a), b = add_edge(seam.b);
-    const int n = std::max(1, static_cast<int>(std::lround(std::max(edges[a].length, edges[b].length) / h)));
-    edges[a].segments = edges[b].segments = n;
+    edges.push_back(edge_samples(pattern, walks, uvs, seam.a));
+    edges.push_back(edge_samples(pattern, walks, uvs, seam.b));
+    const int a = static_cast<int>(edges.size()) - 2, b = a + 1;
+    edges[a].segments = edges[b].segments =
+        std::max(1, static_cast<int>(std::lround(std::max(edges[a].length, edges[b].length) / h)));
     seam_edges.push_back({a, b});
   }
   for (const Edge& e : pattern.openings) {
-    const int k = add_edge(e);
-    edges[k].segments = std::max(1, static_cast<int>(std::lround(edges[k].length / h)));
+    edges.push_back(edge_samples(pattern, walks, uvs, e));
+    edges.back().segments = std::max(1, static_cast<int>(std::lround(edges.back().length / h)));
   }
 
+  // Mesh the panels; lay their UV charts side by side along u.
   GarmentMesh out;
-  std::vector<Vec3> points3;     // per panel-local point, all panels
+  std::vector<Vec3> points3;  // every panel's points, panel after panel
   std::vector<Vec2> points2;
   std::vector<std::array<int, 3>> tris;
-  std::vector<int> tri_panel;
-  std::vector<int> panel_offset(np + 1, 0);
+  std::vector<int> tri_panel, panel_offset(np, 0);
   double atlas_x = 0;
   for (int p = 0; p < np; ++p) {
-    const PanelGrid& g = pattern.panels[p];
-    out.panel_names.push_back(g.name);
-    std::vector<int> mine;
-    for (int e = 0; e < static_cast<int>(edges.size()); ++e)
-      if (edges[e].panel == p) mine.push_back(e);
-    std::sort(mine.begin(), mine.end(), [&](int a, int b) { return edges[a].w0 < edges[b].w0; });
-    const int total = 2 * walks[p].I + 2 * walks[p].J;
-    int expect = 0;
-    for (int e : mine) {
-      if (edges[e].w0 != expect) throw Error("garment panel '" + g.name + "': outline not covered exactly once near walk position " + std::to_string(expect));
-      expect = edges[e].w1;
-    }
-    if (expect != total) throw Error("garment panel '" + g.name + "': outline not closed by its edges");
-
-    // Outline samples, uniform in 3D arc length along each edge.
-    std::vector<Vec2> outline2;
-    std::vector<Vec3> outline3;
-    for (int e : mine) {
-      EdgeSamples& s = edges[e];
-      const std::vector<double> c3 = cumulative(s.line3);
-      s.outline.clear();
-      for (int k = 0; k <= s.segments; ++k) {
-        if (k == s.segments) {
-          s.outline.push_back(e == mine.back() ? 0 : static_cast<int>(outline2.size()));
-          break;
-        }
-        const double t = c3.back() * k / s.segments;
-        s.outline.push_back(static_cast<int>(outline2.size()));
-        outline3.push_back(along(s.line3, c3, t));
-        outline2.push_back(along(s.line2, c3, t));
-      }
-    }
-    const int nb = static_cast<int>(outline2.size());
-    // Mesh counter-clockwise in UV (a mirrored panel walks clockwise).
-    const bool clockwise = signed_area2(outline2) < 0;
-    std::vector<Vec2> ccw = outline2;
-    if (clockwise) std::reverse(ccw.begin(), ccw.end());
-    PlanarMesh pm;
-    try {
-      pm = mesh_polygon(ccw, h);
-    } catch (const Error& e) {
-      throw Error("garment panel '" + g.name + "': " + e.what());
-    }
-    auto outline_index = [&](int k) { return k < nb && clockwise ? nb - 1 - k : k; };
-
-    const Lifter lifter(g, uvs[p]);
-    const int offset = static_cast<int>(points3.size());
-    panel_offset[p] = offset;
-    // Atlas: panels side by side along u, each starting at v = 0.
-    Vec2 lo = pm.points[0], hi = pm.points[0];
-    for (const Vec2& q : pm.points) {
+    std::vector<EdgeSamples*> mine;
+    for (EdgeSamples& e : edges)
+      if (e.panel == p) mine.push_back(&e);
+    std::sort(mine.begin(), mine.end(), [](const EdgeSamples* a, const EdgeSamples* b) { return a->w0 < b->w0; });
+    const PanelMesh m = mesh_panel(pattern.panels[p], walks[p], uvs[p], mine, h);
+    out.panel_names.push_back(pattern.panels[p].name);
+    panel_offset[p] = static_cast<int>(points3.size());
+    Vec2 lo = m.uv[0], hi = m.uv[0];
+    for (const Vec2& q : m.uv) {
       lo = lo.cwiseMin(q);
       hi = hi.cwiseMax(q);
     }
     const Vec2 shift(atlas_x - lo.x(), -lo.y());
     atlas_x += (hi.x() - lo.x()) + 0.05;
-    points3.resize(offset + pm.points.size());
-    points2.resize(offset + pm.points.size());
-    for (int k = 0; k < static_cast<int>(pm.points.size()); ++k) {
-      const int local = outline_index(k);
-      points2[offset + local] = pm.points[k] + shift;
-      points3[offset + local] = local < nb ? outline3[local] : lifter.lift(pm.points[k]);
-    }
-    for (const auto& t : pm.triangles) {
-      tris.push_back({offset + outline_index(t[0]), offset + outline_index(t[1]), offset + outline_index(t[2])});
+    for (const Vec2& q : m.uv) points2.push_back(q + shift);
+    points3.insert(points3.end(), m.xyz.begin(), m.xyz.end());
+    for (const auto& t : m.triangles) {
+      tris.push_back({panel_offset[p] + t[0], panel_offset[p] + t[1], panel_offset[p] + t[2]});
       tri_panel.push_back(p);
     }
   }
-  panel_offset[np] = static_cast<int>(points3.size());
 
   // Stitch: union of seam samples, positions averaged.
   UnionFind uf(static_cast<int>(points3.size()));

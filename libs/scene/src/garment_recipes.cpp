@@ -31,6 +31,9 @@ double low_waist(const Landmarks& m, Rng& rng, Style& style) {
   return low + rise * std::max(0.0, m.waist - low);
 }
 
+// Loose cloth falls from a bulge at about 17 degrees from vertical.
+constexpr double kHang = 0.3;
+
 // Ease over the shoulders: a garment rests there, so at most ~1.2 cm.
 double snug(const GarmentParams& p, double ease) {
   return std::max(p.body_clearance + 0.004, std::min(ease, 0.012));
@@ -63,6 +66,7 @@ void tshirt(const FitContext& ctx, const GarmentParams& p, Rng& rng, Pattern& pa
   TopSpec t;
   t.hem = m.waist - draw(rng, style, "length", p.top_length) * (m.waist - m.crotch);
   t.ease = EaseProfile().at(t.hem, e + 0.005).at(m.waist, e);
+  t.hang = EaseProfile(kHang);
   t.armhole_drop = draw(rng, style, "armhole_drop", 0.01, 0.04);
   t.shoulder_ease = snug(p, e);
   t.sleeve_ease = 0.8 * e;
@@ -79,6 +83,7 @@ void jacket(const FitContext& ctx, const GarmentParams& p, Rng& rng, Pattern& pa
   TopSpec t;
   t.hem = m.waist - draw(rng, style, "length", p.jacket_length) * (m.waist - m.crotch);
   t.ease = EaseProfile(e);
+  t.hang = EaseProfile(kHang);
   t.shoulder_ease = snug(p, e);
   t.sleeve_ease = e;
   t.armhole_drop = draw(rng, style, "armhole_drop", 0.02, 0.04);
@@ -90,7 +95,7 @@ void jacket(const FitContext& ctx, const GarmentParams& p, Rng& rng, Pattern& pa
   if (hood) {
     HoodSpec h;
     h.ease = draw(rng, style, "hood_ease", p.hood_ease);
-    h.opening = draw(rng, style, "hood_opening", 0.5, 1.0);
+    h.opening = draw(rng, style, "hood_opening", 0.0, 0.5);
     build_hood(pattern, ctx, q.neck, h);
   } else {
     open_quarters(pattern, q.neck);
@@ -112,6 +117,7 @@ void dress(const FitContext& ctx, const GarmentParams& p, Rng& rng, Pattern& pat
     t.hem = hem;
     t.ease.at(m.waist, e);
     flared(t.ease, m.hip, e + 0.01, hem, flare);
+    t.hang = EaseProfile().at(m.waist, 0.0).at(m.hip, kHang);
     const TopQuarters q = build_top(pattern, ctx, t);
     open_quarters(pattern, q.hem);
     open_quarters(pattern, q.neck);
@@ -125,9 +131,10 @@ void dress(const FitContext& ctx, const GarmentParams& p, Rng& rng, Pattern& pat
   t.hem = top;
   t.ease.at(top + 0.05, e).at(top, belt_ease).at(bottom, belt_ease);
   flared(t.ease, bottom - 0.05, e + 0.005, hem, flare);
+  t.hang = EaseProfile().at(bottom, 0.0).at(bottom - 0.1, kHang);
   const TopQuarters q = build_top(pattern, ctx, t);
-  const TubeQuarters band = build_tube(pattern, ctx, "belt", bottom, top, t.ease);
-  const TubeQuarters skirt = build_tube(pattern, ctx, "skirt", hem, bottom, t.ease);
+  const TubeQuarters band = build_tube(pattern, ctx, "belt", bottom, top, t.ease, t.hang);
+  const TubeQuarters skirt = build_tube(pattern, ctx, "skirt", hem, bottom, t.ease, t.hang);
   sew_quarters(pattern, q.hem, band.top);
   sew_quarters(pattern, band.bottom, skirt.top);
   open_quarters(pattern, skirt.bottom);
@@ -171,7 +178,8 @@ void skirt(const FitContext& ctx, const GarmentParams& p, Rng& rng, Pattern& pat
   EaseProfile ease;
   ease.at(waist, e);
   flared(ease, std::min(m.hip, waist - 0.02), e + 0.005, hem, flare);
-  const TubeQuarters q = build_tube(pattern, ctx, "skirt", hem, waist, ease);
+  const EaseProfile hang = EaseProfile().at(waist, 0.0).at(waist - 0.1, kHang);
+  const TubeQuarters q = build_tube(pattern, ctx, "skirt", hem, waist, ease, hang);
   open_quarters(pattern, q.bottom);
   open_quarters(pattern, q.top);
 }

@@ -148,12 +148,27 @@ Radial radial_of(const std::vector<Vec2>& hull, const Vec2& centre, bool closed,
 
 Radial horizontal_section(const Envelope& env, double y, const SectionSpec& spec) {
   std::vector<Vec2> pts;
-  for (int i : env.slab(1, y - spec.slab, y + spec.slab, spec.parts)) {
+  const double top = y + spec.slab + (spec.hang > 0 ? spec.hang_reach : 0.0);
+  std::vector<std::pair<Vec2, double>> above;  // (x, z), height above the slab
+  for (int i : env.slab(1, y - spec.slab, top, spec.parts)) {
     const Vec3& p = env.point(i);
     if (spec.side > 0 && p.x() < 0) continue;
-    pts.emplace_back(p.x(), p.z());
+    if (p.y() <= y + spec.slab) pts.emplace_back(p.x(), p.z());
+    else above.emplace_back(Vec2(p.x(), p.z()), p.y() - y - spec.slab);
   }
   if (pts.size() < 3) throw Error("garment section: no body points near height " + std::to_string(y));
+  if (!above.empty()) {
+    Vec2 lo = pts[0], hi = pts[0];
+    for (const Vec2& q : pts) {
+      lo = lo.cwiseMin(q);
+      hi = hi.cwiseMax(q);
+    }
+    const Vec2 mid = 0.5 * (lo + hi);
+    for (const auto& [q, dy] : above) {
+      const double r = (q - mid).norm(), in = spec.hang * dy;
+      if (r > in) pts.push_back(mid + (q - mid) * ((r - in) / r));
+    }
+  }
   const std::vector<Vec2> hull = dilate(convex_hull(std::move(pts)), spec.ease);
   Vec2 lo = hull[0], hi = hull[0];
   for (const Vec2& q : hull) {

@@ -167,6 +167,80 @@ double armpit_height(const FitContext& ctx) {
   return std::isfinite(lowest) ? lowest : ctx.marks.armpit;
 }
 
+// The neckline: where the shoulder columns meet a vertical elliptic
+// cylinder round the neck, centred on the shoulder seam's z at the
+// neckline ends (+-half_width) so that the front and back necklines meet
+// the shoulder seams exactly there; it reaches further forward (backward)
+// by the front (back) depth.
+struct Neckline {
+  double half_width, centre_z, depth, front, back;
+  Neckline(const FitContext& ctx, const ShoulderProfile& profile, double n_w, const TopSpec& spec)
+      : half_width(n_w),
+        centre_z(0.5 * (profile.arc(n_w, 0, kPi / 2).back().z() + profile.arc(-n_w, 0, kPi / 2).back().z())),
+        depth(ctx.marks.neck_half_depth + spec.neck_extra),
+        front(spec.neck_front),
+        back(spec.neck_back) {}
+  // < 0 inside the cylinder.
+  double operator()(const Vec3& p) const {
+    const double reach = depth + (p.z() > centre_z ? front : back);
+    const double u = p.x() / half_width, v = (p.z() - centre_z) / reach;
+    return u * u + v * v - 1.0;
+  }
+};
+
+// The shoulder part of a bodice panel: a column per foot (the armpit row's
+// points) up to the shoulder seam or the neckline, resampled to a common
+// number of rows (the foot itself excluded).
+std::vector<std::vector<Vec3>> shoulder_rows(const FitContext& ctx, const ShoulderProfile& profile, const Neckline& neck,
+                                             const std::vector<Vec3>& base, bool front) {
+  std::vector<std::vector<Vec3>> cols;
+  int n = 2;
+  for (const Vec3& foot : base) {
+    const double x = foot.x();
+    std::vector<Vec3> col = front ? profile.arc(x, 0, kPi / 2) : profile.arc(x, kPi, kPi / 2);
+    if (std::abs(x) < neck.half_width * (1 - 1e-9)) col = cut_where(std::move(col), neck);
+    cols.push_back(std::move(col));
+    n = std::max(n, static_cast<int>(std::ceil(length(cols.back()) / ctx.step)));
+  }
+  std::vector<std::vector<Vec3>> out(n, std::vector<Vec3>(base.size()));
+  for (std::size_t j = 0; j < base.size(); ++j) {
+    const auto pts = resample(cols[j], n);
+    for (int k = 1; k <= n; ++k) out[k - 1][j] = pts[k];
+  }
+  return out;
+}
+
+// A sleeve on the left (+1) or right (-1) armhole: rows are the sagittal
+// sections from the armhole out along the arm, each a loop from the
+// underarm seam round the front, over the top and back round the back.
+void add_sleeve(Pattern& pattern, const FitContext& ctx, const ShoulderProfile& profile, int side, double share,
+                const Edge& front_hole, const Edge& back_hole) {
+  const double a = side > 0 ? profile.a_left() : profile.a_right();
+  const double end = a + share * std::max(0.05, ctx.marks.wrist_x - 0.03 - a);
+  const int n_rows = std::max(2, static_cast<int>(std::ceil((end - a) / ctx.step)));
+  std::vector<std::vector<Vec3>> halves_f, halves_b;
+  int m = 2;
+  for (int i = 0; i <= n_rows; ++i) {
+    const double x = side * (a + (end - a) * i / n_rows);
+    const Radial section = profile.at(x);
+    halves_f.push_back(at_abscissa(section.arc(0, kPi / 2), x));
+    halves_b.push_back(at_abscissa(section.arc(kPi, kPi / 2), x));
+    m = std::max({m, static_cast<int>(std::ceil(length(halves_f.back()) / ctx.step)),
+                  static_cast<int>(std::ceil(length(halves_b.back()) / ctx.step))});
+  }
+  std::vector<std::vector<Vec3>> loop(n_rows + 1);
+  for (int i = 0; i <= n_rows; ++i) {
+    loop[i] = resample(halves_f[i], m);
+    const auto b = resample(halves_b[i], m);
+    loop[i].insert(loop[i].end(), b.rbegin() + 1, b.rend());
+  }
+  const int sleeve = pattern.add(grid_of(side > 0 ? "sleeve_left" : "sleeve_right", loop));
+  pattern.sew({sleeve, Side::Bottom, 0, m}, front_hole);          // cap, armpit -> shoulder, front half
+  pattern.sew({sleeve, Side::Bottom, 2 * m, m}, back_hole);       // and back half
+  pattern.sew({sleeve, Side::Left, 0, n_rows}, {sleeve, Side::Right, 0, n_rows});  // underarm
+  pattern.open({sleeve, Side::Top, 0, 2 * m});                     // cuff
+}
+
 // Columns of the full front, possibly split into two panels at the centre.
 struct FrontHalf {
   int panel, offset;
@@ -179,10 +253,7 @@ TopQuarters build_top(Pattern& pattern, const FitContext& ctx, const TopSpec& sp
   if (y_ap - spec.hem < 4 * ctx.step) throw Error("garment top: hem too close to the armpit");
 
   // Neckline ends (angles where the armpit row reaches x = +-n_w).
-  SectionSpec top_spec;
-  top_spec.parts = kTorsoParts;
-  top_spec.ease = spec.ease(y_ap);
-  const Radial top_row = horizontal_section(ctx.env, y_ap, top_spec);
+  const Radial top_row = horizontal_section(ctx.env, y_ap, torso_section(y_ap, spec.ease, spec.hang));
   const double a_min = std::min(top_row.point(0.0).x(), -top_row.point(kPi).x());
   const double n_w = std::min(ctx.marks.neck_half_width + spec.neck_extra, 0.6 * a_min);
   const double fl = angle_at_x(top_row, n_w, 0.0, kPi / 2), fr = angle_at_x(top_row, -n_w, kPi / 2, kPi);
@@ -190,39 +261,14 @@ TopQuarters build_top(Pattern& pattern, const FitContext& ctx, const TopSpec& sp
   const std::vector<double> heights = row_heights(spec.hem, y_ap, ctx.step);
   std::vector<double> x_uniform;
   for (double y : heights) x_uniform.push_back(smooth01((y - (y_ap - kColumnBlend)) / kColumnBlend));
-  const TubeRows rows = tube_rows(ctx, heights, spec.ease, {kPi, fr, kPi / 2, fl, 0.0},
+  const TubeRows rows = tube_rows(ctx, heights, spec.ease, spec.hang, {kPi, fr, kPi / 2, fl, 0.0},
                                   {2 * kPi, bl, 1.5 * kPi, br, kPi}, x_uniform);
   const int n_a = static_cast<int>(rows.front.size()) - 1;  // armpit row
   const ShoulderProfile profile(ctx, rows.front.back(), rows.back.back(), spec.shoulder_ease, spec.sleeve_ease);
 
-  // The neckline: a vertical elliptic cylinder round the neck, centred on
-  // the shoulder seam's z at the neckline ends so that the front and back
-  // necklines meet the shoulder seams exactly there.
-  const double neck_z = 0.5 * (profile.arc(n_w, 0, kPi / 2).back().z() + profile.arc(-n_w, 0, kPi / 2).back().z());
-  const double depth = ctx.marks.neck_half_depth + spec.neck_extra;
-  auto neck_inside = [&](const Vec3& p) {
-    const double reach = depth + (p.z() > neck_z ? spec.neck_front : spec.neck_back);
-    return (p.x() / n_w) * (p.x() / n_w) + ((p.z() - neck_z) / reach) * ((p.z() - neck_z) / reach) - 1.0;
-  };
-  auto shoulder_rows = [&](const std::vector<Vec3>& base, bool front) {
-    std::vector<std::vector<Vec3>> cols;
-    int n = 2;
-    for (const Vec3& foot : base) {
-      const double x = foot.x();
-      std::vector<Vec3> col = front ? profile.arc(x, 0, kPi / 2) : profile.arc(x, kPi, kPi / 2);
-      if (std::abs(x) < n_w * (1 - 1e-9)) col = cut_where(std::move(col), neck_inside);
-      cols.push_back(std::move(col));
-      n = std::max(n, static_cast<int>(std::ceil(length(cols.back()) / ctx.step)));
-    }
-    std::vector<std::vector<Vec3>> out(n, std::vector<Vec3>(base.size()));
-    for (std::size_t j = 0; j < base.size(); ++j) {
-      const auto pts = resample(cols[j], n);
-      for (int k = 1; k <= n; ++k) out[k - 1][j] = pts[k];
-    }
-    return out;
-  };
+  const Neckline neck(ctx, profile, n_w, spec);
   auto grid_rows = [&](std::vector<std::vector<Vec3>> lower, bool front) {
-    const auto upper = shoulder_rows(lower.back(), front);
+    const auto upper = shoulder_rows(ctx, profile, neck, lower.back(), front);
     lower.insert(lower.end(), upper.begin(), upper.end());
     return lower;
   };
@@ -263,30 +309,7 @@ TopQuarters build_top(Pattern& pattern, const FitContext& ctx, const TopSpec& sp
       pattern.open(back_hole);
       continue;
     }
-    const double a = side > 0 ? profile.a_left() : profile.a_right();
-    const double end = a + spec.sleeve * std::max(0.05, ctx.marks.wrist_x - 0.03 - a);
-    const int n_rows = std::max(2, static_cast<int>(std::ceil((end - a) / ctx.step)));
-    std::vector<std::vector<Vec3>> halves_f, halves_b;
-    int m = 2;
-    for (int i = 0; i <= n_rows; ++i) {
-      const double x = side * (a + (end - a) * i / n_rows);
-      const Radial section = profile.at(x);
-      halves_f.push_back(at_abscissa(section.arc(0, kPi / 2), x));
-      halves_b.push_back(at_abscissa(section.arc(kPi, kPi / 2), x));
-      m = std::max({m, static_cast<int>(std::ceil(length(halves_f.back()) / ctx.step)),
-                    static_cast<int>(std::ceil(length(halves_b.back()) / ctx.step))});
-    }
-    std::vector<std::vector<Vec3>> loop(n_rows + 1);
-    for (int i = 0; i <= n_rows; ++i) {
-      loop[i] = resample(halves_f[i], m);
-      const auto b = resample(halves_b[i], m);
-      loop[i].insert(loop[i].end(), b.rbegin() + 1, b.rend());
-    }
-    const int sleeve = pattern.add(grid_of(side > 0 ? "sleeve_left" : "sleeve_right", loop));
-    pattern.sew({sleeve, Side::Bottom, 0, m}, front_hole);
-    pattern.sew({sleeve, Side::Bottom, 2 * m, m}, back_hole);
-    pattern.sew({sleeve, Side::Left, 0, n_rows}, {sleeve, Side::Right, 0, n_rows});
-    pattern.open({sleeve, Side::Top, 0, 2 * m});
+    add_sleeve(pattern, ctx, profile, side, spec.sleeve, front_hole, back_hole);
   }
 
   TopQuarters q;

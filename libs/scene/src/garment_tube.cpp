@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "layers/core/error.h"
 #include "layers/scene/garment_pieces.h"
 #include "layers/scene/garment_section.h"
 #include "layers/scene/garment_tube.h"
@@ -39,13 +40,13 @@ std::vector<Vec3> edge_points(const Pattern& pattern, const Edge& e) {
 }
 
 EaseProfile& EaseProfile::at(double y, double ease) {
-  if (knots.size() == 1 && knots[0].first == 0.0) knots.clear();
   knots.emplace_back(y, ease);
   std::sort(knots.begin(), knots.end());
   return *this;
 }
 
 double EaseProfile::operator()(double y) const {
+  if (knots.empty()) throw Error("garment ease profile has no knots");
   if (y <= knots.front().first) return knots.front().second;
   if (y >= knots.back().first) return knots.back().second;
   for (std::size_t k = 1; k < knots.size(); ++k)
@@ -86,17 +87,20 @@ std::vector<double> column_fractions(const std::vector<Vec3>& arc, int n, double
 
 }  // namespace
 
+SectionSpec torso_section(double y, const EaseProfile& ease, const EaseProfile& hang) {
+  SectionSpec spec;
+  spec.parts = kTorsoParts;
+  spec.ease = ease(y);
+  spec.hang = hang(y);
+  return spec;
+}
+
 TubeRows tube_rows(const FitContext& ctx, const std::vector<double>& heights, const EaseProfile& ease,
-                   const std::vector<double>& front_knots, const std::vector<double>& back_knots,
-                   const std::vector<double>& x_uniform) {
+                   const EaseProfile& hang, const std::vector<double>& front_knots,
+                   const std::vector<double>& back_knots, const std::vector<double>& x_uniform) {
   TubeRows out;
   std::vector<Radial> sections;
-  for (double y : heights) {
-    SectionSpec spec;
-    spec.parts = kTorsoParts;
-    spec.ease = ease(y);
-    sections.push_back(horizontal_section(ctx.env, y, spec));
-  }
+  for (double y : heights) sections.push_back(horizontal_section(ctx.env, y, torso_section(y, ease, hang)));
   auto build = [&](const std::vector<double>& knots, std::vector<std::vector<Vec3>>& rows, std::vector<int>& cols) {
     const int segs = static_cast<int>(knots.size()) - 1;
     std::vector<int> count(segs, 1);
@@ -137,9 +141,9 @@ PanelGrid grid_of(const std::string& name, const std::vector<std::vector<Vec3>>&
 }
 
 TubeQuarters build_tube(Pattern& pattern, const FitContext& ctx, const std::string& name, double y0, double y1,
-                        const EaseProfile& ease) {
+                        const EaseProfile& ease, const EaseProfile& hang) {
   constexpr double kPi = 3.14159265358979323846;
-  const TubeRows rows = tube_rows(ctx, row_heights(y0, y1, ctx.step), ease, {kPi, kPi / 2, 0.0},
+  const TubeRows rows = tube_rows(ctx, row_heights(y0, y1, ctx.step), ease, hang, {kPi, kPi / 2, 0.0},
                                   {2 * kPi, 1.5 * kPi, kPi});
   const int front = pattern.add(grid_of(name + "_front", rows.front));
   const int back = pattern.add(grid_of(name + "_back", rows.back));

@@ -6,7 +6,9 @@
 #include <cstdio>
 #include <limits>
 
+#include "layers/sim/contact_topology.h"
 #include "layers/sim/solver.h"
+#include "surface_query.h"
 
 namespace layers::sim {
 
@@ -43,9 +45,55 @@ double h_penetration_rate(const std::vector<geometry::Points>& garments, const g
   return penetration_rate(stack(garments), geometry::Surface::from_mesh(body, "body"));
 }
 
+namespace {
+
+// One inner garment as a surface to test outer vertices against.
+class InnerSurface {
+ public:
+  explicit InnerSurface(const geometry::TriMesh& mesh)
+      : topology_(ContactTopology::build(mesh.faces, mesh.vertices, "inner garment")), index_(mesh.vertices) {
+    x_.reserve(static_cast<std::size_t>(mesh.vertices.rows()));
+    for (Eigen::Index i = 0; i < mesh.vertices.rows(); ++i) x_.push_back(mesh.vertices.row(i).cast<double>().transpose());
+  }
+
+  // The closest point among the faces around the nearest vertex is behind
+  // the surface, and p is over (or under) the surface rather than beside an
+  // open boundary (a hem, a cuff, a neckline).
+  bool behind(const Eigen::RowVector3f& p) const {
+    const geometry::Neighbour h = index_.nearest(p);
+    if (h.index < 0) return false;
+    detail::SurfaceHit hit;
+    if (!detail::closest_around(topology_, x_, h.index, p.cast<double>().transpose(), hit)) return false;
+    return hit.offset < 0 && (!hit.on_boundary || hit.facing);
+  }
+
+ private:
+  ContactTopology topology_;
+  geometry::PointIndex index_;
+  Vec3s x_;
+};
+
+}  // namespace
+
 double l_penetration_rate(const std::vector<geometry::Points>& outer, const std::vector<geometry::TriMesh>& inner) {
-  if (inner.empty()) return 0.0;
-  return penetration_rate(stack(outer), geometry::Surface::from_mesh(geometry::concatenate(inner), "inner garments"));
+  std::vector<InnerSurface> surfaces;
+  surfaces.reserve(inner.size());
+  for (const geometry::TriMesh& mesh : inner) {
+    if (mesh.num_faces() > 0) surfaces.emplace_back(mesh);
+  }
+  const geometry::Points points = stack(outer);
+  if (surfaces.empty() || points.rows() == 0) return 0.0;
+  Eigen::Index count = 0;
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    const Eigen::RowVector3f p = points.row(i);
+    for (const InnerSurface& s : surfaces) {
+      if (s.behind(p)) {
+        ++count;
+        break;
+      }
+    }
+  }
+  return static_cast<double>(count) / static_cast<double>(points.rows());
 }
 
 double max_edge_stretch(const geometry::Points& x, const geometry::Edges& edges, const Eigen::VectorXd& rest) {

@@ -35,6 +35,7 @@ struct Solver::Impl {
   std::vector<int> order;        // cloths by layer, then index
   std::vector<double> body_push; // largest body push per cloth in the substep
   std::vector<std::vector<std::uint8_t>> claimed;  // per cloth: attachment aimed this iteration
+  std::vector<std::uint8_t> held;  // scratch: vertices touching the body or an inner layer
 
   void add(int n) {
     elastic.push_back(std::make_unique<detail::ProjectiveSystem>());
@@ -253,10 +254,18 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
                             c.layer_thickness, mu, m.push[b]);
     });
     // The strain cap once more: contact pushes can stretch edges near
-    // contacts (it moves vertices along edges, so the thickness margins
-    // absorb what little it moves them towards a surface).
+    // contacts. Vertices in contact stay where the contacts put them (the
+    // free end of an edge moves), so the cap cannot push them back through.
     if (c.max_strain > 0) {
-      for (Cloth& cloth : cloths_) detail::limit_strain(cloth, cloth.state_, c.max_strain, 6);
+      for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
+        const std::vector<std::uint8_t>& on_body = m.body_memory[ci].touching;
+        const std::vector<std::uint8_t>& on_layer = m.layer_memory[ci].touching;
+        m.held.assign(cloths_[ci].state_.x.size(), 0);
+        for (std::size_t i = 0; i < m.held.size(); ++i) {
+          m.held[i] = (body && on_body[i]) || on_layer[i];
+        }
+        detail::limit_strain(cloths_[ci], cloths_[ci].state_, c.max_strain, c.strain_sweeps, &m.held);
+      }
     }
     timings_.layer_contact += seconds_since(t);
 

@@ -30,6 +30,9 @@ TEST(GarmentParams, ReadsFromConfigAndChecksRanges) {
     EXPECT_EQ(e.field(), "skirt_length");
   }
   bad = GarmentParams();
+  bad.edge_length = 0.5;
+  EXPECT_THROW(validate(bad), InputError);
+  bad = GarmentParams();
   bad.ease_loose = {0.02};
   EXPECT_THROW(build_garment("tshirt", test::tpose(0), bad, 1), InputError);
 }

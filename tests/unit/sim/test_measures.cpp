@@ -36,6 +36,33 @@ TEST(Measures, PenetrationRates) {
   EXPECT_DOUBLE_EQ(penetration_rate(Points(0, 3), geometry::Surface::from_mesh(body)), 0.0);
 }
 
+TEST(Measures, LPenetrationIgnoresAnOverhangPastTheInnerHem) {
+  // Inner sheet: vertical, facing +z, from y = 0.5 to 1.0. Outer sheet in
+  // front of it (z = 0.01) from y = 0.2 to 1.0; below the inner hem it
+  // swings inwards (z = -0.01) without crossing anything.
+  const geometry::TriMesh inner = test::grid(V3(0, 0.5, 0), V3(1, 0, 0), V3(0, 0.5, 0), 10, 5);
+  geometry::TriMesh outer = test::grid(V3(0, 0.2, 0.01), V3(1, 0, 0), V3(0, 0.8, 0), 10, 16);
+  for (Eigen::Index i = 0; i < outer.vertices.rows(); ++i) {
+    if (outer.vertices(i, 1) < 0.49f) outer.vertices(i, 2) = -0.01f;
+  }
+  const Eigen::Index n = outer.vertices.rows();
+  // The old nearest-vertex test counts the whole overhang row by row.
+  const double nearest_vertex = penetration_rate(outer.vertices, geometry::Surface::from_mesh(inner));
+  EXPECT_GT(nearest_vertex, 0.3);
+  EXPECT_DOUBLE_EQ(l_penetration_rate({outer.vertices}, {inner}), 0.0);
+  // A vertex pushed through the inner sheet above its hem is counted.
+  const Eigen::Index through = 11 * 11 + 4;  // row y = 0.75, x = 0.4
+  ASSERT_NEAR(outer.vertices(through, 1), 0.75f, 1e-6f);
+  outer.vertices(through, 2) = -0.005f;
+  EXPECT_DOUBLE_EQ(l_penetration_rate({outer.vertices}, {inner}), 1.0 / static_cast<double>(n));
+  // So is one just under the hem row, directly below the inner surface.
+  outer.vertices(through, 2) = 0.01f;
+  const Eigen::Index under_hem = 6 * 11 + 7;  // row y = 0.5, x = 0.7
+  ASSERT_NEAR(outer.vertices(under_hem, 1), 0.5f, 1e-6f);
+  outer.vertices(under_hem, 2) = -0.005f;
+  EXPECT_DOUBLE_EQ(l_penetration_rate({outer.vertices}, {inner}), 1.0 / static_cast<double>(n));
+}
+
 TEST(Measures, StretchAndNonFinite) {
   const Points rest = rows({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
   geometry::Edges edges(3, 2);

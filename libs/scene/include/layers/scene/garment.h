@@ -21,8 +21,9 @@
 //
 // Rest shape: `vertices` are the placed 3D positions and are also the rest
 // shape (edge rest lengths come from them), not the flat panel lengths;
-// the flat lengths are the UVs, developed from the placed panels by arc
-// length, so they differ from the 3D ones only by a few percent.
+// the flat lengths are the UVs, flattened from the placed panels as
+// rigidly as possible, so they differ from the 3D ones only by a few
+// percent (more where a panel curves both ways: shoulders, hood).
 //
 // Outfits: the inner layer is one garment, or a t-shirt over pants or a
 // skirt (two layer-0 garments, stored separately; the bottom is built first
@@ -73,7 +74,7 @@ struct GarmentParams {
 
   template <class V>
   void visit(V& v) {
-    v("edge_length", edge_length, cfg::opt().range(0.004, 0.2).help("target edge length (m)"));
+    v("edge_length", edge_length, cfg::opt().range(0.004, 0.1).help("target edge length (m)"));
     v("body_clearance", body_clearance, cfg::opt().range(0, 0.05).help("rest-pose gap to the skin (m)"));
     v("layer_gap", layer_gap, cfg::opt().range(0, 0.05).help("rest-pose gap to the garments underneath (m)"));
     v("layer_reach", layer_reach, cfg::opt().range(0.01, 1).help("outer vertices farther than this from the inner layer are not pushed (m)"));
@@ -96,7 +97,8 @@ struct GarmentParams {
   }
 };
 
-// Throws InputError when a range is not two numbers lo <= hi.
+// Throws InputError when a range is not two numbers lo <= hi, or the edge
+// length is outside [0.004, 0.1] m.
 void validate(const GarmentParams& params);
 
 // All type names, and the layer of a type (0 inner, 1 outer; InputError

@@ -31,12 +31,14 @@ void open_quarters(Pattern& pattern, const Quarters& q);
 // The grid points of an edge, from its `from` end to its `to` end.
 std::vector<Vec3> edge_points(const Pattern& pattern, const Edge& e);
 
-// Ease (m) as a piecewise-linear function of height.
+// Ease (m), or any setting that varies with height, as a piecewise-linear
+// function of height, constant beyond its first and last knots.
 struct EaseProfile {
-  std::vector<std::pair<double, double>> knots;  // (y, ease)
-  explicit EaseProfile(double constant = 0.01) : knots{{0.0, constant}} {}
-  EaseProfile& at(double y, double ease);
-  double operator()(double y) const;
+  std::vector<std::pair<double, double>> knots;  // (y, ease), ascending y
+  EaseProfile() = default;
+  explicit EaseProfile(double constant) : knots{{0.0, constant}} {}
+  EaseProfile& at(double y, double ease);  // adds a knot
+  double operator()(double y) const;       // throws layers::Error without knots
 };
 
 struct FitContext {
@@ -52,12 +54,15 @@ constexpr PartMask kTorsoParts = kAllParts & ~(kArms | kHands | kHeadNeck | kFee
 struct TubeQuarters {
   Quarters bottom, top;
 };
+// `hang` (per metre, as a function of height) lets loose cloth fall from
+// bulges above (SectionSpec::hang); pieces sewn together share both profiles.
 TubeQuarters build_tube(Pattern& pattern, const FitContext& ctx, const std::string& name, double y0, double y1,
-                        const EaseProfile& ease);
+                        const EaseProfile& ease, const EaseProfile& hang);
 
 struct TopSpec {
   double hem = 0;                // height of the bottom row
   EaseProfile ease;              // of the torso rows (up to the armpit)
+  EaseProfile hang{0.0};         // of the torso rows (see build_tube)
   double armhole_drop = 0.02;    // armpit of the garment below the body's
   // Neckline: where the shoulders meet a vertical elliptic cylinder round
   // the neck, wider than the neck by neck_extra and reaching neck_front
@@ -83,7 +88,7 @@ Quarters build_pants(Pattern& pattern, const FitContext& ctx, const PantsSpec& s
 
 struct HoodSpec {
   double ease = 0.04;     // around the head
-  double opening = 0.75;  // how far the face opening reaches around (0..1)
+  double opening = 0.25;  // how far round the face opening reaches: 0 = 52, 1 = 80 degrees from the front
 };
 void build_hood(Pattern& pattern, const FitContext& ctx, const Quarters& neck, const HoodSpec& spec);
 

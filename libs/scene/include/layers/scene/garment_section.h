@@ -45,6 +45,11 @@ struct SectionSpec {
   double ease = 0.01;      // dilation
   int side = 0;            // +1: only points with x >= 0; 0: all
   bool centre_on_midline = true;  // centre (0, mid z); else the hull's box centre
+  // Loose cloth hangs from what is above it: points up to `hang_reach`
+  // above the slab count too, drawn in horizontally by `hang` per metre of
+  // height (0: off), so a section shrinks gradually below a bulge.
+  double hang = 0.0;
+  double hang_reach = 0.3;
 };
 // The section of `env` at height y. Throws layers::Error when the slab is empty.
 Radial horizontal_section(const Envelope& env, double y, const SectionSpec& spec);

@@ -25,8 +25,11 @@ struct TubeRows {
 // weight x_uniform(y) -> 1, uniformly in x (a top row that shoulder
 // columns rise from must not crowd columns into one x around the sides).
 TubeRows tube_rows(const FitContext& ctx, const std::vector<double>& heights, const EaseProfile& ease,
-                   const std::vector<double>& front_knots, const std::vector<double>& back_knots,
-                   const std::vector<double>& x_uniform = {});
+                   const EaseProfile& hang, const std::vector<double>& front_knots,
+                   const std::vector<double>& back_knots, const std::vector<double>& x_uniform = {});
+
+// How torso rows are measured at height y (parts, ease, hang).
+SectionSpec torso_section(double y, const EaseProfile& ease, const EaseProfile& hang);
 
 // Heights from y0 to y1 (both included) at about `step` spacing, at least 3.
 std::vector<double> row_heights(double y0, double y1, double step);

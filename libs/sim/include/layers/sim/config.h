@@ -35,6 +35,7 @@ struct SolverConfig {
   double layer_thickness = 0.004;  // m kept between an inner and an outer garment
   double self_thickness = 0.004;   // m kept between two parts of one garment
   double max_strain = 0.08;        // strain limiting: edges are capped at (1 + max_strain) x rest (0: off)
+  int strain_sweeps = 30;          // most Gauss-Seidel sweeps of the cap after the contacts (stops when none moves)
   double support_stiffness = 1;    // body-contact support weight / the vertex's own stiffness (docs/sim.md)
   bool self_contact = true;        // master switch; each cloth also opts in (ClothOptions)
   double wind_pressure = 0.004;    // Pa per unit of Blender wind strength (docs/sim.md)
@@ -52,6 +53,8 @@ struct SolverConfig {
     v("layer_thickness", layer_thickness, cfg::opt().range(0, 0.1).help("inner-outer garment distance (m)"));
     v("self_thickness", self_thickness, cfg::opt().range(0, 0.1).help("distance within one garment (m)"));
     v("max_strain", max_strain, cfg::opt().range(0, 10).help("edge strain cap after the elastic solve (0: off)"));
+    v("strain_sweeps", strain_sweeps,
+      cfg::opt().range(1, 1000).help("most sweeps of the strain cap after the contacts (it stops early once no edge is over)"));
     v("support_stiffness", support_stiffness,
       cfg::opt().range(0, 100).help("weight of body-contact supports in the elastic solve, relative to each vertex's stiffness (0: projection only)"));
     v("self_contact", self_contact, cfg::opt().help("allow self-contact for cloths that ask for it"));

@@ -3,8 +3,11 @@
 //
 //  - H-penetration: share of garment vertices behind the body surface (for
 //    the nearest body vertex h with area-weighted normal n: (x - h) . n < 0).
-//  - L-penetration: share of outer-garment vertices behind the inner
-//    garment surface (the same test against the inner garments' vertices).
+//  - L-penetration: share of outer-garment vertices behind an inner
+//    garment: the nearest inner vertex, the closest point among its faces,
+//    a negative signed offset from that point; a vertex beside an open
+//    boundary of the inner garment (past its hem, cuff or neckline, rather
+//    than over or under its surface) is not behind it (docs/sim.md 6).
 //  - maximum edge stretch: max over edges of |l| / l0 - 1 (compression does
 //    not count).
 //  - non-finite count: NaN or infinite coordinates.
@@ -31,7 +34,8 @@ class Solver;
 double penetration_rate(const geometry::Points& points, const geometry::Surface& surface);
 // Garment vertices (all garments together) behind the body.
 double h_penetration_rate(const std::vector<geometry::Points>& garments, const geometry::TriMesh& body);
-// Outer vertices behind the inner garments (joined into one surface).
+// Outer vertices behind any of the inner garments (with the open-boundary
+// rule above).
 double l_penetration_rate(const std::vector<geometry::Points>& outer, const std::vector<geometry::TriMesh>& inner);
 // max(0, max over edges of |x_i - x_j| / l0 - 1); edges and rest lengths as
 // a Cloth gives them.
