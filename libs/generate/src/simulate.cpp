@@ -1,5 +1,6 @@
 // One scene, simulated (see simulate.h). Timeline: `drape_frames` with the
-// body standing in its T-pose (the garments settle; not recorded), then
+// body standing in its T-pose (the garments settle under gravity ramped in,
+// with extra damping; not recorded), then
 // `transition_frames` blending from the T-pose into the motion, then the
 // recorded frames, each one solver step of 1/30 s.
 #include "layers/generate/simulate.h"
@@ -7,6 +8,7 @@
 #include <spdlog/spdlog.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 #include "layers/core/error.h"
@@ -39,6 +41,9 @@ Eigen::Isometry3d rigid_fit(const geometry::Points& from, const geometry::Points
   Eigen::Matrix3Xd a = from.cast<double>().transpose(), b = to.cast<double>().transpose();
   return Eigen::Isometry3d(Eigen::umeyama(a, b, false));
 }
+
+// Air damping (1/s) while the garments settle in the T-pose (not recorded).
+constexpr double kDrapeDamping = 5.0;
 
 bool wants_self_contact(const std::string& type) {
   return type == "skirt" || type == "dress" || type == "dress_belt" || type == "jacket_hood";
@@ -107,7 +112,21 @@ SceneResult simulate_scene(const GeneratorConfig& config, const SceneSpec& spec)
   solver.set_body(body);
 
   // Warm-up: settle in the T-pose, then blend into the motion (no wind).
-  for (int f = 0; f < drape; ++f) solver.step();
+  // Gravity is ramped in over the first two thirds of the drape, with
+  // extra air damping, so that the garments fitted around the T-pose sink
+  // onto the shoulders gently instead of dropping onto them (a sudden drop
+  // overstretches edges around the neck, shoulders and armpits, and
+  // squeezes outer vertices through the inner garments there).
+  const int ramp = std::max(1, 2 * drape / 3);
+  for (int f = 0; f < drape; ++f) {
+    sim::SolverConfig settle = config.sim;
+    const double share = std::min(1.0, (f + 1.0) / ramp);
+    for (double& g : settle.gravity) g *= share;
+    settle.air_damping = std::max(config.sim.air_damping, kDrapeDamping);
+    solver.set_config(settle);
+    solver.step();
+  }
+  solver.set_config(config.sim);
   for (int f = 1; f < blend; ++f) solver.step(frame_points(motion.positions, f, nb));
 
   // Recorded frames.

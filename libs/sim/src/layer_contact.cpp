@@ -48,7 +48,12 @@ void points_against_surface(Cloth::State& points, const std::vector<double>& poi
     SurfaceHit hit;
     if (nearest < 0 || !closest_around(topology, surface_state.x, nearest, p, hit)) continue;
     const double before = side_offset(topology, surface_state.x_start, hit, points.x_start[i]);
-    const double side = before > 0 ? 1.0 : before < 0 ? -1.0 : preferred;
+    double side = before > 0 ? 1.0 : before < 0 ? -1.0 : preferred;
+    // A vertex found less than a thickness on the wrong side of the surface
+    // it faces (e.g. after the nearest face switched to another sheet of a
+    // fold, or a shallow crossing in an earlier substep) is taken back to
+    // the preferred side rather than kept crossed.
+    if (side != preferred && hit.facing && -preferred * hit.offset < thickness) side = preferred;
     if (record && side == preferred && hit.facing && side * hit.offset < 1.5 * thickness) {
       memory.touching[i] = 1;
       memory.inner[i] = surface_index;
