@@ -34,12 +34,8 @@ VerbRun register_stats(CLI::App& app, const Global&) {
     std::printf("statistics of split '%s': %lld sequences, %lld frames (root-relative, per frame)\n",
                 stats.split.c_str(), static_cast<long long>(stats.n_sequences),
                 static_cast<long long>(stats.n_frames));
-    print_moments("garment position (m)", stats.garment_position);
-    print_moments("garment velocity", stats.garment_velocity);
-    print_moments("garment acceleration", stats.garment_acceleration);
-    print_moments("body position (m)", stats.body_position);
-    print_moments("body velocity", stats.body_velocity);
-    print_moments("body acceleration", stats.body_acceleration);
+    std::printf("  (positions in m, velocities in m/frame, accelerations in m/frame^2)\n");
+    data::for_each_quantity(stats, print_moments);
     if (!args->dry_run) {
       std::string out = args->out.empty() ? (std::filesystem::path(args->path) / "stats.h5").string() : args->out;
       data::write_stats(out, stats);

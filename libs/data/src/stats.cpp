@@ -130,17 +130,6 @@ void accumulate_sequence(const Dataset& dataset, const SequenceInfo& info, Quant
   }
 }
 
-// The six quantities of NormStats with their stats.h5 group paths.
-template <class Stats, class F>
-void for_each_quantity(Stats& stats, F&& f) {
-  f("garment/position", stats.garment_position);
-  f("garment/velocity", stats.garment_velocity);
-  f("garment/acceleration", stats.garment_acceleration);
-  f("body/position", stats.body_position);
-  f("body/velocity", stats.body_velocity);
-  f("body/acceleration", stats.body_acceleration);
-}
-
 }  // namespace
 
 NormStats compute_stats(const Dataset& dataset, const StatsOptions& options) {

@@ -45,6 +45,18 @@ struct StatsOptions {
   double std_floor = 1e-6;
 };
 
+// Calls f(path, moments) for the six quantities of `stats`, with their
+// stats.h5 group paths ("garment/position", ..., "body/acceleration").
+template <class Stats, class F>
+void for_each_quantity(Stats& stats, F&& f) {
+  f("garment/position", stats.garment_position);
+  f("garment/velocity", stats.garment_velocity);
+  f("garment/acceleration", stats.garment_acceleration);
+  f("body/position", stats.body_position);
+  f("body/velocity", stats.body_velocity);
+  f("body/acceleration", stats.body_acceleration);
+}
+
 // Throws InputError if the split is missing or empty, a sequence has
 // fewer than 3 frames worth of data overall, or a value is not finite.
 NormStats compute_stats(const Dataset& dataset, const StatsOptions& options = {});
