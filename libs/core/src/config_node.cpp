@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "layers/core/error.h"
+#include "layers/core/text_file.h"
 
 namespace fs = std::filesystem;
 
@@ -94,11 +95,7 @@ Node load_recursive(const fs::path& path, std::vector<std::string>& stack) {
   std::string key = ec ? name : canonical.string();
   for (const auto& open : stack)
     if (open == key) throw InputError::message(name, "include", "include cycle through " + stack.front());
-  std::ifstream in(path);
-  if (!in) throw InputError::message(name, "", "cannot open config file");
-  std::stringstream text;
-  text << in.rdbuf();
-  Node own = parse(text.str(), name);
+  Node own = parse(read_text_file(name), name);
   if (own.kind == Node::Kind::Null) {
     own.kind = Node::Kind::Map;
   } else if (own.kind != Node::Kind::Map) {

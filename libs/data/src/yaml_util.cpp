@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "layers/core/error.h"
+#include "layers/core/text_file.h"
 
 namespace layers::data {
 
@@ -26,11 +27,7 @@ YAML::Node parse_yaml_text(const std::string& text, const std::string& name) {
 }
 
 YAML::Node load_yaml_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!std::filesystem::is_regular_file(path) || !in) throw InputError::message(path, "", "cannot read the file (missing?)");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_yaml_text(text.str(), path);
+  return parse_yaml_text(read_text_file(path), path);
 }
 
 template <class T>

@@ -7,16 +7,14 @@
 
 #include <atomic>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <mutex>
-#include <set>
-#include <sstream>
 #include <thread>
 
 #include "layers/core/atomic_file.h"
 #include "layers/core/error.h"
 #include "layers/core/progress.h"
+#include "layers/core/text_file.h"
 #include "layers/data/dataset.h"
 #include "layers/data/dataset_writer.h"
 #include "layers/data/manifest.h"
@@ -30,13 +28,6 @@ namespace fs = std::filesystem;
 
 namespace layers::generate {
 namespace {
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 struct Layout {
   fs::path out;
@@ -59,7 +50,7 @@ void claim_folder(const Layout& layout, const std::string& config_yaml) {
   fs::create_directories(layout.out / "parts");
   fs::path saved = layout.out / "generator.yaml";
   if (fs::exists(saved)) {
-    if (read_text(saved) != config_yaml)
+    if (read_text_file(saved.string()) != config_yaml)
       throw InputError::message(saved.string(), "",
                                 "this dataset folder was started with a different generator config; use the same "
                                 "config to resume, or another --out");
@@ -87,27 +78,20 @@ void merge_shard(const Layout& layout, int j) {
 bool finalize(const Layout& layout, const std::string& config_yaml) {
   for (int j = 0; j < layout.n_shards(); ++j)
     if (!fs::exists(layout.shard(j))) return false;
+  // Index every shard once (metadata only): counts, and the split and
+  // subsets of every sequence that was written.
   std::map<std::string, std::vector<std::string>> splits;
   std::int64_t sequences = 0, frames = 0, garments = 0;
-  {
-    // Index every shard (metadata only) to count and to split what exists.
-    for (int j = 0; j < layout.n_shards(); ++j) {
-      data::Dataset shard = data::Dataset::open(layout.shard(j).string());
-      for (const auto& id : shard.ids()) {
-        const auto& info = shard.info(id);
-        ++sequences;
-        frames += info.n_frames;
-        garments += static_cast<std::int64_t>(info.garments.size());
-      }
-    }
-    const std::vector<std::string> split_of = assign_splits(layout.config);
-    for (int j = 0; j < layout.n_shards(); ++j) {
-      data::Dataset shard = data::Dataset::open(layout.shard(j).string());
-      for (const auto& id : shard.ids()) {
-        int index = std::stoi(id.substr(4));
-        splits[split_of.at(index)].push_back(id);
-        for (const auto& tag : shard.info(id).tags) splits[tag].push_back(id);
-      }
+  const std::vector<std::string> split_of = assign_splits(layout.config);
+  for (int j = 0; j < layout.n_shards(); ++j) {
+    data::Dataset shard = data::Dataset::open(layout.shard(j).string());
+    for (const auto& id : shard.ids()) {
+      const auto& info = shard.info(id);
+      ++sequences;
+      frames += info.n_frames;
+      garments += static_cast<std::int64_t>(info.garments.size());
+      splits[split_of.at(std::stoi(id.substr(4)))].push_back(id);
+      for (const auto& tag : info.tags) splits[tag].push_back(id);
     }
   }
   data::Splits out;
@@ -185,13 +169,12 @@ GenerateReport generate_dataset(const GeneratorConfig& config, const std::string
       try {
         const SceneSpec spec = sample_scene(config, todo[k]);
         SceneResult result = simulate_scene(config, spec);
-        if (result.ok) {
+        std::string reasons;
+        for (const auto& v : result.violations) reasons += (reasons.empty() ? "" : "; ") + v;
+        if (result.ok)
           data::write_shard(layout.part(spec.id).string(), {result.sequence});
-        } else {
-          std::string reasons;
-          for (const auto& v : result.violations) reasons += v + "\n";
-          write_text_atomic(layout.skipped(spec.id).string(), reasons);
-        }
+        else
+          write_text_atomic(layout.skipped(spec.id).string(), reasons + "\n");
         std::lock_guard<std::mutex> lock(mutex);
         ++report.simulated;
         report.simulated_frames += result.simulated_frames;
@@ -200,8 +183,6 @@ GenerateReport generate_dataset(const GeneratorConfig& config, const std::string
           ++report.written;
         } else {
           ++report.skipped;
-          std::string reasons;
-          for (const auto& v : result.violations) reasons += (reasons.empty() ? "" : "; ") + v;
           report.skip_reasons.push_back(spec.id + ": " + reasons);
           spdlog::warn("{} skipped: {}", spec.id, reasons);
         }

@@ -7,12 +7,6 @@
 namespace layers::generate {
 namespace {
 
-std::map<std::string, double> attribute_map(const sim::GarmentAttributes& a) {
-  return {{"mass", a.mass},         {"tension", a.tension},   {"compression", a.compression},
-          {"shear", a.shear},       {"bending", a.bending},   {"friction", a.friction},
-          {"self_friction", a.self_friction}};
-}
-
 template <class Matrix, class T>
 std::vector<T> flat(const Matrix& m) {
   std::vector<T> out(static_cast<std::size_t>(m.size()));
@@ -21,7 +15,37 @@ std::vector<T> flat(const Matrix& m) {
   return out;
 }
 
+// Visitors over sim::GarmentAttributes::visit(), so the attribute names
+// are listed once (in libs/sim).
+struct ToMap {
+  std::map<std::string, double>& out;
+  void operator()(const char* key, const double& value, const cfg::Opt& = cfg::Opt()) { out[key] = value; }
+};
+struct FromMap {
+  const std::map<std::string, double>& in;
+  const std::string& what;
+  void operator()(const char* key, double& value, const cfg::Opt& = cfg::Opt()) {
+    auto found = in.find(key);
+    if (found == in.end()) throw InputError(what, key, "a garment attribute value", "nothing");
+    value = found->second;
+  }
+};
+
 }  // namespace
+
+std::map<std::string, double> attribute_map(const sim::GarmentAttributes& attributes) {
+  std::map<std::string, double> out;
+  ToMap visitor{out};
+  const_cast<sim::GarmentAttributes&>(attributes).visit(visitor);
+  return out;
+}
+
+sim::GarmentAttributes garment_attributes(const std::map<std::string, double>& values, const std::string& what) {
+  sim::GarmentAttributes attributes;
+  FromMap visitor{values, what};
+  attributes.visit(visitor);
+  return attributes;
+}
 
 std::vector<data::GarmentData> fit_outfit(const scene::Body& body, const SceneSpec& spec,
                                           const scene::GarmentParams& params) {

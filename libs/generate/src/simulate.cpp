@@ -92,14 +92,6 @@ SceneResult simulate_scene(const GeneratorConfig& config, const SceneSpec& spec)
     rest.vertices = (place * rows(g.rest).cast<double>().transpose()).transpose().cast<float>();
     rest.faces = Eigen::Map<const geometry::Faces>(g.faces.data(), static_cast<Eigen::Index>(g.faces.size() / 3), 3);
     std::copy(rest.vertices.data(), rest.vertices.data() + rest.vertices.size(), g.rest.begin());
-    sim::GarmentAttributes attributes;
-    attributes.mass = g.attributes.at("mass");
-    attributes.tension = g.attributes.at("tension");
-    attributes.compression = g.attributes.at("compression");
-    attributes.shear = g.attributes.at("shear");
-    attributes.bending = g.attributes.at("bending");
-    attributes.friction = g.attributes.at("friction");
-    attributes.self_friction = g.attributes.at("self_friction");
     sim::ClothOptions options;
     options.name = g.name;
     options.layer = g.layer;
@@ -107,7 +99,8 @@ SceneResult simulate_scene(const GeneratorConfig& config, const SceneSpec& spec)
     options.uv = Eigen::Map<const sim::UVs>(g.uv.data(), static_cast<Eigen::Index>(g.uv.size() / 2), 2);
     options.uv_faces =
         Eigen::Map<const geometry::Faces>(g.uv_faces.data(), static_cast<Eigen::Index>(g.uv_faces.size() / 3), 3);
-    solver.add_cloth(sim::Cloth(rest, sim::to_material(attributes, {}, spec.id + " " + g.name), options));
+    const std::string what = spec.id + " " + g.name;
+    solver.add_cloth(sim::Cloth(rest, sim::to_material(garment_attributes(g.attributes, what), {}, what), options));
   }
   solver.set_body(body);
 

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "layers/core/error.h"
+#include "layers/core/text_file.h"
 
 namespace layers::scene::json {
 namespace {
@@ -176,11 +177,7 @@ const Value* Value::find(const std::string& key) const {
 Value parse(const std::string& text, const std::string& name) { return Parser(text, name).document(); }
 
 Value parse_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError::message(path, "", "cannot open file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parse(ss.str(), path);
+  return parse(read_text_file(path), path);
 }
 
 const Value& member(const Value& object, const std::string& key, const std::string& file) {

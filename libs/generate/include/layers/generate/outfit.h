@@ -4,6 +4,8 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
+#include <string>
 #include <vector>
 
 #include "layers/data/sequence.h"
@@ -19,5 +21,10 @@ namespace layers::generate {
 // and no positions yet. The outer garment is fitted over the inner ones.
 std::vector<data::GarmentData> fit_outfit(const scene::Body& body, const SceneSpec& spec,
                                           const scene::GarmentParams& params);
+
+// A garment's attributes as stored in LAYERS-H5 (name -> value) and back;
+// InputError naming `what` for a missing attribute.
+std::map<std::string, double> attribute_map(const sim::GarmentAttributes& attributes);
+sim::GarmentAttributes garment_attributes(const std::map<std::string, double>& values, const std::string& what);
 
 }  // namespace layers::generate

@@ -1,0 +1,21 @@
+// Whole-file reading (see text_file.h).
+#include "layers/core/text_file.h"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "layers/core/error.h"
+
+namespace layers {
+
+std::string read_text_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in || !std::filesystem::is_regular_file(path))
+    throw InputError::message(path, "", "cannot open the file (missing or unreadable)");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+}  // namespace layers
