@@ -205,6 +205,16 @@ const Model::Derived* Model::current_derived() const {
   return current_->derived.get();
 }
 
+void Model::set_normalization(const Normalization& norm) { norm_ = norm.to(device()); }
+
+const Normalization& Model::normalization() const {
+  const at::Device dev = device();
+  if (norm_.garment_position.mean.device() != dev) norm_ = norm_.to(dev);
+  return norm_;
+}
+
+std::vector<LossTerm> Model::auxiliary_losses(const TrainingContext&) { return {}; }
+
 void Model::set_cache_capacity(std::size_t capacity) {
   capacity_ = std::max<std::size_t>(capacity, 1);
   // The current entry is the most recently used one, so it survives.

@@ -21,6 +21,7 @@
 #include <torch/nn/module.h>
 
 #include "layers/core/config_node.h"
+#include "layers/zoo/normalization.h"
 
 namespace layers::zoo {
 
@@ -74,6 +75,18 @@ struct StepOutput {
   std::vector<at::Tensor> garments;
 };
 
+// What the trainer tells a model when it asks for auxiliary losses.
+struct TrainingContext {
+  int epoch = 0;            // 0-based
+  std::int64_t step = 0;    // optimiser steps so far
+};
+
+// A named scalar loss term.
+struct LossTerm {
+  std::string name;
+  at::Tensor value;  // scalar, differentiable
+};
+
 struct ModelInfo {
   std::string name;
   std::int64_t parameters = 0;  // all parameter elements
@@ -104,6 +117,19 @@ class Model : public torch::nn::Module {
   // output of predict() (layers::Error naming the field and shapes); after
   // moving the model to another device, prepare() again first.
   StepOutput step(const StepInput& input);
+
+  // The training split's statistics (stats.h5) the model normalises with;
+  // identity until set. The trainer sets them before training and saves
+  // them with the checkpoint; the evaluator restores them.
+  void set_normalization(const Normalization& norm);
+  // On the model's device (moved lazily when the model moved).
+  const Normalization& normalization() const;
+
+  // Loss terms specific to this model, computed after its last step() on
+  // the current sequence and added by the trainer to the shared ones
+  // (layers/zoo/losses.h) with the weights the model chose (e.g. DeePSD's
+  // first-epoch skinning-weight prior). Default: none.
+  virtual std::vector<LossTerm> auxiliary_losses(const TrainingContext& context);
 
   // How many sequences' derived data stay cached (least recently used
   // first out); default 64, at least 1.
@@ -138,6 +164,7 @@ class Model : public torch::nn::Module {
   };
   const Derived* current_derived() const;
 
+  mutable Normalization norm_ = Normalization::identity();
   std::list<Prepared> cache_;  // most recently used first
   const Prepared* current_ = nullptr;
   std::size_t capacity_ = 64;
