@@ -98,6 +98,8 @@ void validate(const SequenceStatic& s) {
   }
   check.optional(s.joint_parents, {true, {kAny}}, "joint_parents");
   check.optional(s.skin_index, {true, {kAny, 4}}, "skin_index");
+  check.optional(s.tpose_joints, {false, {s.joint_parents.defined() ? s.joint_parents.size(0) : kAny, 3, 4}},
+                 "tpose_joints");
   check.optional(s.skin_weight, {false, {kAny, 4}}, "skin_weight");
   if (s.skin_index.defined() != s.skin_weight.defined())
     check.fail("skin_weight", "skin_index and skin_weight given together", "only one of them");
@@ -118,6 +120,7 @@ SequenceStatic converted(const SequenceStatic& s, at::Device device) {
   out.joint_parents = convert(s.joint_parents, device, at::kLong);
   out.skin_index = convert(s.skin_index, device, at::kLong);
   out.skin_weight = convert(s.skin_weight, device, at::kFloat);
+  out.tpose_joints = convert(s.tpose_joints, device, at::kFloat);
   for (GarmentStatic& g : out.garments) {
     g.faces = convert(g.faces, device, at::kLong);
     g.uv_faces = convert(g.uv_faces, device, at::kLong);
@@ -243,10 +246,9 @@ StepOutput Model::step(const StepInput& in) {
   check.tensor(in.root_rot, {false, {3, 4}}, "step input root_rot");
   check.tensor(in.wind_rotation, {false, {2, 4}}, "step input wind_rotation");
   check.tensor(in.wind_strength, {false, {2}}, "step input wind_strength");
-  if (in.joints_next.defined()) {
-    const std::int64_t nj = s.joint_parents.defined() ? s.joint_parents.size(0) : kAny;
-    check.tensor(in.joints_next, {false, {nj, 3, 4}}, "step input joints_next");
-  }
+  const std::int64_t nj = s.joint_parents.defined() ? s.joint_parents.size(0) : kAny;
+  if (in.joints.defined()) check.tensor(in.joints, {false, {nj, 3, 4}}, "step input joints");
+  if (in.joints_next.defined()) check.tensor(in.joints_next, {false, {nj, 3, 4}}, "step input joints_next");
 
   StepOutput out = predict(in);
   check.count(out.garments.size(), s.garments.size(), "step output garments");

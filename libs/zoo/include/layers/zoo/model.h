@@ -50,6 +50,12 @@ struct SequenceStatic {
   at::Tensor joint_parents;  // [J], -1 for the root
   at::Tensor skin_index;     // [Vb,4] joint indices
   at::Tensor skin_weight;    // [Vb,4]
+  // Joint transforms [R|p] of the T-pose the garments' rest shapes were
+  // made in ([J,3,4], same convention as StepInput::joints): a skinning
+  // model maps a rest point x to frame t with
+  //   G_j(t) G_j(T)^-1 x  =  R_j(t) R_j(T)^T (x - p_j(T)) + p_j(t).
+  // Undefined when the data has none.
+  at::Tensor tpose_joints;
 };
 
 // Garment positions at t-1 and t, each [V,3].
@@ -67,7 +73,12 @@ struct StepInput {
   at::Tensor root_rot;       // [3,4] pelvis orientation (w,x,y,z) at t-1, t, t+1
   at::Tensor wind_rotation;  // [2,4] wind rotation (w,x,y,z) at t, t+1
   at::Tensor wind_strength;  // [2] wind strength (0..400) at t, t+1
-  at::Tensor joints_next;    // [J,3,4] joint transforms at t+1; undefined when absent
+  // Joint transforms [R|p] at t and t+1 ([J,3,4], LAYERS-H5 body/joints:
+  // a point x of the body's rest pose moves to R (x - rest_joint) + p);
+  // undefined when absent. A point moves from t to t+1 with joint j as
+  // R(t+1) R(t)^T (x - p(t)) + p(t+1).
+  at::Tensor joints;
+  at::Tensor joints_next;
 };
 
 // Predicted garment positions at t+1, each [V,3], in garment order.
