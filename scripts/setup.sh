@@ -12,6 +12,7 @@ packages=(
   build-essential cmake ninja-build ccache pkg-config
   libtorch-dev libopenblas0-pthread
   libeigen3-dev libhdf5-dev libnanoflann-dev libspdlog-dev libyaml-cpp-dev libcli11-dev zlib1g-dev
+  nlohmann-json3-dev gnuplot-nox
   libgtest-dev libgmock-dev libbenchmark-dev
 )
 

@@ -16,7 +16,7 @@ LoadedConfig load_config(const ConfigArgs& args) {
   cfg::Node tree = cfg::load_file(args.file);
   for (const auto& s : args.sets) cfg::apply_set(tree, s);
   LoadedConfig out;
-  out.typed = cfg::read<TopConfig>(tree);
+  out.typed = train::read_experiment(tree, args.file);
   out.resolved = cfg::to_node(out.typed);
   return out;
 }

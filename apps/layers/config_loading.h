@@ -1,6 +1,6 @@
 // apps/layers/config_loading.h -- the config options every config-driven
-// verb shares (<file> plus repeated --set key=value) and the typed
-// top-level sections known so far.
+// verb shares (<file> plus repeated --set key=value), read as an
+// experiment (layers/train/experiment_config.h).
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -10,6 +10,7 @@
 
 #include "layers/core/config.h"
 #include "layers/core/run_config.h"
+#include "layers/train/experiment_config.h"
 
 namespace layers::app {
 
@@ -18,20 +19,8 @@ struct ConfigArgs {
   std::vector<std::string> sets;
 };
 
-// Top level of a config file. Sections not known yet to this build are
-// rejected as unknown keys.
-struct TopConfig {
-  RunConfig run;
-  cfg::Node model;  // checked by the model zoo (name + the plugin's own parameters)
-  cfg::Node data;   // dataset section
-
-  template <class V>
-  void visit(V& v) {
-    v("run", run);
-    v("model", model);
-    v("data", data);
-  }
-};
+// Top level of a config file: an experiment (layers/train).
+using TopConfig = train::ExperimentConfig;
 
 struct LoadedConfig {
   TopConfig typed;

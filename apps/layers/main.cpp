@@ -3,6 +3,7 @@
 // (0 ok, 1 failure or bad input, 2 bad usage).
 #include <spdlog/spdlog.h>
 
+#include <cstdlib>
 #include <iostream>
 #include <map>
 
@@ -11,6 +12,12 @@
 #include "verbs.h"
 
 int main(int argc, char** argv) {
+  // OpenMP threads that wait for work sleep instead of spinning: torch's
+  // parallel regions are short, and spinning threads steal the cores of a
+  // shared machine (measured: most of a training run spent spin-waiting
+  // on a busy 2-core host). Set before torch starts OpenMP; a user's own
+  // setting wins.
+  setenv("OMP_WAIT_POLICY", "PASSIVE", /*overwrite=*/0);
   using namespace layers;
   CLI::App app{
       "layers: generate multi-layered garment datasets, train and compare learned garment "
@@ -37,6 +44,12 @@ int main(int argc, char** argv) {
     add(app::register_stats);
     add(app::register_export);
     add(app::register_models);
+    add(app::register_train);
+    add(app::register_eval);
+    add(app::register_rollout);
+    add(app::register_bench);
+    add(app::register_report);
+    add(app::register_run);
     add(app::register_config);
   } catch (const std::exception& e) {
     std::cerr << "layers: internal error: " << e.what() << "\n";

@@ -48,8 +48,9 @@ VerbRun register_generate(CLI::App& app, const Global&) {
                 options.out.c_str(), report.scenes, a->shard.c_str(), report.simulated, report.written,
                 report.skipped, report.reused);
     if (report.simulated_frames > 0)
-      std::printf("simulation: %d frames, %.3f s per frame (per thread), wall %.1f s\n", report.simulated_frames,
-                  report.simulate_seconds / report.simulated_frames, report.seconds);
+      std::printf("simulation: %d frames, %.3f s per frame (per thread; %.3f s CPU), wall %.1f s\n",
+                  report.simulated_frames, report.simulate_seconds / report.simulated_frames,
+                  report.simulate_cpu_seconds / report.simulated_frames, report.seconds);
     for (const auto& r : report.skip_reasons) std::printf("skipped %s\n", r.c_str());
     std::printf(report.finalized ? "dataset complete: dataset.yaml, splits.yaml, stats.h5 written\n"
                                  : "dataset not complete yet: other shards are missing\n");

@@ -29,6 +29,12 @@ VerbRun register_models(CLI::App& app, const Global& global);
 VerbRun register_info(CLI::App& app, const Global& global);
 VerbRun register_stats(CLI::App& app, const Global& global);
 VerbRun register_validate(CLI::App& app, const Global& global);
+VerbRun register_train(CLI::App& app, const Global& global);
+VerbRun register_eval(CLI::App& app, const Global& global);
+VerbRun register_rollout(CLI::App& app, const Global& global);
+VerbRun register_bench(CLI::App& app, const Global& global);
+VerbRun register_report(CLI::App& app, const Global& global);
+VerbRun register_run(CLI::App& app, const Global& global);
 
 // Exit codes of the CLI (README "Exit codes").
 enum Exit : int { kOk = 0, kFailure = 1, kUsage = 2 };

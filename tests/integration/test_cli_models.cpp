@@ -39,15 +39,14 @@ TEST(CliModels, ConfigChecksModelNameAndParameters) {
   EXPECT_EQ(u.exit_code, 1) << u.output;
   EXPECT_NE(u.output.find("unknown.yaml:3: model.name: unknown model 'layersnet_typo'"), std::string::npos)
       << u.output;
-  EXPECT_NE(u.output.find("registered models: test_constant_velocity"), std::string::npos) << u.output;
+  EXPECT_NE(u.output.find("registered models: "), std::string::npos) << u.output;
+  EXPECT_NE(u.output.find("test_constant_velocity ("), std::string::npos) << u.output;
 
   std::string bad = dir.write("bad.yaml", "model:\n  name: test_constant_velocity\n  params:\n    damping: 3\n");
   auto b = run_command(with_test_plugins("config " + bad));
   EXPECT_EQ(b.exit_code, 1) << b.output;
   EXPECT_NE(b.output.find("bad.yaml:4: model.params.damping"), std::string::npos) << b.output;
 
-  // Without plugins, the message says none is registered and where to look.
-  auto none = run_command("LAYERS_PLUGIN_PATH=" + dir.path() + " " + test::layers_bin() + " config " + unknown);
-  EXPECT_EQ(none.exit_code, 1) << none.output;
-  EXPECT_NE(none.output.find("LAYERS_PLUGIN_PATH"), std::string::npos) << none.output;
+  // (With no plugin at all the message says where plugins are searched:
+  // test_registry covers it; the real plugins sit beside this binary.)
 }

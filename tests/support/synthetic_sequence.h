@@ -205,6 +205,7 @@ inline void expect_same(const SequenceData& a, const SequenceData& b) {
   EXPECT_EQ(a.body.joint_parents, b.body.joint_parents);
   EXPECT_EQ(a.body.skin_index, b.body.skin_index);
   EXPECT_EQ(a.body.skin_weight, b.body.skin_weight);
+  EXPECT_EQ(a.body.tpose_joints, b.body.tpose_joints);
   EXPECT_EQ(a.wind.rotation, b.wind.rotation);
   EXPECT_EQ(a.wind.strength, b.wind.strength);
   ASSERT_EQ(a.garments.size(), b.garments.size());

@@ -38,6 +38,7 @@ const std::vector<ArraySpec>& body_arrays() {
       {"body/joint_parents", DType::Int32, {"J"}},
       {"body/skin_index", DType::Int32, {"Vb", "4"}},
       {"body/skin_weight", DType::Float32, {"Vb", "4"}},
+      {"body/tpose_joints", DType::Float32, {"J", "3", "4"}, /*optional=*/true},
   };
   return specs;
 }

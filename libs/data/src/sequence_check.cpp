@@ -22,6 +22,7 @@ std::size_t body_array_size(const SequenceData& seq, const std::string& path) {
   if (path == "body/joint_parents") return b.joint_parents.size();
   if (path == "body/skin_index") return b.skin_index.size();
   if (path == "body/skin_weight") return b.skin_weight.size();
+  if (path == "body/tpose_joints") return b.tpose_joints.size();
   if (path == "wind/rotation") return seq.wind.rotation.size();
   if (path == "wind/strength") return seq.wind.strength.size();
   throw Error("check_sequence: no member for " + path);
@@ -74,7 +75,11 @@ void check_sequence(const SequenceData& seq, const std::string& file) {
   DimBinder dims;
   dims.bind("T", seq.n_frames, base + " n_frames");
   for (const auto* table : {&body_arrays(), &wind_arrays()}) {
-    for (const auto& spec : *table) check.size(dims, spec, body_array_size(seq, spec.path), base + "/" + spec.path);
+    for (const auto& spec : *table) {
+      const std::size_t n = body_array_size(seq, spec.path);
+      if (spec.optional && n == 0) continue;  // absent
+      check.size(dims, spec, n, base + "/" + spec.path);
+    }
   }
   const auto n_body = *dims.get("Vb");
   const auto n_joints = *dims.get("J");

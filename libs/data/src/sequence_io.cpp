@@ -72,6 +72,7 @@ SequenceStatic read_static(const std::string& file, const H5::Group& seq, const 
   out.body.joint_parents = body.all<std::int32_t>("body/joint_parents");
   out.body.skin_index = body.all<std::int32_t>("body/skin_index");
   out.body.skin_weight = body.all<float>("body/skin_weight");
+  if (info.has_tpose_joints) out.body.tpose_joints = body.all<float>("body/tpose_joints");
   for (const auto& gi : info.garments) {
     const H5::Group group = h5::guard(file, garment_path(info, gi), [&] { return seq.openGroup("garments/" + gi.group); });
     const GroupReader garment(file, group, garment_path(info, gi), garment_dims(info, gi));
@@ -132,6 +133,7 @@ void write_sequence(H5::Group& seqs, const SequenceData& seq) {
   h5::write(body, "joint_parents", b.joint_parents, {J});
   h5::write(body, "skin_index", b.skin_index, {Vb, 4});
   h5::write(body, "skin_weight", b.skin_weight, {Vb, 4});
+  if (!b.tpose_joints.empty()) h5::write(body, "tpose_joints", b.tpose_joints, {J, 3, 4});
 
   H5::Group wind = h5::create_group(group, "wind");
   h5::write(wind, "rotation", seq.wind.rotation, {T, 4});

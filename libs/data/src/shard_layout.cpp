@@ -60,6 +60,7 @@ void inspect_array(const std::string& file, const H5::Group& loc, const std::str
   const std::string object = base + "/" + key;
   const std::string expected = std::string(dtype_name(spec.dtype)) + " " + spec.shape_text();
   if (!h5::is_dataset(loc, spec.path)) {
+    if (spec.optional && !h5::exists(loc, spec.path)) return;
     sink.report(Problem{file, object, "missing dataset (expected " + expected + ")"});
     return;
   }
@@ -188,6 +189,7 @@ SequenceLayout inspect_sequence(const std::string& file, const H5::Group& seq, c
   info.body_vertices = dim_or_zero(dims, "Vb");
   info.body_faces = dim_or_zero(dims, "Fb");
   info.n_joints = dim_or_zero(dims, "J");
+  info.has_tpose_joints = layout.well_formed.count("body/tpose_joints") > 0;
   if (info.n_frames == 0) info.n_frames = dim_or_zero(dims, "T");
 
   if (!h5::exists(seq, "garments") || seq.childObjType("garments") != H5O_TYPE_GROUP) {

@@ -145,7 +145,8 @@ void check_values(const std::string& file, const H5::Group& seq, const SequenceL
   const std::pair<const char*, ValueRule> body_floats[] = {
       {"body/positions", ValueRule::Finite}, {"body/root", ValueRule::Finite},
       {"body/root_rot", ValueRule::UnitQuaternion}, {"body/joints", ValueRule::Finite},
-      {"body/skin_weight", ValueRule::Finite}, {"wind/rotation", ValueRule::UnitQuaternion},
+      {"body/skin_weight", ValueRule::Finite}, {"body/tpose_joints", ValueRule::Finite},
+      {"wind/rotation", ValueRule::UnitQuaternion},
       {"wind/strength", ValueRule::WindStrength}};
   for (const auto& [rel, rule] : body_floats) {
     if (ok(rel)) scan_floats(file, seq, rel, base + "/" + rel, rule, sink);

@@ -2,6 +2,8 @@
 #include "layers/generate/body_data.h"
 
 #include "layers/core/error.h"
+#include "layers/scene/skeleton.h"
+#include "layers/scene/skinning.h"
 
 namespace layers::generate {
 
@@ -14,7 +16,8 @@ std::vector<T> frames(const std::vector<T>& all, std::size_t per_frame, int firs
 }
 }  // namespace
 
-void fill_body(data::SequenceData& seq, const scene::GeneratedBody& generated, int first, int count) {
+void fill_body(data::SequenceData& seq, const scene::GeneratedBody& generated, int first, int count,
+               const Eigen::Isometry3d& tpose_placement) {
   const scene::BodySequence& s = generated.sequence;
   if (count < 0) count = s.num_frames - first;
   if (first < 0 || first + count > s.num_frames)
@@ -38,6 +41,15 @@ void fill_body(data::SequenceData& seq, const scene::GeneratedBody& generated, i
   b.root = frames(s.root, 3, first, count);
   b.root_rot = frames(s.root_rot, 4, first, count);
   b.joints = frames(s.joints, joints * 12, first, count);
+  // The T-pose the garments were made in, placed where they were put.
+  scene::JointTransforms tpose = scene::forward_kinematics(generated.body.skeleton, generated.body.t_pose);
+  const scene::Quat turn(tpose_placement.rotation());
+  for (std::size_t j = 0; j < tpose.rotation.size(); ++j) {
+    tpose.rotation[j] = turn * tpose.rotation[j];
+    tpose.position[j] = tpose_placement * tpose.position[j];
+  }
+  b.tpose_joints.resize(joints * 12);
+  scene::joint_matrices(tpose, b.tpose_joints.data());
 }
 
 data::SequenceData body_only_sequence(const scene::GeneratedBody& generated, const std::string& id,

@@ -179,6 +179,7 @@ GenerateReport generate_dataset(const GeneratorConfig& config, const std::string
         ++report.simulated;
         report.simulated_frames += result.simulated_frames;
         report.simulate_seconds += result.seconds;
+        report.simulate_cpu_seconds += result.cpu_seconds;
         if (result.ok) {
           ++report.written;
         } else {

@@ -47,51 +47,119 @@ double h_penetration_rate(const std::vector<geometry::Points>& garments, const g
 
 namespace {
 
-// One inner garment as a surface to test outer vertices against.
+// The inner layer (every inner garment together) as one surface to test
+// outer vertices against.
 class InnerSurface {
  public:
-  explicit InnerSurface(const geometry::TriMesh& mesh)
-      : topology_(ContactTopology::build(mesh.faces, mesh.vertices, "inner garment")), index_(mesh.vertices) {
-    x_.reserve(static_cast<std::size_t>(mesh.vertices.rows()));
-    for (Eigen::Index i = 0; i < mesh.vertices.rows(); ++i) x_.push_back(mesh.vertices.row(i).cast<double>().transpose());
+  explicit InnerSurface(const std::vector<geometry::TriMesh>& meshes) {
+    Eigen::Index rows = 0, faces = 0;
+    for (const geometry::TriMesh& m : meshes) {
+      rows += m.vertices.rows();
+      faces += m.faces.rows();
+    }
+    geometry::Points points(rows, 3);
+    geometry::Faces all(faces, 3);
+    rows = faces = 0;
+    for (const geometry::TriMesh& m : meshes) {
+      points.middleRows(rows, m.vertices.rows()) = m.vertices;
+      all.middleRows(faces, m.faces.rows()) = m.faces.array() + static_cast<int>(rows);
+      rows += m.vertices.rows();
+      faces += m.faces.rows();
+    }
+    topology_ = ContactTopology::build(all, points, "inner garments");
+    x_.reserve(static_cast<std::size_t>(points.rows()));
+    for (Eigen::Index i = 0; i < points.rows(); ++i) x_.push_back(points.row(i).cast<double>().transpose());
+    index_ = geometry::PointIndex(std::move(points));
+    seen_.assign(topology_.faces.size(), 0);
   }
 
-  // The closest point among the faces around the nearest vertex is behind
-  // the surface, and p is over (or under) the surface rather than beside an
-  // open boundary (a hem, a cuff, a neckline).
-  bool behind(const Eigen::RowVector3f& p) const {
-    const geometry::Neighbour h = index_.nearest(p);
+  // The closest point among the faces around the nearest inner vertex is
+  // within `reach`, p is behind the surface there, and p is over (or under)
+  // the surface rather than beside an open boundary (a hem, a cuff, a
+  // neckline).
+  bool behind(const Vec3& p, double reach) const {
+    const geometry::Neighbour h = index_.nearest(p.cast<float>().transpose());
     if (h.index < 0) return false;
     detail::SurfaceHit hit;
-    if (!detail::closest_around(topology_, x_, h.index, p.cast<double>().transpose(), hit)) return false;
-    return hit.offset < 0 && (!hit.on_boundary || hit.facing);
+    if (!detail::closest_around(topology_, x_, h.index, p, hit)) return false;
+    return hit.offset < 0 && -hit.offset <= reach && (!hit.on_boundary || hit.facing);
+  }
+
+  // The first inner face that the ray p + t d (0 < t <= reach) meets is
+  // crossed from its back (d . n > 0): p is under the inner layer.
+  bool covered(const Vec3& p, const Vec3& d, double reach) {
+    const float radius = static_cast<float>(reach + topology_.max_edge_length);
+    double first = std::numeric_limits<double>::infinity();
+    bool leaves = false;
+    touched_.clear();
+    for (const geometry::Neighbour& n : index_.within(p.cast<float>().transpose(), radius)) {
+      for (int k = topology_.face_offsets[n.index]; k < topology_.face_offsets[n.index + 1]; ++k) {
+        const int f = topology_.vertex_faces[k];
+        if (seen_[f]) continue;
+        seen_[f] = 1;
+        touched_.push_back(f);
+        const auto& v = topology_.faces[f];
+        double t = 0;
+        Vec3 normal;
+        if (ray_hits(p, d, x_[v[0]], x_[v[1]], x_[v[2]], t, normal) && t <= reach && t < first) {
+          first = t;
+          leaves = d.dot(normal) > 0;
+        }
+      }
+    }
+    for (int f : touched_) seen_[f] = 0;
+    return leaves;
   }
 
  private:
+  // Moeller-Trumbore: the ray p + t d meets triangle (a, b, c) at t > 0;
+  // `normal` is the triangle's (unnormalised) normal.
+  static bool ray_hits(const Vec3& p, const Vec3& d, const Vec3& a, const Vec3& b, const Vec3& c, double& t,
+                       Vec3& normal) {
+    const Vec3 e1 = b - a, e2 = c - a;
+    const Vec3 q = d.cross(e2);
+    const double det = e1.dot(q);
+    if (std::abs(det) < 1e-14) return false;
+    const Vec3 s = p - a;
+    const double u = s.dot(q) / det;
+    if (u < 0 || u > 1) return false;
+    const Vec3 r = s.cross(e1);
+    const double v = d.dot(r) / det;
+    if (v < 0 || u + v > 1) return false;
+    t = e2.dot(r) / det;
+    normal = e1.cross(e2);
+    return t > 0;
+  }
+
   ContactTopology topology_;
   geometry::PointIndex index_;
   Vec3s x_;
+  std::vector<std::uint8_t> seen_;
+  std::vector<int> touched_;
 };
 
 }  // namespace
 
-double l_penetration_rate(const std::vector<geometry::Points>& outer, const std::vector<geometry::TriMesh>& inner) {
-  std::vector<InnerSurface> surfaces;
-  surfaces.reserve(inner.size());
+double l_penetration_rate(const std::vector<geometry::Points>& outer, const std::vector<geometry::TriMesh>& inner,
+                          double reach, const geometry::Surface* body) {
+  std::vector<geometry::TriMesh> meshes;
   for (const geometry::TriMesh& mesh : inner) {
-    if (mesh.num_faces() > 0) surfaces.emplace_back(mesh);
+    if (mesh.num_faces() > 0) meshes.push_back(mesh);
   }
   const geometry::Points points = stack(outer);
-  if (surfaces.empty() || points.rows() == 0) return 0.0;
+  if (meshes.empty() || points.rows() == 0) return 0.0;
+  InnerSurface surface(meshes);
   Eigen::Index count = 0;
   for (Eigen::Index i = 0; i < points.rows(); ++i) {
-    const Eigen::RowVector3f p = points.row(i);
-    for (const InnerSurface& s : surfaces) {
-      if (s.behind(p)) {
-        ++count;
-        break;
-      }
+    const Vec3 p = points.row(i).cast<double>().transpose();
+    if (!surface.behind(p, reach)) continue;
+    if (body != nullptr && body->size() > 0) {
+      // Confirmed only when the inner layer covers p along the body's
+      // outward normal (folds of the inner garment fool the sign alone).
+      const geometry::Neighbour h = body->index().nearest(points.row(i));
+      if (h.index >= 0 && !surface.covered(p, body->normals().row(h.index).cast<double>().transpose(), reach)) continue;
     }
+    ++count;
   }
   return static_cast<double>(count) / static_cast<double>(points.rows());
 }
@@ -111,7 +179,8 @@ std::int64_t count_nonfinite(const geometry::Points& points) {
   return static_cast<std::int64_t>((!points.array().isFinite()).count());
 }
 
-FrameMeasures measure_frame(const geometry::TriMesh& body, const std::vector<MeasuredGarment>& garments) {
+FrameMeasures measure_frame(const geometry::TriMesh& body, const std::vector<MeasuredGarment>& garments,
+                            double l_reach) {
   FrameMeasures out;
   std::vector<geometry::Points> all, outer;
   std::vector<geometry::TriMesh> inner;
@@ -128,8 +197,10 @@ FrameMeasures measure_frame(const geometry::TriMesh& body, const std::vector<Mea
   for (const MeasuredGarment& g : garments) {
     out.max_stretch = std::max(out.max_stretch, max_edge_stretch(g.positions, g.edges, g.rest_lengths));
   }
-  out.h_penetration = body.num_faces() > 0 ? h_penetration_rate(all, body) : 0.0;
-  out.l_penetration = outer.empty() ? 0.0 : l_penetration_rate(outer, inner);
+  const geometry::Surface body_surface =
+      body.num_faces() > 0 ? geometry::Surface::from_mesh(body, "body") : geometry::Surface();
+  out.h_penetration = body.num_faces() > 0 ? penetration_rate(stack(all), body_surface) : 0.0;
+  out.l_penetration = outer.empty() ? 0.0 : l_penetration_rate(outer, inner, l_reach, &body_surface);
   return out;
 }
 
@@ -146,7 +217,7 @@ FrameMeasures measure_frame(const Solver& solver) {
     const Cloth& c = solver.cloth(i);
     garments.push_back({c.positions(), c.faces(), c.edges(), c.rest_lengths(), top != bottom && c.layer() == top});
   }
-  return measure_frame(solver.body(), garments);
+  return measure_frame(solver.body(), garments, solver.config().validation.l_reach);
 }
 
 void SequenceMeasures::add(const FrameMeasures& f) {

@@ -25,6 +25,7 @@ struct Solver::Impl {
   detail::LayerContact layers;
   detail::SelfContact self;
   std::vector<std::unique_ptr<detail::ProjectiveSystem>> elastic;
+  std::vector<detail::StrainLimiter> limiters;
   std::vector<detail::BodyCollider::Memory> body_memory;
   std::vector<detail::LayerContact::Memory> layer_memory;
   std::vector<Vec3s> forces;     // wind forces of the substep
@@ -39,6 +40,7 @@ struct Solver::Impl {
 
   void add(int n) {
     elastic.push_back(std::make_unique<detail::ProjectiveSystem>());
+    limiters.emplace_back();
     body_memory.emplace_back();
     body_memory.back().resize(n);
     layer_memory.emplace_back();
@@ -213,7 +215,9 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
       }
     }
     if (c.max_strain > 0) {
-      for (Cloth& cloth : cloths_) detail::limit_strain(cloth, cloth.state_, c.max_strain, 2);
+      for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
+        m.limiters[ci].apply(cloths_[ci], cloths_[ci].state_, c.max_strain, 2);
+      }
     }
     timings_.elastic += seconds_since(t);
 
@@ -264,7 +268,7 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
         for (std::size_t i = 0; i < m.held.size(); ++i) {
           m.held[i] = (body && on_body[i]) || on_layer[i];
         }
-        detail::limit_strain(cloths_[ci], cloths_[ci].state_, c.max_strain, c.strain_sweeps, &m.held);
+        m.limiters[ci].apply(cloths_[ci], cloths_[ci].state_, c.max_strain, c.strain_sweeps, &m.held);
       }
     }
     timings_.layer_contact += seconds_since(t);

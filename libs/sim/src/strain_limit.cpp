@@ -1,18 +1,54 @@
 // Strain limiting over the cloth's edges (see strain_limit.h).
 #include "strain_limit.h"
 
+#include <algorithm>
+#include <numeric>
+
 namespace layers::sim::detail {
 
 // Share of a correction a held vertex takes, relative to its mass weight.
 constexpr double kHeldWeight = 0.2;
 
-void limit_strain(const Cloth& cloth, Cloth::State& s, double max_strain, int sweeps,
-                  const std::vector<std::uint8_t>* held) {
+void StrainLimiter::build(const Cloth& cloth) {
+  const geometry::Edges& edges = cloth.edges();
+  const int nv = cloth.num_vertices();
+  offsets_.assign(nv + 1, 0);
+  for (Eigen::Index e = 0; e < edges.rows(); ++e) {
+    ++offsets_[edges(e, 0) + 1];
+    ++offsets_[edges(e, 1) + 1];
+  }
+  for (int v = 0; v < nv; ++v) offsets_[v + 1] += offsets_[v];
+  incident_.assign(offsets_[nv], 0);
+  std::vector<int> fill(offsets_.begin(), offsets_.end() - 1);
+  for (Eigen::Index e = 0; e < edges.rows(); ++e) {
+    incident_[fill[edges(e, 0)]++] = static_cast<int>(e);
+    incident_[fill[edges(e, 1)]++] = static_cast<int>(e);
+  }
+  queued_.assign(static_cast<std::size_t>(edges.rows()), 0);
+  revision_ = cloth.revision();
+}
+
+int StrainLimiter::apply(const Cloth& cloth, Cloth::State& s, double max_strain, int sweeps,
+                         const std::vector<std::uint8_t>* held) {
+  if (revision_ != cloth.revision()) build(cloth);
   const geometry::Edges& edges = cloth.edges();
   const Eigen::VectorXd& rest = cloth.rest_lengths();
-  for (int sweep = 0; sweep < sweeps; ++sweep) {
-    bool changed = false;
-    for (Eigen::Index e = 0; e < edges.rows(); ++e) {
+  active_.resize(static_cast<std::size_t>(edges.rows()));
+  std::iota(active_.begin(), active_.end(), 0);
+  auto queue_around = [&](int v) {
+    for (int k = offsets_[v]; k < offsets_[v + 1]; ++k) {
+      const int f = incident_[k];
+      if (!queued_[f]) {
+        queued_[f] = 1;
+        next_.push_back(f);
+      }
+    }
+  };
+  int sweep = 0;
+  while (sweep < sweeps && !active_.empty()) {
+    ++sweep;
+    next_.clear();
+    for (const int e : active_) {
       const int a = edges(e, 0), b = edges(e, 1);
       double wa = s.inv_mass[a], wb = s.inv_mass[b];
       if (held && (*held)[a] != (*held)[b]) {
@@ -26,10 +62,14 @@ void limit_strain(const Cloth& cloth, Cloth::State& s, double max_strain, int sw
       const Vec3 correction = ((len - limit) / (len * (wa + wb))) * d;
       s.x[a] += wa * correction;
       s.x[b] -= wb * correction;
-      changed = true;
+      if (wa > 0) queue_around(a);
+      if (wb > 0) queue_around(b);
     }
-    if (!changed) break;
+    for (const int e : next_) queued_[e] = 0;
+    std::sort(next_.begin(), next_.end());
+    std::swap(active_, next_);
   }
+  return sweep;
 }
 
 }  // namespace layers::sim::detail

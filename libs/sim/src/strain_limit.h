@@ -4,9 +4,14 @@
 // fixed order), as in Provot's strain limiting. Where the elastic solve has
 // converged it does nothing; where a contact conflict or a tangle would
 // over-stretch the cloth it caps the stretch. Vertices flagged in `held`
-// (touching the body or an inner layer) move only when both ends of an
-// edge are held, so that the cap does not push contacts back through the
-// surface they rest on.
+// (touching the body or an inner layer) take a fifth of their share of a
+// correction when the other end of the edge is free, so that the cap does
+// not push contacts back through the surface they rest on.
+//
+// The first sweep visits every edge; each later sweep visits only the
+// edges around the vertices the previous sweep moved (in index order), so
+// a cap that needs many sweeps in one region (a neckline dragged by the
+// skin) costs in proportion to that region, not to the whole garment.
 #pragma once
 
 #include <cstdint>
@@ -16,7 +21,20 @@
 
 namespace layers::sim::detail {
 
-void limit_strain(const Cloth& cloth, Cloth::State& state, double max_strain, int sweeps,
-                  const std::vector<std::uint8_t>* held = nullptr);
+class StrainLimiter {
+ public:
+  // Runs at most `sweeps` sweeps, stopping after the first that moves
+  // nothing; returns how many it ran.
+  int apply(const Cloth& cloth, Cloth::State& state, double max_strain, int sweeps,
+            const std::vector<std::uint8_t>* held = nullptr);
+
+ private:
+  void build(const Cloth& cloth);
+
+  long revision_ = -1;
+  std::vector<int> offsets_, incident_;  // edges around each vertex (CSR)
+  std::vector<int> active_, next_;       // edges of this sweep and the next
+  std::vector<std::uint8_t> queued_;     // per edge: in next_
+};
 
 }  // namespace layers::sim::detail

@@ -13,6 +13,12 @@ std::shared_ptr<Model> create_model(const Registry& registry, const cfg::Node& s
   if (!registry.contains(config.name))
     throw InputError::message(section.find("name")->where(), path + ".name",
                               "unknown model '" + config.name + "'; " + registry.summary());
+  if (config.params.kind == cfg::Node::Kind::Null) {
+    // No `params:`: the plugin's defaults (an empty mapping where the section is).
+    config.params.kind = cfg::Node::Kind::Map;
+    config.params.file = section.file;
+    config.params.line = section.line;
+  }
   try {
     return registry.create(config.name, config.params);
   } catch (const InputError& e) {

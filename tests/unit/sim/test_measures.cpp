@@ -63,6 +63,45 @@ TEST(Measures, LPenetrationIgnoresAnOverhangPastTheInnerHem) {
   EXPECT_DOUBLE_EQ(l_penetration_rate({outer.vertices}, {inner}), 1.0 / static_cast<double>(n));
 }
 
+TEST(Measures, LPenetrationOnlyWithinReachOfTheInnerLayer) {
+  // A jacket sleeve over a bare forearm: the nearest inner point is far
+  // away (here 5 cm above the point) and says nothing about being inside.
+  const geometry::TriMesh inner = floor_at(0.1);
+  const Points outer = rows({{0.5, 0.05, 0.5}, {0.3, 0.09, 0.3}, {0.6, 0.12, 0.6}});
+  EXPECT_DOUBLE_EQ(l_penetration_rate({outer}, {inner}), 2.0 / 3.0);
+  EXPECT_DOUBLE_EQ(l_penetration_rate({outer}, {inner}, 0.03), 1.0 / 3.0);
+  EXPECT_DOUBLE_EQ(l_penetration_rate({outer}, {inner}, 0.005), 0.0);
+}
+
+TEST(Measures, LPenetrationTestsTheInnerGarmentsAsOneLayer) {
+  // A skirt whose waistband (at y 0.1, facing down as if folded under) is
+  // covered by a t-shirt hem 1 cm above it; a jacket vertex 5 mm above the
+  // t-shirt is outside the inner layer, though behind the skirt band alone.
+  const geometry::TriMesh skirt = test::grid(V3(0, 0.1, 0), V3(1, 0, 0), V3(0, 0, 1), 10, 10);  // normals down
+  const geometry::TriMesh tshirt = floor_at(0.11);
+  const Points jacket = rows({{0.55, 0.115, 0.45}});
+  EXPECT_DOUBLE_EQ(l_penetration_rate({jacket}, {skirt}), 1.0);
+  EXPECT_DOUBLE_EQ(l_penetration_rate({jacket}, {skirt, tshirt}), 0.0);
+  EXPECT_DOUBLE_EQ(l_penetration_rate({rows({{0.55, 0.105, 0.45}})}, {skirt, tshirt}), 1.0);
+}
+
+TEST(Measures, LPenetrationIgnoresAFoldOfTheInnerGarment) {
+  // Body: the floor (normals up). Inner: a sheet at y = 0.02 and, above it,
+  // the underside of a fold (a flap at y = 0.04 facing down). An outer
+  // vertex just above the flap is behind it by the sign alone, but nothing
+  // of the inner layer covers it along the body normal; one under the
+  // sheet is covered (the ray up leaves the sheet through its back).
+  const geometry::TriMesh body = floor_at(0);
+  const geometry::TriMesh sheet = floor_at(0.02);
+  const geometry::TriMesh flap = test::grid(V3(0.4, 0.04, 0.4), V3(0.2, 0, 0), V3(0, 0, 0.2), 4, 4);
+  const geometry::Surface normals = geometry::Surface::from_mesh(body);
+  const Points above_flap = rows({{0.51, 0.045, 0.49}});
+  EXPECT_DOUBLE_EQ(l_penetration_rate({above_flap}, {sheet, flap}, 0.03), 1.0);
+  EXPECT_DOUBLE_EQ(l_penetration_rate({above_flap}, {sheet, flap}, 0.03, &normals), 0.0);
+  const Points under_sheet = rows({{0.21, 0.015, 0.73}});
+  EXPECT_DOUBLE_EQ(l_penetration_rate({under_sheet}, {sheet, flap}, 0.03, &normals), 1.0);
+}
+
 TEST(Measures, StretchAndNonFinite) {
   const Points rest = rows({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
   geometry::Edges edges(3, 2);

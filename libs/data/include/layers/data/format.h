@@ -17,6 +17,10 @@
 //                     1 outer) and one float64 attr per garment attribute
 //                     (mass, tension, ...: any other numeric attribute)
 // positions (and joints) are chunked by frame: chunk [1, V, 3].
+// Optional arrays (ArraySpec::optional) may be absent; when present they are
+// checked like the others. body/tpose_joints is one: the joint transforms
+// of the T-pose the garments' rest shapes were made in (same convention as
+// body/joints; files written before it existed lack it).
 #pragma once
 
 #include <cstdint>
@@ -44,12 +48,13 @@ struct ArraySpec {
   std::string path;
   DType dtype;
   std::vector<std::string> dims;
+  bool optional = false;  // may be absent from a sequence
   bool per_frame() const { return !dims.empty() && dims.front() == "T"; }
   // "[T,Vb,3]"
   std::string shape_text() const;
 };
 
-const std::vector<ArraySpec>& body_arrays();     // body/faces, body/positions, ...
+const std::vector<ArraySpec>& body_arrays();     // body/faces, body/positions, ..., body/tpose_joints (optional)
 const std::vector<ArraySpec>& wind_arrays();     // wind/rotation, wind/strength
 const std::vector<ArraySpec>& garment_arrays();  // faces, rest, uv, uv_faces, panel, positions
 // Looks an array up by path in the three tables; throws layers::Error if unknown.

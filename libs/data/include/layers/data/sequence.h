@@ -21,6 +21,9 @@ struct BodyStatic {
   std::vector<std::int32_t> joint_parents;// [J], -1 for a root joint
   std::vector<std::int32_t> skin_index;   // [Vb,4] joint indices
   std::vector<float> skin_weight;         // [Vb,4]
+  // [J,3,4] joint transforms [R|p] of the T-pose the garments' rest shapes
+  // were made in (convention of body/joints); empty when absent.
+  std::vector<float> tpose_joints;
 
   std::int64_t n_vertices() const { return static_cast<std::int64_t>(skin_index.size() / 4); }
   std::int64_t n_faces() const { return static_cast<std::int64_t>(faces.size() / 3); }
@@ -105,6 +108,7 @@ struct SequenceInfo {
   std::vector<std::string> tags;
   std::map<std::string, double> shape;
   std::int64_t body_vertices = 0, body_faces = 0, n_joints = 0;
+  bool has_tpose_joints = false;  // the optional body/tpose_joints is present
   std::vector<GarmentInfo> garments;
 };
 

@@ -2,6 +2,7 @@
 // from a generated body (layers::scene -> layers::data).
 #pragma once
 
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <string>
 
@@ -13,8 +14,11 @@ namespace layers::generate {
 // Fills body/faces, positions, root, root_rot, joints, joint names and
 // parents and skinning, and the sequence's shape parameters and frame
 // count, from frames [first, first + count) of `generated` (count < 0: to
-// the end).
-void fill_body(data::SequenceData& seq, const scene::GeneratedBody& generated, int first = 0, int count = -1);
+// the end). body/tpose_joints is the body's T-pose moved by
+// `tpose_placement`: the rigid motion the garments' rest shapes (fitted
+// around the T-pose body) were moved by.
+void fill_body(data::SequenceData& seq, const scene::GeneratedBody& generated, int first = 0, int count = -1,
+               const Eigen::Isometry3d& tpose_placement = Eigen::Isometry3d::Identity());
 
 // A sequence with the body only: no garments, and no wind (strength 0,
 // identity rotation) for every frame.

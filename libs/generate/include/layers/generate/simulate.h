@@ -4,12 +4,17 @@
 // solver, validate.
 #pragma once
 
+#include <Eigen/Geometry>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "layers/data/sequence.h"
 #include "layers/generate/generator_config.h"
 #include "layers/generate/scene_spec.h"
+#include "layers/scene/body_config.h"
+#include "layers/sim/solver.h"
 
 namespace layers::generate {
 
@@ -19,11 +24,64 @@ struct SceneResult {
   std::vector<std::string> violations;   // why it was skipped, when not ok
   double mean_h_penetration = 0, mean_l_penetration = 0, max_stretch = 0;
   int simulated_frames = 0;              // warm-up included
-  double seconds = 0;
+  double seconds = 0;                    // wall clock
+  double cpu_seconds = 0;                // CPU time of the simulating thread
+};
+
+// Called after every simulated frame when given (diagnostics, pictures):
+// the phase ("drape", "blend" or "record"), the frame index within it and
+// the solver, whose body and cloths are at the end of that frame.
+using FrameObserver = std::function<void(const char* phase, int frame, const sim::Solver& solver)>;
+
+// A scene ready to simulate: the body motion (T-pose blending into the
+// motion, then the recorded frames), the outfit fitted around the T-pose
+// body and moved to where the motion starts, and the solver holding both.
+// Timeline: config.drape_frames in the T-pose (gravity ramped in over the
+// first two thirds, extra air damping; not recorded), then
+// transition_frames - 1 frames blending into the motion, then
+// config.frames recorded frames, each one solver step of 1/30 s.
+class SceneSimulation {
+ public:
+  // Throws what the templates, the body model or the solver throw.
+  SceneSimulation(const GeneratorConfig& config, const SceneSpec& spec);
+
+  // False when the body self-intersects in frames that could not be
+  // repaired; problem() says why. Nothing can be simulated then.
+  bool usable() const { return problem_.empty(); }
+  const std::string& problem() const { return problem_; }
+
+  // Drape and blend (no wind).
+  void warm_up(const FrameObserver& observer = {});
+  // Advances to recorded frame r with its scheduled wind (r = 0, 1, ...
+  // in order, after warm_up()).
+  void record(int r);
+  int warm_up_frames() const;
+  int recorded_frames() const { return config_.frames; }
+
+  const sim::Solver& solver() const { return solver_; }
+  sim::Solver& solver() { return solver_; }
+  const sim::WindSchedule& wind() const { return wind_; }
+  const scene::GeneratedBody& body() const { return generated_; }
+  // The garments' arrays (rest shapes as simulated, no positions).
+  std::vector<data::GarmentData>& garments() { return garments_; }
+  // The rigid motion that took the T-pose garments to the motion's start.
+  const Eigen::Isometry3d& placement() const { return place_; }
+
+ private:
+  geometry::Points body_frame(int frame) const;
+
+  GeneratorConfig config_;
+  SceneSpec spec_;
+  std::string problem_;
+  scene::GeneratedBody generated_;
+  std::vector<data::GarmentData> garments_;
+  Eigen::Isometry3d place_ = Eigen::Isometry3d::Identity();
+  sim::WindSchedule wind_;
+  sim::Solver solver_;
 };
 
 // Never writes anything; a scene over its thresholds comes back with
 // ok = false and the reasons.
-SceneResult simulate_scene(const GeneratorConfig& config, const SceneSpec& spec);
+SceneResult simulate_scene(const GeneratorConfig& config, const SceneSpec& spec, const FrameObserver& observer = {});
 
 }  // namespace layers::generate

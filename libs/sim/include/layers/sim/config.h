@@ -15,12 +15,15 @@ struct ValidationConfig {
   double max_h_penetration = 0.005;  // mean over frames of the H-penetration rate
   double max_l_penetration = 0.005;  // mean over frames of the L-penetration rate
   double max_stretch = 0.10;         // max over frames and edges of |l|/l0 - 1
+  double l_reach = 0.03;             // only outer vertices this close to the inner layer can be behind it (m)
 
   template <class V>
   void visit(V& v) {
     v("max_h_penetration", max_h_penetration, cfg::opt().range(0, 1).help("mean share of garment vertices behind the body"));
     v("max_l_penetration", max_l_penetration, cfg::opt().range(0, 1).help("mean share of outer vertices behind the inner layer"));
     v("max_stretch", max_stretch, cfg::opt().min(0).help("largest allowed |l|/l0 - 1 of any edge"));
+    v("l_reach", l_reach,
+      cfg::opt().range(0.001, 10).help("L-penetration: outer vertices farther than this from the inner layer are not tested (m)"));
   }
 };
 
@@ -35,7 +38,7 @@ struct SolverConfig {
   double layer_thickness = 0.004;  // m kept between an inner and an outer garment
   double self_thickness = 0.004;   // m kept between two parts of one garment
   double max_strain = 0.08;        // strain limiting: edges are capped at (1 + max_strain) x rest (0: off)
-  int strain_sweeps = 30;          // most Gauss-Seidel sweeps of the cap after the contacts (stops when none moves)
+  int strain_sweeps = 200;         // most Gauss-Seidel sweeps of the cap after the contacts (stops when none moves)
   double support_stiffness = 1;    // body-contact support weight / the vertex's own stiffness (docs/sim.md)
   bool self_contact = true;        // master switch; each cloth also opts in (ClothOptions)
   double wind_pressure = 0.004;    // Pa per unit of Blender wind strength (docs/sim.md)

@@ -3,11 +3,15 @@
 //
 //  - H-penetration: share of garment vertices behind the body surface (for
 //    the nearest body vertex h with area-weighted normal n: (x - h) . n < 0).
-//  - L-penetration: share of outer-garment vertices behind an inner
-//    garment: the nearest inner vertex, the closest point among its faces,
-//    a negative signed offset from that point; a vertex beside an open
+//  - L-penetration: share of outer-garment vertices behind the inner layer
+//    (all inner garments together as one surface): the nearest inner
+//    vertex, the closest point among its faces, a negative signed offset
+//    from that point of at most `l_reach`; a vertex beside an open
 //    boundary of the inner garment (past its hem, cuff or neckline, rather
-//    than over or under its surface) is not behind it (docs/sim.md 6).
+//    than over or under its surface) is not behind it, and neither is one
+//    farther than `l_reach` from the inner layer, where the nearest inner
+//    point says nothing about being inside it (a jacket sleeve over a bare
+//    forearm finds the armhole of a sleeveless dress; docs/sim.md 6).
 //  - maximum edge stretch: max over edges of |l| / l0 - 1 (compression does
 //    not count).
 //  - non-finite count: NaN or infinite coordinates.
@@ -17,6 +21,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -34,9 +39,14 @@ class Solver;
 double penetration_rate(const geometry::Points& points, const geometry::Surface& surface);
 // Garment vertices (all garments together) behind the body.
 double h_penetration_rate(const std::vector<geometry::Points>& garments, const geometry::TriMesh& body);
-// Outer vertices behind any of the inner garments (with the open-boundary
-// rule above).
-double l_penetration_rate(const std::vector<geometry::Points>& outer, const std::vector<geometry::TriMesh>& inner);
+// Outer vertices behind the inner garments (one surface, with the
+// open-boundary and reach rules above). Given the body, a vertex counts
+// only if the inner layer also covers it along the body's outward normal
+// (the first inner face on that ray within `reach` is crossed from its
+// back), which keeps folds of the inner garment from counting.
+double l_penetration_rate(const std::vector<geometry::Points>& outer, const std::vector<geometry::TriMesh>& inner,
+                          double reach = std::numeric_limits<double>::infinity(),
+                          const geometry::Surface* body = nullptr);
 // max(0, max over edges of |x_i - x_j| / l0 - 1); edges and rest lengths as
 // a Cloth gives them.
 double max_edge_stretch(const geometry::Points& positions, const geometry::Edges& edges,
@@ -60,9 +70,11 @@ struct MeasuredGarment {
   bool outer = false;
 };
 
-FrameMeasures measure_frame(const geometry::TriMesh& body, const std::vector<MeasuredGarment>& garments);
+FrameMeasures measure_frame(const geometry::TriMesh& body, const std::vector<MeasuredGarment>& garments,
+                            double l_reach = ValidationConfig{}.l_reach);
 // The solver's current frame: its body and cloths; the cloths of the
-// highest layer are the outer garments, all others inner.
+// highest layer are the outer garments, all others inner; the L reach is
+// the solver's config().validation.l_reach.
 FrameMeasures measure_frame(const Solver& solver);
 
 // Running totals over the frames of a sequence.

@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <list>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -141,6 +142,11 @@ class Model : public torch::nn::Module {
   // (layers/zoo/losses.h) with the weights the model chose (e.g. DeePSD's
   // first-epoch skinning-weight prior). Default: none.
   virtual std::vector<LossTerm> auxiliary_losses(const TrainingContext& context);
+
+  // What the last step() used, for benchmarks and reports: counts of the
+  // particles or tokens the model actually processed (e.g. "patches",
+  // "body_tokens"). Default: none.
+  virtual std::map<std::string, double> step_counters() const { return {}; }
 
   // How many sequences' derived data stay cached (least recently used
   // first out); default 64, at least 1.

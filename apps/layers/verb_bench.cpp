@@ -1,0 +1,50 @@
+// `layers bench <experiment.yaml>`: inference and training speed of the
+// experiment's model on a real scene scaled by subdivision (see
+// libs/train/include/layers/train/bench.h); writes <run.output>/bench.json.
+#include <cstdio>
+
+#include "config_loading.h"
+#include "layers/train/bench.h"
+#include "plugins.h"
+#include "verbs.h"
+
+namespace layers::app {
+
+VerbRun register_bench(CLI::App& app, const Global&) {
+  auto* cmd = app.add_subcommand("bench", "Time a model: ms per frame at batch 1 on scaled scenes, training speed");
+  struct Args {
+    ConfigArgs config;
+    train::BenchOptions options;
+    bool no_far = false, no_train = false;
+  };
+  auto a = std::make_shared<Args>();
+  add_config_options(*cmd, a->config, /*required=*/true);
+  cmd->add_option("--sequence", a->options.sequence, "scene to scale (default: first of the eval split)");
+  cmd->add_option("--levels", a->options.levels, "subdivision levels 0..n (x4 garment vertices each)")
+      ->capture_default_str()->check(CLI::Range(0, 4));
+  cmd->add_option("--min-time", a->options.min_time, "seconds per measurement")->capture_default_str();
+  cmd->add_option("--out", a->options.out, "JSON output (default <run.output>/bench.json)");
+  cmd->add_flag("--no-far-body", a->no_far, "skip the runs with a far-away copy of the body");
+  cmd->add_flag("--no-train", a->no_train, "time inference only");
+  return [a]() {
+    LoadedConfig loaded = load_config(a->config);
+    a->options.far_body = !a->no_far;
+    a->options.train = !a->no_train;
+    const train::BenchReport r = train::run_bench(loaded.typed, load_plugins().registry, a->options);
+    std::printf("%s (%lld parameters, %d threads) on %s\n", r.model.c_str(), static_cast<long long>(r.parameters),
+                r.threads, r.sequence.c_str());
+    std::printf("%5s %9s %9s %8s %12s %14s  %s\n", "level", "garment v", "body v", "far body", "infer ms/fr",
+                "train ms/fr", "counters");
+    for (const auto& row : r.rows) {
+      std::string counters;
+      for (const auto& [k, v] : row.counters) counters += k + "=" + std::to_string(static_cast<long long>(v)) + " ";
+      std::printf("%5d %9lld %9lld %8s %12.2f %14.2f  %s\n", row.level, static_cast<long long>(row.garment_vertices),
+                  static_cast<long long>(row.body_vertices), row.far_body ? "yes" : "no", row.ms_per_frame,
+                  row.train_ms_per_frame, counters.c_str());
+    }
+    std::printf("written: %s\n", r.out.c_str());
+    return static_cast<int>(kOk);
+  };
+}
+
+}  // namespace layers::app

@@ -1,0 +1,60 @@
+// `layers eval <experiment.yaml>`: roll the trained model out on a split
+// and write metrics.json, sequences.csv and predictions.h5 (see
+// libs/train/include/layers/train/evaluator.h).
+#include <cmath>
+#include <cstdio>
+
+#include "config_loading.h"
+#include "layers/train/evaluator.h"
+#include "plugins.h"
+#include "verbs.h"
+
+namespace layers::app {
+namespace {
+
+std::string percent(const zoo::MeanStd& m) {
+  if (m.count == 0) return "-";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.2f%%", 100.0 * m.mean);
+  return buf;
+}
+
+}  // namespace
+
+VerbRun register_eval(CLI::App& app, const Global&) {
+  auto* cmd = app.add_subcommand("eval", "Evaluate a trained model: rollouts, errors and collision rates");
+  struct Args {
+    ConfigArgs config;
+    train::EvalOptions options;
+    bool quiet = false;
+  };
+  auto a = std::make_shared<Args>();
+  add_config_options(*cmd, a->config, /*required=*/true);
+  cmd->add_option("--checkpoint", a->options.checkpoint, "best, last, or a checkpoint file")->capture_default_str();
+  cmd->add_option("--split", a->options.split, "split or subset to evaluate (default eval.split, then data.test_split)");
+  cmd->add_option("--horizon", a->options.horizon, "rollout frames (0 = whole sequences; default eval.horizon)");
+  cmd->add_option("--out", a->options.out_dir, "output folder (default <run.output>/eval-<split>)");
+  cmd->add_option("--sequence", a->options.sequences, "evaluate only this sequence id (repeatable)");
+  cmd->add_flag("--quiet", a->quiet, "no progress line");
+  return [a]() {
+    LoadedConfig loaded = load_config(a->config);
+    a->options.progress = !a->quiet;
+    const train::EvalReport r = train::run_evaluation(loaded.typed, load_plugins().registry, a->options);
+    std::printf("%s on %s: %lld sequences, %lld frames, %lld diverged, %.2f ms per frame\n", r.model.c_str(),
+                r.split.c_str(), static_cast<long long>(r.sequences), static_cast<long long>(r.frames),
+                static_cast<long long>(r.diverged), r.ms_per_frame);
+    std::printf("%-14s %22s %10s %10s\n", "", "error (mm)", "H-coll", "L-coll");
+    std::printf("%-14s %22s %10s %10s\n", "overall", zoo::format(r.overall.error_mm).c_str(),
+                percent(r.overall.h_collision).c_str(), percent(r.overall.l_collision).c_str());
+    for (const auto& [type, m] : r.per_type)
+      std::printf("%-14s %22s %10s %10s\n", type.c_str(), zoo::format(m.error_mm).c_str(),
+                  percent(m.h_collision).c_str(), percent(m.l_collision).c_str());
+    std::printf("ground truth: H-coll %.2f%%, L-coll %.2f%%\n", 100.0 * r.truth_h_collision,
+                std::isfinite(r.truth_l_collision) ? 100.0 * r.truth_l_collision : 0.0);
+    std::printf("written: %s/metrics.json, sequences.csv%s\n", r.out_dir.c_str(),
+                loaded.typed.eval.save_predictions ? ", predictions.h5" : "");
+    return static_cast<int>(kOk);
+  };
+}
+
+}  // namespace layers::app

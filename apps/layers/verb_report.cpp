@@ -1,0 +1,54 @@
+// `layers report --runs DIR... [--out DIR]`: a Markdown report with CSV/JSON
+// tables and gnuplot charts made from finished run folders (see
+// libs/report/include/layers/report/report.h). Missing pieces are listed
+// on stderr and in report.md; the exit code is 1 only when no run had an
+// evaluation to report.
+#include <cstdio>
+
+#include "layers/report/report.h"
+#include "verbs.h"
+
+namespace layers::app {
+
+VerbRun register_report(CLI::App& app, const Global&) {
+  auto* cmd = app.add_subcommand("report", "Write a Markdown report with tables and charts from finished runs");
+  struct Args {
+    report::ReportInputs inputs;
+    std::string out = "report";
+    bool no_charts = false;
+  };
+  auto a = std::make_shared<Args>();
+  cmd->add_option("--runs", a->inputs.runs, "run folders (run.output of experiments, evaluated)")
+      ->required()
+      ->expected(1, -1);
+  cmd->add_option("--out", a->out, "output folder")->capture_default_str();
+  cmd->add_option("--title", a->inputs.title, "report title")->capture_default_str();
+  cmd->add_option("--split", a->inputs.split, "read eval-<split>/ (default: eval-test, else the first eval-*)");
+  cmd->add_option("--dataset", a->inputs.picture.dataset,
+                  "ground truth for the picture (default: each run's data.dataset)");
+  cmd->add_option("--sequence", a->inputs.picture.sequence, "sequence of the picture (default: first shared one)");
+  cmd->add_option("--frames", a->inputs.picture.frames, "frames (columns) in the picture")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 12));
+  cmd->add_option("--gnuplot", a->inputs.gnuplot, "gnuplot program")->capture_default_str();
+  cmd->add_flag("--no-charts", a->no_charts, "tables and report.md only");
+  return [a]() {
+    a->inputs.charts = !a->no_charts;
+    const report::ReportResult r = report::write_report(a->inputs, a->out);
+    for (const std::string& p : r.problems) std::fprintf(stderr, "layers report: warning: %s\n", p.c_str());
+    std::printf("runs with an evaluation: %zu of %zu\n", r.runs_with_metrics, a->inputs.runs.size());
+    std::printf("Pareto front (fastest first):");
+    for (const std::string& name : r.pareto_front) std::printf(" %s", name.c_str());
+    std::printf("%s\n", r.pareto_front.empty() ? " none" : "");
+    for (const std::string& c : r.charts) std::printf("chart: %s\n", c.c_str());
+    std::printf("report: %s\n", r.report.c_str());
+    if (r.runs_with_metrics == 0) {
+      std::fprintf(stderr, "layers report: error: no run folder had an evaluation to report (see %s)\n",
+                   r.report.c_str());
+      return static_cast<int>(kFailure);
+    }
+    return static_cast<int>(kOk);
+  };
+}
+
+}  // namespace layers::app

@@ -1,0 +1,151 @@
+// `layers run <study.yaml>`: a whole study -- dataset, then train, eval and
+// bench for each experiment, then the report -- skipping the steps whose
+// outputs are current (libs/train/include/layers/train/study.h,
+// docs/studies.md). This file binds the study's steps to the libraries, all
+// in-process: layers::generate for the dataset, layers::train for
+// train/eval/bench and layers::report (write_report) for the report.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "layers/core/config.h"
+#include "layers/core/error.h"
+#include "layers/core/text_file.h"
+#include "layers/data/dataset_writer.h"
+#include "layers/data/splits.h"
+#include "layers/generate/generator.h"
+#include "layers/report/report.h"
+#include "layers/train/bench.h"
+#include "layers/train/evaluator.h"
+#include "layers/train/study.h"
+#include "layers/train/trainer.h"
+#include "plugins.h"
+#include "verbs.h"
+
+namespace fs = std::filesystem;
+
+namespace layers::app {
+namespace {
+
+// Every file a finished `layers generate` leaves: all shards, splits.yaml,
+// dataset.yaml and (when there is a train split) stats.h5.
+bool dataset_complete(const std::string& folder, const generate::GeneratorConfig& config) {
+  const fs::path dir(folder);
+  if (!fs::exists(dir / "dataset.yaml") || !fs::exists(dir / "splits.yaml")) return false;
+  const int shards = (config.sequences + config.sequences_per_shard - 1) / config.sequences_per_shard;
+  for (int j = 0; j < shards; ++j)
+    if (!fs::exists(dir / data::shard_file_name(j))) return false;
+  const data::Splits splits = data::read_splits((dir / "splits.yaml").string());
+  return fs::exists(dir / "stats.h5") || !splits.has("train") || splits.get("train").empty();
+}
+
+bool make_dataset(const train::StudyDataset& d) {
+  cfg::Node tree = cfg::load_file(d.config);
+  for (const auto& s : d.set) cfg::apply_set(tree, s);
+  const auto config = cfg::read<generate::GeneratorConfig>(tree);
+  generate::check(config, d.config);
+  const std::string resolved = cfg::to_yaml(cfg::to_node(config));
+  if (dataset_complete(d.folder, config)) {
+    const fs::path saved = fs::path(d.folder) / "generator.yaml";
+    if (!fs::exists(saved) || read_text_file(saved.string()) != resolved)
+      throw InputError::message(saved.string(), "",
+                                "the dataset folder was made with another generator config than " + d.config +
+                                    " (with the study's dataset.set); point dataset.folder elsewhere or remove it");
+    return false;
+  }
+  generate::GenerateOptions options;
+  options.out = d.folder;
+  options.threads = d.threads;
+  const generate::GenerateReport r = generate::generate_dataset(config, resolved, options);
+  std::printf("  %s: %d scenes simulated (%d written, %d skipped), %d finished before, %.1f s\n", d.folder.c_str(),
+              r.simulated, r.written, r.skipped, r.reused, r.seconds);
+  if (!r.finalized) throw Error(d.folder + ": the dataset is not complete after generating it");
+  return true;
+}
+
+std::string percent(const zoo::MeanStd& m) {
+  if (m.count == 0) return "-";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f%%", 100.0 * m.mean);
+  return buf;
+}
+
+train::StudyActions library_actions() {
+  train::StudyActions a;
+  a.dataset = make_dataset;
+  a.train = [](const train::StudyRun& run, bool resume) {
+    train::TrainOptions options;
+    options.resume = resume;
+    const train::TrainReport r = train::run_training(run.config, load_plugins().registry, options);
+    std::printf("  %s: %d epochs (%lld steps)%s, %lld trainable parameters\n", run.name.c_str(), r.epochs_done,
+                static_cast<long long>(r.steps), resume ? ", resumed" : "",
+                static_cast<long long>(r.trainable_parameters));
+  };
+  a.eval = [](const train::StudyRun& run, const std::string& split) {
+    train::EvalOptions options;
+    options.checkpoint = run.checkpoint;
+    options.split = split;
+    const train::EvalReport r = train::run_evaluation(run.config, load_plugins().registry, options);
+    std::printf("  %s on %s: error %s mm, H %s, L %s, %lld of %lld sequences diverged, %.2f ms/frame\n",
+                run.name.c_str(), split.c_str(), zoo::format(r.overall.error_mm).c_str(),
+                percent(r.overall.h_collision).c_str(), percent(r.overall.l_collision).c_str(),
+                static_cast<long long>(r.diverged), static_cast<long long>(r.sequences), r.ms_per_frame);
+  };
+  a.bench = [](const train::StudyRun& run, const train::StudyBench& b) {
+    train::BenchOptions options;
+    options.levels = b.levels;
+    options.min_time = b.min_time;
+    options.train = b.train;
+    options.far_body = b.far_body;
+    const train::BenchReport r = train::run_bench(run.config, load_plugins().registry, options);
+    if (!r.rows.empty())
+      std::printf("  %s: %.2f ms/frame at %lld garment vertices -> %s\n", run.name.c_str(), r.rows.front().ms_per_frame,
+                  static_cast<long long>(r.rows.front().garment_vertices), r.out.c_str());
+  };
+  a.report = [](const train::StudyConfig& study, const std::vector<std::string>& dirs, const std::string& out) {
+    report::ReportInputs inputs;
+    inputs.runs = dirs;
+    inputs.title = study.report.title.empty() ? "Study " + study.name : study.report.title;
+    inputs.split = study.report.split;
+    inputs.charts = study.report.charts;
+    inputs.picture.dataset = study.dataset.folder;
+    inputs.picture.sequence = study.report.sequence;
+    inputs.picture.frames = study.report.frames;
+    const report::ReportResult r = report::write_report(inputs, out);
+    for (const std::string& p : r.problems) std::printf("  report note: %s\n", p.c_str());
+    for (const std::string& c : r.charts) std::printf("  chart: %s\n", c.c_str());
+    if (r.runs_with_metrics == 0) throw Error("no run of the study had an evaluation to report (" + r.report + ")");
+  };
+  return a;
+}
+
+}  // namespace
+
+VerbRun register_run(CLI::App& app, const Global&) {
+  auto* cmd = app.add_subcommand(
+      "run", "Run a study (configs/studies/*.yaml): dataset, train, eval, bench, report; current steps are skipped");
+  struct Args {
+    std::string file;
+    std::vector<std::string> sets;
+    train::StudyOptions options;
+  };
+  auto a = std::make_shared<Args>();
+  cmd->add_option("study", a->file, "study file")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--set", a->sets, "override a value of the study file: --set key.path=value (repeatable)");
+  cmd->add_option("--only", a->options.only, "run only this experiment (repeatable; leaves the report out)");
+  cmd->add_flag("--force", a->options.force, "rerun every step of this study, current or not");
+  cmd->add_flag("--dry-run", a->options.dry_run, "print which steps are current and which would run");
+  return [a]() {
+    const train::StudyResult r = train::run_study(a->file, a->sets, library_actions(), a->options);
+    using S = train::StepStatus;
+    std::printf("%zu steps ran, %zu current", r.count(S::Ran), r.count(S::Current));
+    if (a->options.dry_run) std::printf(", %zu would run", r.count(S::WouldRun));
+    if (r.count(S::Failed) || r.count(S::Blocked))
+      std::printf(", %zu FAILED, %zu blocked by a failure", r.count(S::Failed), r.count(S::Blocked));
+    std::printf("\n");
+    if (!r.report.empty()) std::printf("report: %s\n", r.report.c_str());
+    return static_cast<int>(r.ok() ? kOk : kFailure);
+  };
+}
+
+}  // namespace layers::app

@@ -1,0 +1,95 @@
+// LayersNet inference (and one training step) in ms per frame at batch 1
+// on synthetic two-layer scenes of 2k, 8k and 32k garment vertices around a
+// 13,340-vertex body, with the patch, body-token and edge counts each step
+// used; a "far body" variant adds as many body vertices again far from the
+// garment (the counts and the output do not change, only the box test).
+#include <benchmark/benchmark.h>
+
+#include <ATen/core/grad_mode.h>
+#include <cmath>
+#include <torch/optim/adam.h>
+
+#include "layers/core/config_node.h"
+#include "layersnet.h"
+#include "synthetic_scene.h"
+
+namespace ln = layers::layersnet;
+
+namespace {
+
+struct Fixture {
+  ln::testing::SyntheticScene scene;
+  std::shared_ptr<ln::LayersNet> model;
+  layers::zoo::StepInput input;
+};
+
+// Two garments of vertices/2 each, at about square cells (the garments are
+// ~0.9-1.0 m round and 0.5 m high).
+Fixture make_fixture(std::int64_t vertices, bool far_body) {
+  ln::testing::SceneSize size;
+  size.garment_rows = static_cast<int>(std::lround(std::sqrt(vertices / 2 / 1.9)));
+  size.garment_cols = static_cast<int>(vertices / 2 / size.garment_rows);
+  size.body_rows = 116;
+  size.body_cols = 115;
+  size.frames = 8;
+  Fixture f{ln::testing::make_scene(size), nullptr, {}};
+  at::manual_seed(0);
+  f.model = std::dynamic_pointer_cast<ln::LayersNet>(ln::make_layersnet(layers::cfg::Node{}));
+  f.model->set_normalization(ln::testing::scene_normalization(f.scene));
+  f.model->prepare(f.scene.statics);
+  f.input = f.scene.input(5);  // wind blowing
+  if (far_body) {
+    const at::Tensor far = f.input.body + at::tensor({20.0f, 0.0f, 0.0f});
+    f.input.body = at::cat({f.input.body, far});
+    f.input.body_next = at::cat({f.input.body_next, far});
+  }
+  return f;
+}
+
+void report(benchmark::State& state, const Fixture& f) {
+  const ln::StepCounts& c = f.model->last_counts();
+  state.counters["vertices"] = static_cast<double>(c.vertices);
+  state.counters["body_vertices"] = static_cast<double>(f.input.body.size(0));
+  state.counters["patches"] = static_cast<double>(c.patches);
+  state.counters["body_tokens"] = static_cast<double>(c.body_tokens);
+  state.counters["abstract"] = static_cast<double>(c.abstract_tokens);
+  state.counters["mesh_edges"] = static_cast<double>(c.mesh_edges);
+  state.counters["world_edges"] = static_cast<double>(c.world_edges);
+  state.counters["body_edges"] = static_cast<double>(c.body_edges);
+  state.counters["threads"] = static_cast<double>(at::get_num_threads());
+}
+
+void BM_LayersNetInference(benchmark::State& state) {
+  Fixture f = make_fixture(state.range(0), state.range(1) != 0);
+  at::NoGradGuard no_grad;
+  for (auto _ : state) benchmark::DoNotOptimize(f.model->step(f.input).garments[0].data_ptr<float>());
+  report(state, f);
+}
+
+void BM_LayersNetTrainStep(benchmark::State& state) {
+  Fixture f = make_fixture(state.range(0), false);
+  const std::vector<at::Tensor> target = f.scene.target(5);
+  torch::optim::Adam adam(f.model->parameters(), torch::optim::AdamOptions(1e-3));
+  for (auto _ : state) {
+    adam.zero_grad();
+    const layers::zoo::StepOutput out = f.model->step(f.input);
+    at::Tensor loss = (out.garments[0] - target[0]).pow(2).sum(1).mean() + (out.garments[1] - target[1]).pow(2).sum(1).mean();
+    loss.backward();
+    adam.step();
+  }
+  report(state, f);
+}
+
+}  // namespace
+
+BENCHMARK(BM_LayersNetInference)
+    ->ArgNames({"vertices", "far_body"})
+    ->Args({2000, 0})
+    ->Args({8000, 0})
+    ->Args({32000, 0})
+    ->Args({8000, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0);
+BENCHMARK(BM_LayersNetTrainStep)->ArgNames({"vertices"})->Arg(2000)->Arg(8000)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+
+BENCHMARK_MAIN();

@@ -1,0 +1,52 @@
+// layers/report/report.h -- `layers report`: one folder a person reads and
+// a program diffs, made from finished run folders (run_results.h).
+//
+// <out>/report.md      the report: models table, accuracy against speed
+//                      with the Pareto front, rollout charts with
+//                      divergence, per garment type, ground truth beside
+//                      predictions, notes on anything missing
+// <out>/summary.csv, summary.json, per_type.csv, by_step.csv, bench.csv
+//                      the tables (tables.h)
+// <out>/charts/        PNG charts with their gnuplot scripts and data
+//
+// Missing pieces (a run without evaluation or bench.json, no gnuplot, a
+// chart gnuplot failed on, no ground truth for the picture) never stop the
+// report: they are listed in report.md and in ReportResult::problems. Every
+// file is written atomically (temporary name, then rename).
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "layers/report/frames_picture.h"
+#include "layers/report/run_results.h"
+
+namespace layers::report {
+
+struct ReportInputs {
+  std::vector<std::string> runs;  // run folders (run.output of experiments)
+  std::string title = "layers report";
+  std::string split;              // eval-<split> to read (default: see load_run)
+  std::string gnuplot = "gnuplot";  // program, a path or a name on PATH
+  bool charts = true;             // false: tables and report.md only
+  PictureOptions picture;
+};
+
+struct ReportResult {
+  std::string report;                 // path of report.md
+  std::vector<std::string> files;     // every file written, report.md included
+  std::vector<std::string> charts;    // the PNGs drawn
+  std::vector<std::string> problems;  // missing pieces, as in report.md
+  std::vector<std::string> pareto_front;  // run names on the front, fastest first
+  std::size_t runs_with_metrics = 0;
+};
+
+// Loads the runs and writes the report into out_dir (created if needed).
+// Throws only when out_dir cannot be written.
+ReportResult write_report(const ReportInputs& inputs, const std::string& out_dir);
+
+// The same for runs already loaded (inputs.runs is not read).
+ReportResult write_report(const std::vector<RunResults>& runs, const ReportInputs& inputs, const std::string& out_dir);
+
+}  // namespace layers::report

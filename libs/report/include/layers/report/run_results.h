@@ -1,0 +1,104 @@
+// layers/report/run_results.h -- what a finished run folder holds, read
+// back for reports: the evaluator's eval-<split>/metrics.json (format of
+// libs/train/src/evaluator.cpp), `layers bench`'s bench.json
+// (libs/train/src/bench.cpp), experiment.yaml (for data.dataset and
+// model.name) and the path of eval-<split>/predictions.h5.
+//
+// Missing pieces are not errors: load_run records a readable message in
+// RunResults::problems and leaves the piece empty. A file that exists but
+// is malformed is reported the same way, with the InputError's text.
+// Rates are shares 0..1, errors real-world mm, times ms; NaN = absent.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace layers::report {
+
+constexpr double kAbsent = std::numeric_limits<double>::quiet_NaN();
+
+struct Stat {
+  double mean = kAbsent, std = kAbsent;
+  std::int64_t count = 0;  // sequences the value is over; 0 = absent
+};
+
+struct MetricStats {
+  Stat error_mm, h_collision, l_collision;
+};
+
+// One row of metrics.json's by_step: means over the sequences still rolling
+// out at that step (step 1 = the first predicted frame).
+struct StepMetrics {
+  std::int64_t step = 0;
+  double error_mm = kAbsent, h_collision = kAbsent, l_collision = kAbsent;
+  std::int64_t sequences = 0;
+};
+
+struct SequenceMetrics {
+  std::string id;
+  double error_mm = kAbsent;
+  std::int64_t diverged_at = -1;  // absolute frame, -1 when stable
+  std::string diverge_reason;
+};
+
+struct EvalResults {
+  std::string file;  // the metrics.json read
+  std::string model, split, dataset, checkpoint;
+  std::int64_t sequences = 0, frames = 0, diverged = 0, parameters = 0, horizon = 0;
+  double ms_per_frame = kAbsent, diverge_mm = kAbsent;
+  MetricStats overall;
+  double truth_h_collision = kAbsent, truth_l_collision = kAbsent;
+  std::vector<std::pair<std::string, MetricStats>> per_type;  // garment type -> stats
+  std::vector<StepMetrics> by_step;
+  std::vector<SequenceMetrics> per_sequence;
+  std::string predictions;  // eval-<split>/predictions.h5 when it exists
+
+  // The rollout step of the earliest divergence over all sequences, -1 when
+  // none diverged. Rollouts start from the ground truth at frames 0 and 1,
+  // so absolute frame f is step f - 1.
+  std::int64_t first_divergence_step() const;
+};
+
+struct BenchPoint {
+  int level = 0;
+  bool far_body = false;
+  std::int64_t garment_vertices = 0, body_vertices = 0;
+  std::map<std::string, double> counters;
+  double ms_per_frame = kAbsent, train_ms_per_frame = kAbsent;
+};
+
+struct BenchResults {
+  std::string file, model, sequence;
+  std::int64_t parameters = 0;
+  int threads = 0;
+  std::vector<BenchPoint> rows;
+};
+
+struct RunResults {
+  std::string dir;      // the run folder as given
+  std::string name;     // its last path component: the run's label everywhere
+  std::string model;    // metrics.json's model, else experiment.yaml's model.name
+  std::string dataset;  // experiment.yaml's data.dataset, else metrics.json's dataset
+  std::optional<EvalResults> eval;
+  std::optional<BenchResults> bench;
+  std::vector<std::string> problems;  // readable messages about missing or bad pieces (without the folder)
+};
+
+// Parsers of the two JSON files (`file` names the source in errors).
+// Throw InputError for malformed JSON, a missing required field
+// (metrics.json: model, overall.error_mm; bench.json: model, rows) or a
+// field of the wrong type.
+EvalResults parse_metrics(const std::string& json_text, const std::string& file);
+BenchResults parse_bench(const std::string& json_text, const std::string& file);
+
+// Reads a run folder. `split` picks eval-<split>/; empty: eval-test when
+// present, else the first eval-* folder in name order. Never throws for
+// missing or malformed files (see RunResults::problems).
+RunResults load_run(const std::string& dir, const std::string& split = "");
+
+}  // namespace layers::report

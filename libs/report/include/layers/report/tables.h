@@ -1,0 +1,36 @@
+// layers/report/tables.h -- the report's tables for programs, built from
+// loaded runs (run_results.h). Rates are shares 0..1 as in metrics.json,
+// errors mm, times ms; an empty cell (CSV) or null (JSON) is a value the
+// run does not have.
+//
+//   summary.csv   one row per run: model, parameters, ms/frame, error mean
+//                 and std, H/L-collision, ground-truth rates, divergence,
+//                 Pareto membership
+//   per_type.csv  one row per run and garment type
+//   by_step.csv   one row per run and rollout step
+//   bench.csv     one row per run and benchmarked scene size
+//   summary.json  all of the above but by_step, plus the Pareto front in
+//                 speed order, the problems met and the charts made
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "layers/report/run_results.h"
+
+namespace layers::report {
+
+// Pareto membership of each run: eval's ms_per_frame against the overall
+// error (pareto.h); false for a run without an evaluation.
+std::vector<bool> runs_on_front(const std::vector<RunResults>& runs);
+// Indices of the runs on the front, fastest first.
+std::vector<std::size_t> runs_front_order(const std::vector<RunResults>& runs);
+
+std::string summary_csv(const std::vector<RunResults>& runs);
+std::string per_type_csv(const std::vector<RunResults>& runs);
+std::string by_step_csv(const std::vector<RunResults>& runs);
+std::string bench_csv(const std::vector<RunResults>& runs);
+std::string summary_json(const std::string& title, const std::vector<RunResults>& runs,
+                         const std::vector<std::string>& problems, const std::vector<std::string>& charts);
+
+}  // namespace layers::report

@@ -1,0 +1,185 @@
+// report.md's text (see markdown.h).
+#include "markdown.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "layers/report/tables.h"
+#include "text.h"
+
+namespace layers::report {
+namespace {
+
+void charts_of(std::ostringstream& md, const ChartSection& section, const std::string& dir) {
+  if (!section.missing.empty()) md << "*Chart not drawn: " << section.missing << "*\n\n";
+  for (const Chart& c : section.charts)
+    md << "![" << c.title << "](" << dir << "/" << c.file << ")\n\n" << c.caption << "\n\n";
+}
+
+std::string ms(double v) { return std::isfinite(v) && v > 0 ? fixed(v, v < 10 ? 3 : 1) : "-"; }
+
+std::string divergence(const EvalResults& e) {
+  if (e.diverged == 0) return "0 of " + std::to_string(e.sequences);
+  const std::int64_t step = e.first_divergence_step();
+  return std::to_string(e.diverged) + " of " + std::to_string(e.sequences) +
+         (step >= 0 ? " (first at step " + std::to_string(step) + ")" : "");
+}
+
+void models_table(std::ostringstream& md, const std::vector<RunResults>& runs) {
+  const std::vector<bool> front = runs_on_front(runs);
+  md << "## Models\n\n"
+     << "| run | model | parameters | split (sequences) | error (mm) | H-collision | L-collision | "
+        "ground truth H / L | diverged | ms / frame | Pareto front |\n"
+     << "|---|---|---:|---|---:|---:|---:|---:|---:|---:|:---:|\n";
+  std::vector<const RunResults*> missing;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const RunResults& r = runs[i];
+    if (!r.eval) {
+      missing.push_back(&r);
+      continue;
+    }
+    const EvalResults& e = *r.eval;
+    md << "| " << md_cell(r.name) << " | " << md_cell(r.model) << " | " << e.parameters << " | " << md_cell(e.split)
+       << " (" << e.sequences << ") | " << mean_pm_std(e.overall.error_mm.mean, e.overall.error_mm.std) << " | "
+       << percent(e.overall.h_collision.mean) << " | " << percent(e.overall.l_collision.mean) << " | "
+       << percent(e.truth_h_collision) << " / " << percent(e.truth_l_collision) << " | " << divergence(e) << " | "
+       << ms(e.ms_per_frame) << " | " << (front[i] ? "yes" : "") << " |\n";
+  }
+  md << "\nError: mean Euclidean distance between predicted and true garment vertices, averaged over each "
+        "rollout, mean ± std over sequences. H-collision: share of garment vertices behind the body surface; "
+        "L-collision: share of outer-garment vertices behind the inner garment; the ground truth's own rates "
+        "are given for reference (the simulator is not perfect either). ms / frame: time in the model per "
+        "predicted frame during evaluation.\n\n";
+  for (const RunResults* r : missing)
+    md << "- `" << r->name << "` is not in the table: it has no readable evaluation (see Notes).\n";
+  if (!missing.empty()) md << "\n";
+}
+
+void pareto_list(std::ostringstream& md, const std::vector<RunResults>& runs) {
+  const std::vector<std::size_t> order = runs_front_order(runs);
+  md << "**Pareto front of accuracy against speed** (fastest first; a run is on it when no other run is at least "
+        "as fast and as accurate while better in one):\n\n";
+  if (order.empty()) md << "- none: no run has both a measured speed and an error\n";
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const EvalResults& e = *runs[order[k]].eval;
+    md << k + 1 << ". `" << runs[order[k]].name << "` (" << runs[order[k]].model << "): " << ms(e.ms_per_frame)
+       << " ms/frame, " << fixed(e.overall.error_mm.mean, 1) << " mm\n";
+  }
+  md << "\n";
+}
+
+void bench_table(std::ostringstream& md, const std::vector<RunResults>& runs) {
+  bool any = false;
+  for (const RunResults& r : runs) any = any || (r.bench && !r.bench->rows.empty());
+  if (!any) return;
+  md << "### Speed by scene size (`layers bench`)\n\n"
+     << "Inference at batch 1 on one scene of each run's test split, the garments subdivided (about 4x vertices "
+        "per level); \"far body\" adds a copy of the body 100 m away, which should cost nothing when the model "
+        "only attends to particles that matter.\n\n"
+     << "| run | level | garment vertices | body vertices | far body | ms / frame | train ms / frame | counters |\n"
+     << "|---|---:|---:|---:|:---:|---:|---:|---|\n";
+  for (const RunResults& r : runs) {
+    if (!r.bench) continue;
+    for (const BenchPoint& b : r.bench->rows) {
+      std::string counters;
+      for (const auto& [k, v] : b.counters) counters += (counters.empty() ? "" : ", ") + k + " " + exact(v);
+      md << "| " << md_cell(r.name) << " | " << b.level << " | " << b.garment_vertices << " | " << b.body_vertices
+         << " | " << (b.far_body ? "yes" : "no") << " | " << ms(b.ms_per_frame) << " | " << ms(b.train_ms_per_frame)
+         << " | " << md_cell(counters) << " |\n";
+    }
+  }
+  md << "\n";
+}
+
+void divergence_list(std::ostringstream& md, const std::vector<RunResults>& runs) {
+  md << "Divergence (a non-finite prediction or a frame error above the bound; rollouts never stop the "
+        "evaluation):\n\n";
+  for (const RunResults& r : runs) {
+    if (!r.eval) continue;
+    const EvalResults& e = *r.eval;
+    md << "- `" << r.name << "`: ";
+    const std::int64_t step = e.first_divergence_step();
+    if (step < 0) {
+      md << "stable in all " << e.sequences << " sequences over " << e.by_step.size() << " steps";
+    } else {
+      std::string where;
+      for (const SequenceMetrics& s : e.per_sequence)
+        if (s.diverged_at - 1 == step) where = s.id + (s.diverge_reason.empty() ? "" : ": " + s.diverge_reason);
+      md << e.diverged << " of " << e.sequences << " sequences diverged; first at step " << step << " (frame "
+         << step + 1 << ", " << md_cell(where) << ")";
+    }
+    md << (std::isfinite(e.diverge_mm) ? ", bound " + fixed(e.diverge_mm, 0) + " mm" : std::string()) << "\n";
+  }
+  md << "\n";
+}
+
+void per_type_table(std::ostringstream& md, const std::vector<RunResults>& runs) {
+  md << "| garment type | run | sequences | error (mm) | H-collision | L-collision |\n"
+     << "|---|---|---:|---:|---:|---:|\n";
+  std::vector<std::string> types;
+  for (const RunResults& r : runs)
+    if (r.eval)
+      for (const auto& [type, m] : r.eval->per_type)
+        if (std::find(types.begin(), types.end(), type) == types.end()) types.push_back(type);
+  std::sort(types.begin(), types.end());
+  for (const std::string& type : types)
+    for (const RunResults& r : runs) {
+      if (!r.eval) continue;
+      for (const auto& [t, m] : r.eval->per_type)
+        if (t == type)
+          md << "| " << md_cell(type) << " | " << md_cell(r.name) << " | " << m.error_mm.count << " | "
+             << mean_pm_std(m.error_mm.mean, m.error_mm.std) << " | " << percent(m.h_collision.mean) << " | "
+             << percent(m.l_collision.mean) << " |\n";
+    }
+  md << "\nL-collision belongs to the outer garment of a pair (\"-\" for inner garments).\n\n";
+}
+
+}  // namespace
+
+std::string report_markdown(const ReportContent& c) {
+  std::ostringstream md;
+  md << "# " << c.title << "\n\n";
+  std::size_t evaluated = 0;
+  for (const RunResults& r : c.runs) evaluated += r.eval ? 1 : 0;
+  md << "Made by `layers report` from " << c.runs.size() << " run folder" << (c.runs.size() == 1 ? "" : "s") << " ("
+     << evaluated << " with an evaluation):";
+  for (const RunResults& r : c.runs) md << " `" << r.dir << "`";
+  md << ". Errors are real-world millimetres (the paper simulated at 10x scale: its mm are 10x ours); "
+        "rates are percentages of vertices.\n\n";
+  if (!c.problems.empty())
+    md << "> " << c.problems.size() << " missing piece" << (c.problems.size() == 1 ? "" : "s")
+       << " -- see [Notes](#notes) at the end.\n\n";
+
+  models_table(md, c.runs);
+  md << "## Accuracy against speed\n\n";
+  charts_of(md, c.speed, c.charts_dir);
+  pareto_list(md, c.runs);
+  bench_table(md, c.runs);
+
+  md << "## Error and collisions along the rollout\n\n";
+  divergence_list(md, c.runs);
+  charts_of(md, c.by_step, c.charts_dir);
+
+  md << "## Per garment type\n\n";
+  per_type_table(md, c.runs);
+  charts_of(md, c.per_type, c.charts_dir);
+
+  md << "## Ground truth and predictions\n\n";
+  charts_of(md, c.frames, c.charts_dir);
+
+  md << "## Notes\n\n";
+  if (c.problems.empty()) md << "Nothing missing.\n";
+  for (const std::string& p : c.problems) md << "- " << md_cell(p) << "\n";
+  md << "\n## Files\n\n"
+     << "- `summary.csv`, `summary.json`: the models table (rates as shares 0..1), Pareto membership; the JSON adds "
+        "per-type values, benchmark rows, the front in speed order, these notes and the charts\n"
+     << "- `per_type.csv`: one row per run and garment type\n"
+     << "- `by_step.csv`: one row per run and rollout step\n"
+     << "- `bench.csv`: one row per run and benchmarked scene size\n"
+     << "- `" << c.charts_dir << "/`: the PNG charts with their gnuplot scripts (`*.gp`) and data (`*.dat`); "
+        "redraw one with `cd " << c.charts_dir << " && gnuplot <name>.gp`\n";
+  return md.str();
+}
+
+}  // namespace layers::report

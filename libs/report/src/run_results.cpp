@@ -1,0 +1,265 @@
+// Reading run folders back: metrics.json, bench.json, experiment.yaml
+// (see run_results.h).
+#include "layers/report/run_results.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "layers/core/config_node.h"
+#include "layers/core/error.h"
+#include "layers/core/text_file.h"
+
+namespace layers::report {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+// Typed access to JSON fields with errors naming the file and key path.
+class Reader {
+ public:
+  explicit Reader(std::string file) : file_(std::move(file)) {}
+
+  json parse(const std::string& text) const {
+    try {
+      return json::parse(text);
+    } catch (const json::parse_error& e) {
+      throw InputError(file_, "", "valid JSON", e.what());
+    }
+  }
+  const json& object(const json& parent, const std::string& key, const std::string& path) const {
+    const json& v = required(parent, key, path);
+    if (!v.is_object()) throw InputError(file_, path, "an object", v.type_name());
+    return v;
+  }
+  const json& array(const json& parent, const std::string& key, const std::string& path) const {
+    const json& v = required(parent, key, path);
+    if (!v.is_array()) throw InputError(file_, path, "an array", v.type_name());
+    return v;
+  }
+  const json& required(const json& parent, const std::string& key, const std::string& path) const {
+    if (!parent.is_object() || !parent.contains(key)) throw InputError(file_, path, "a value", "nothing");
+    return parent.at(key);
+  }
+  // Missing or null: NaN.
+  double number(const json& parent, const std::string& key, const std::string& path) const {
+    if (!parent.is_object() || !parent.contains(key) || parent.at(key).is_null()) return kAbsent;
+    const json& v = parent.at(key);
+    if (!v.is_number()) throw InputError(file_, path, "a number or null", v.type_name());
+    return v.get<double>();
+  }
+  // Missing or null: `fallback`.
+  std::int64_t integer(const json& parent, const std::string& key, const std::string& path,
+                       std::int64_t fallback = 0) const {
+    if (!parent.is_object() || !parent.contains(key) || parent.at(key).is_null()) return fallback;
+    const json& v = parent.at(key);
+    if (!v.is_number()) throw InputError(file_, path, "an integer or null", v.type_name());
+    return v.get<std::int64_t>();
+  }
+  std::string text(const json& parent, const std::string& key, const std::string& path) const {
+    if (!parent.is_object() || !parent.contains(key) || parent.at(key).is_null()) return "";
+    const json& v = parent.at(key);
+    if (!v.is_string()) throw InputError(file_, path, "a string", v.type_name());
+    return v.get<std::string>();
+  }
+  // {mean, std, count}; count 0 means no value (the evaluator writes 0s then).
+  Stat stat(const json& parent, const std::string& key, const std::string& path, bool required_field) const {
+    Stat s;
+    if (!required_field && (!parent.is_object() || !parent.contains(key) || parent.at(key).is_null())) return s;
+    const json& v = object(parent, key, path);
+    s.mean = number(v, "mean", path + ".mean");
+    s.std = number(v, "std", path + ".std");
+    s.count = integer(v, "count", path + ".count", std::isfinite(s.mean) ? 1 : 0);
+    if (s.count == 0) s.mean = s.std = kAbsent;
+    return s;
+  }
+  MetricStats metrics(const json& parent, const std::string& key, const std::string& path, bool require_error) const {
+    const json& v = object(parent, key, path);
+    return {stat(v, "error_mm", path + ".error_mm", require_error), stat(v, "h_collision", path + ".h_collision", false),
+            stat(v, "l_collision", path + ".l_collision", false)};
+  }
+
+ private:
+  std::string file_;
+};
+
+EvalResults parse_metrics_json(const Reader& r, const json& doc, const std::string& file) {
+  EvalResults e;
+  e.file = file;
+  if (!doc.is_object()) throw InputError(file, "", "a JSON object", doc.type_name());
+  e.model = r.text(doc, "model", "model");
+  if (e.model.empty()) throw InputError(file, "model", "the model's name", "nothing");
+  e.split = r.text(doc, "split", "split");
+  e.dataset = r.text(doc, "dataset", "dataset");
+  e.checkpoint = r.text(doc, "checkpoint", "checkpoint");
+  e.sequences = r.integer(doc, "sequences", "sequences");
+  e.frames = r.integer(doc, "frames", "frames");
+  e.diverged = r.integer(doc, "diverged", "diverged");
+  e.parameters = r.integer(doc, "parameters", "parameters");
+  e.horizon = r.integer(doc, "horizon", "horizon");
+  e.ms_per_frame = r.number(doc, "ms_per_frame", "ms_per_frame");
+  e.diverge_mm = r.number(doc, "diverge_mm", "diverge_mm");
+  e.overall = r.metrics(doc, "overall", "overall", /*require_error=*/true);
+  if (doc.contains("truth") && !doc.at("truth").is_null()) {
+    const json& t = r.object(doc, "truth", "truth");
+    e.truth_h_collision = r.number(t, "h_collision", "truth.h_collision");
+    e.truth_l_collision = r.number(t, "l_collision", "truth.l_collision");
+  }
+  if (doc.contains("per_type") && !doc.at("per_type").is_null()) {
+    const json& types = r.object(doc, "per_type", "per_type");
+    for (const auto& [type, value] : types.items())
+      e.per_type.emplace_back(type, r.metrics(types, type, "per_type." + type, false));
+  }
+  if (doc.contains("by_step") && !doc.at("by_step").is_null()) {
+    const json& steps = r.array(doc, "by_step", "by_step");
+    for (std::size_t i = 0; i < steps.size(); ++i) {
+      const std::string p = "by_step[" + std::to_string(i) + "]";
+      StepMetrics s;
+      s.step = r.integer(steps[i], "step", p + ".step", static_cast<std::int64_t>(i + 1));
+      s.error_mm = r.number(steps[i], "error_mm", p + ".error_mm");
+      s.h_collision = r.number(steps[i], "h_collision", p + ".h_collision");
+      s.l_collision = r.number(steps[i], "l_collision", p + ".l_collision");
+      s.sequences = r.integer(steps[i], "sequences", p + ".sequences");
+      e.by_step.push_back(s);
+    }
+  }
+  if (doc.contains("per_sequence") && !doc.at("per_sequence").is_null()) {
+    const json& seqs = r.array(doc, "per_sequence", "per_sequence");
+    for (std::size_t i = 0; i < seqs.size(); ++i) {
+      const std::string p = "per_sequence[" + std::to_string(i) + "]";
+      SequenceMetrics s;
+      s.id = r.text(seqs[i], "id", p + ".id");
+      s.error_mm = r.number(seqs[i], "error_mm", p + ".error_mm");
+      s.diverged_at = r.integer(seqs[i], "diverged_at", p + ".diverged_at", -1);
+      s.diverge_reason = r.text(seqs[i], "diverge_reason", p + ".diverge_reason");
+      e.per_sequence.push_back(s);
+    }
+  }
+  return e;
+}
+
+// data.dataset and model.name of a resolved experiment.yaml ("" when absent).
+std::pair<std::string, std::string> experiment_facts(const std::string& file) {
+  const cfg::Node root = cfg::load_file(file);
+  auto scalar = [&](const char* section, const char* key) -> std::string {
+    const cfg::Node* s = root.find(section);
+    const cfg::Node* v = s ? s->find(key) : nullptr;
+    return v && v->kind == cfg::Node::Kind::Scalar ? v->scalar : "";
+  };
+  return {scalar("data", "dataset"), scalar("model", "name")};
+}
+
+// eval-<split> folder of a run ("" when none).
+std::string eval_folder(const fs::path& dir, const std::string& split) {
+  if (!split.empty()) return (dir / ("eval-" + split)).string();
+  if (fs::is_directory(dir / "eval-test")) return (dir / "eval-test").string();
+  std::vector<std::string> found;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir, ec))
+    if (entry.is_directory() && entry.path().filename().string().rfind("eval-", 0) == 0)
+      found.push_back(entry.path().string());
+  std::sort(found.begin(), found.end());
+  return found.empty() ? "" : found.front();
+}
+
+}  // namespace
+
+std::int64_t EvalResults::first_divergence_step() const {
+  std::int64_t first = -1;
+  for (const SequenceMetrics& s : per_sequence)
+    if (s.diverged_at >= 0 && (first < 0 || s.diverged_at - 1 < first)) first = s.diverged_at - 1;
+  return first;
+}
+
+EvalResults parse_metrics(const std::string& json_text, const std::string& file) {
+  const Reader r(file);
+  return parse_metrics_json(r, r.parse(json_text), file);
+}
+
+BenchResults parse_bench(const std::string& json_text, const std::string& file) {
+  const Reader r(file);
+  const json doc = r.parse(json_text);
+  if (!doc.is_object()) throw InputError(file, "", "a JSON object", doc.type_name());
+  BenchResults b;
+  b.file = file;
+  b.model = r.text(doc, "model", "model");
+  if (b.model.empty()) throw InputError(file, "model", "the model's name", "nothing");
+  b.sequence = r.text(doc, "sequence", "sequence");
+  b.parameters = r.integer(doc, "parameters", "parameters");
+  b.threads = static_cast<int>(r.integer(doc, "threads", "threads"));
+  const json& rows = r.array(doc, "rows", "rows");
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const std::string p = "rows[" + std::to_string(i) + "]";
+    BenchPoint row;
+    row.level = static_cast<int>(r.integer(rows[i], "level", p + ".level"));
+    if (rows[i].contains("far_body")) {
+      const json& far = rows[i].at("far_body");
+      if (!far.is_boolean()) throw InputError(file, p + ".far_body", "true or false", far.type_name());
+      row.far_body = far.get<bool>();
+    }
+    row.garment_vertices = r.integer(rows[i], "garment_vertices", p + ".garment_vertices");
+    row.body_vertices = r.integer(rows[i], "body_vertices", p + ".body_vertices");
+    row.ms_per_frame = r.number(rows[i], "ms_per_frame", p + ".ms_per_frame");
+    row.train_ms_per_frame = r.number(rows[i], "train_ms_per_frame", p + ".train_ms_per_frame");
+    if (rows[i].contains("counters") && rows[i].at("counters").is_object())
+      for (const auto& [k, v] : rows[i].at("counters").items())
+        row.counters[k] = r.number(rows[i].at("counters"), k, p + ".counters." + k);
+    b.rows.push_back(row);
+  }
+  return b;
+}
+
+RunResults load_run(const std::string& dir, const std::string& split) {
+  RunResults run;
+  run.dir = dir;
+  fs::path path(dir);
+  run.name = (path.has_filename() ? path.filename() : path.parent_path().filename()).string();
+  if (run.name.empty() || run.name == ".") run.name = fs::absolute(path).lexically_normal().filename().string();
+  if (!fs::is_directory(path)) {
+    run.problems.push_back("no such run folder");
+    return run;
+  }
+  const fs::path experiment = path / "experiment.yaml";
+  if (fs::exists(experiment)) {
+    try {
+      std::tie(run.dataset, run.model) = experiment_facts(experiment.string());
+    } catch (const std::exception& e) {
+      run.problems.push_back(std::string("cannot read the experiment: ") + e.what());
+    }
+  }
+  const std::string eval_dir = eval_folder(path, split);
+  const fs::path metrics = eval_dir.empty() ? fs::path() : fs::path(eval_dir) / "metrics.json";
+  if (eval_dir.empty() || !fs::exists(metrics)) {
+    run.problems.push_back("no evaluation (" +
+                           (eval_dir.empty() ? std::string("no eval-<split>/metrics.json")
+                                             : metrics.string() + " is missing") +
+                           "): run `layers eval <experiment.yaml>` for this run first");
+  } else {
+    try {
+      run.eval = parse_metrics(read_text_file(metrics.string()), metrics.string());
+      if (fs::exists(fs::path(eval_dir) / "predictions.h5"))
+        run.eval->predictions = (fs::path(eval_dir) / "predictions.h5").string();
+      run.model = run.eval->model;
+      if (run.dataset.empty()) run.dataset = run.eval->dataset;
+    } catch (const std::exception& e) {
+      run.problems.push_back(std::string("cannot read the evaluation: ") + e.what());
+    }
+  }
+  const fs::path bench = path / "bench.json";
+  if (!fs::exists(bench)) {
+    run.problems.push_back("no bench.json (run `layers bench <experiment.yaml>` for speed by scene size)");
+  } else {
+    try {
+      run.bench = parse_bench(read_text_file(bench.string()), bench.string());
+      if (run.model.empty()) run.model = run.bench->model;
+    } catch (const std::exception& e) {
+      run.problems.push_back(std::string("cannot read the benchmark: ") + e.what());
+    }
+  }
+  return run;
+}
+
+}  // namespace layers::report

@@ -1,0 +1,49 @@
+// layers/train/bench.h -- `layers bench`: inference and training speed of
+// an experiment's model on a real scene of its dataset, scaled up by
+// midpoint subdivision of the garments (about 4x vertices per level), and
+// with the body doubled by a far-away copy (cost must follow the particles
+// that matter, so that copy should change nothing). Timed with Google
+// Benchmark; torch-free API.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "layers/train/experiment_config.h"
+
+namespace layers::zoo {
+class Registry;
+}
+
+namespace layers::train {
+
+struct BenchOptions {
+  std::string sequence;     // default: the first sequence of eval's split
+  int levels = 2;           // subdivision levels 0..levels
+  bool far_body = true;     // also measure with the far body copy
+  bool train = true;        // also time a training step (forward + losses + backward)
+  double min_time = 0.5;    // seconds per measurement
+  std::string out;          // JSON file (default <run.output>/bench.json)
+};
+
+struct BenchRow {
+  int level = 0;
+  bool far_body = false;
+  std::int64_t garment_vertices = 0, body_vertices = 0;
+  std::map<std::string, double> counters;  // Model::step_counters()
+  double ms_per_frame = 0;                 // inference, batch 1
+  double train_ms_per_frame = 0;           // 0 when not measured or nothing to train
+};
+
+struct BenchReport {
+  std::string model, sequence, out;
+  std::int64_t parameters = 0;
+  int threads = 0;
+  std::vector<BenchRow> rows;
+};
+
+BenchReport run_bench(const ExperimentConfig& config, const zoo::Registry& registry, const BenchOptions& options);
+
+}  // namespace layers::train

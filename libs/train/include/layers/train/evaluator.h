@@ -1,0 +1,56 @@
+// layers/train/evaluator.h -- `layers eval`: rollouts of a trained model on
+// a split with the metrics of DESIGN.md section 5, per sequence, per
+// garment type and overall (torch-free API).
+//
+// Writes into the output folder (default <run.output>/eval-<split>):
+//   metrics.json     everything: settings, overall, per type, per sequence,
+//                    error and collision by rollout step (for charts)
+//   sequences.csv    one row per sequence and garment
+//   predictions.h5   the rollouts as LAYERS-H5 (ground-truth body and wind,
+//                    predicted garments; frames 0 and 1 are the ground truth
+//                    the rollout started from) -- `layers export` reads it
+// Errors are real-world millimetres (the paper's figures are at 10x
+// scale). The ground truth's own H/L rates are reported beside the model's.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "layers/train/experiment_config.h"
+#include "layers/zoo/metrics.h"
+
+namespace layers::zoo {
+class Registry;
+}
+
+namespace layers::train {
+
+struct EvalOptions {
+  std::string checkpoint = "best";  // best, last, or a file path
+  std::string split;                // overrides eval.split
+  int horizon = -1;                 // overrides eval.horizon when >= 0
+  std::string out_dir;              // default <run.output>/eval-<split>
+  std::vector<std::string> sequences;  // only these ids (default: the whole split)
+  bool progress = true;
+};
+
+struct MetricSummary {
+  zoo::MeanStd error_mm, h_collision, l_collision;  // rates as shares 0..1
+};
+
+struct EvalReport {
+  std::string model, checkpoint, split, out_dir;
+  std::int64_t sequences = 0, frames = 0, diverged = 0;
+  MetricSummary overall;
+  std::vector<std::pair<std::string, MetricSummary>> per_type;  // garment type -> summary
+  double truth_h_collision = 0, truth_l_collision = 0;          // ground truth, mean over sequences
+  double ms_per_frame = 0;                                      // Model::step time per predicted frame
+};
+
+EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& registry, const EvalOptions& options);
+
+// The checkpoint file EvalOptions::checkpoint names.
+std::string resolve_checkpoint(const ExperimentConfig& config, const std::string& which);
+
+}  // namespace layers::train

@@ -1,0 +1,61 @@
+// layers/train/trainer.h -- `layers train`: trains the experiment's model
+// on its training split (torch-free API; the work is in trainer.cpp).
+//
+// Per optimiser step: a batch of windows; for each window the model first
+// rolls min(epoch, curriculum_max) steps forward without gradient from the
+// ground truth (the rollout curriculum of PAPER_NOTES.md; epoch counted
+// from 0), then predicts t+1 (and t+2 from its own t+1 with two_step), and
+// the weighted shared losses (frame_loss.h) plus the model's auxiliary
+// losses are averaged over the batch. Adam, learning rate halved every
+// lr_decay_every epochs by default, gradient norm clipping. After each
+// epoch: validation rollouts (mean error in mm on the validation split)
+// and checkpoints <run.output>/checkpoint-last.pt (always) and
+// checkpoint-best.pt (best validation error). Deterministic for a seed and
+// a thread count. A model without trainable parameters (static, skinned)
+// is saved as is. Data-parallel training later wraps the batch loop: each
+// rank takes every world-size-th batch and gradients are all-reduced
+// before the optimiser step; nothing else changes.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "layers/train/experiment_config.h"
+
+namespace layers::zoo {
+class Registry;
+}
+
+namespace layers::train {
+
+struct TrainOptions {
+  bool resume = false;    // continue from checkpoint-last.pt if present
+  bool progress = true;   // progress line on stderr
+};
+
+struct EpochSummary {
+  int epoch = 0;  // 1-based
+  double loss = 0;
+  double val_error_mm = -1;  // < 0: no validation split
+  double seconds = 0;
+  double frames_per_second = 0;  // predicted training frames (with gradient) per second
+  double lr = 0;
+};
+
+struct TrainReport {
+  std::string run_dir;
+  std::string last_checkpoint, best_checkpoint;
+  std::vector<EpochSummary> epochs;  // epochs run now (not those resumed from)
+  int epochs_done = 0;               // in total
+  std::int64_t steps = 0;
+  std::int64_t trainable_parameters = 0;
+  double first_loss = 0;             // mean loss of the first batch run now
+};
+
+TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& registry, const TrainOptions& options);
+
+// <run.output>/checkpoint-<which>.pt
+std::string checkpoint_path(const ExperimentConfig& config, const std::string& which);
+
+}  // namespace layers::train

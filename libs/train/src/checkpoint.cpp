@@ -1,0 +1,105 @@
+// Checkpoint files (see checkpoint.h).
+#include "layers/train/checkpoint.h"
+
+#include <torch/optim/optimizer.h>
+#include <torch/serialize/input-archive.h>
+#include <torch/serialize/output-archive.h>
+
+#include <filesystem>
+
+#include "layers/core/atomic_file.h"
+#include "layers/core/error.h"
+#include "layers/zoo/model.h"
+
+namespace layers::train {
+namespace {
+
+// The six statistics in a fixed order with their archive keys.
+template <class N, class F>
+void each_norm(N& n, F&& f) {
+  f("garment_position", n.garment_position);
+  f("garment_velocity", n.garment_velocity);
+  f("garment_acceleration", n.garment_acceleration);
+  f("body_position", n.body_position);
+  f("body_velocity", n.body_velocity);
+  f("body_acceleration", n.body_acceleration);
+}
+
+at::Tensor read_tensor(torch::serialize::InputArchive& in, const std::string& key, const std::string& path) {
+  at::Tensor t;
+  if (!in.try_read(key, t)) throw InputError(path, key, "a tensor", "nothing (not a layers checkpoint?)");
+  return t;
+}
+
+}  // namespace
+
+void save_checkpoint(const std::string& path, zoo::Model& model, const torch::optim::Optimizer* optimizer,
+                     const CheckpointState& state) {
+  torch::serialize::OutputArchive out, model_archive, norm_archive;
+  model.save(model_archive);
+  out.write("model", model_archive);
+  each_norm(model.normalization(), [&](const char* key, const zoo::NormPair& p) {
+    norm_archive.write(std::string(key) + ".mean", p.mean.cpu());
+    norm_archive.write(std::string(key) + ".std", p.std.cpu());
+  });
+  out.write("normalization", norm_archive);
+  if (optimizer) {
+    torch::serialize::OutputArchive opt_archive;
+    optimizer->save(opt_archive);
+    out.write("optimizer", opt_archive);
+  }
+  out.write("epochs_done", at::scalar_tensor(static_cast<std::int64_t>(state.epochs_done), at::kLong));
+  out.write("steps", at::scalar_tensor(state.steps, at::kLong));
+  out.write("best_val_mm", at::scalar_tensor(state.best_val_mm, at::kDouble));
+  // The model name as bytes (archives hold tensors).
+  std::vector<std::int64_t> name(state.model_name.begin(), state.model_name.end());
+  out.write("model_name", at::tensor(name, at::kLong));
+  std::filesystem::create_directories(std::filesystem::path(path).parent_path().empty()
+                                          ? std::filesystem::path(".")
+                                          : std::filesystem::path(path).parent_path());
+  AtomicPath target(path);
+  out.save_to(target.temp());
+  target.commit();
+}
+
+CheckpointState load_checkpoint(const std::string& path, zoo::Model& model, torch::optim::Optimizer* optimizer) {
+  if (!std::filesystem::exists(path)) throw InputError(path, "checkpoint", "an existing file", "no such file");
+  torch::serialize::InputArchive in;
+  try {
+    in.load_from(path);
+  } catch (const std::exception& e) {
+    throw InputError(path, "checkpoint", "a layers checkpoint (torch archive)", std::string("unreadable: ") + e.what());
+  }
+  CheckpointState state;
+  const at::Tensor name = read_tensor(in, "model_name", path);
+  for (std::int64_t i = 0; i < name.numel(); ++i) state.model_name.push_back(static_cast<char>(name[i].item<std::int64_t>()));
+  if (state.model_name != model.name())
+    throw InputError(path, "model_name", "a checkpoint of model '" + model.name() + "'",
+                     "one of model '" + state.model_name + "'");
+  state.epochs_done = static_cast<int>(read_tensor(in, "epochs_done", path).item<std::int64_t>());
+  state.steps = read_tensor(in, "steps", path).item<std::int64_t>();
+  state.best_val_mm = read_tensor(in, "best_val_mm", path).item<double>();
+  torch::serialize::InputArchive model_archive, norm_archive;
+  if (!in.try_read("model", model_archive)) throw InputError(path, "model", "the model's parameters", "nothing");
+  try {
+    model.load(model_archive);
+  } catch (const std::exception& e) {
+    throw InputError(path, "model", "parameters matching the configured model '" + model.name() + "'",
+                     std::string("a mismatch: ") + e.what());
+  }
+  if (!in.try_read("normalization", norm_archive))
+    throw InputError(path, "normalization", "the training statistics", "nothing");
+  zoo::Normalization norm;
+  each_norm(norm, [&](const char* key, zoo::NormPair& p) {
+    p.mean = read_tensor(norm_archive, std::string(key) + ".mean", path);
+    p.std = read_tensor(norm_archive, std::string(key) + ".std", path);
+  });
+  model.set_normalization(norm);
+  if (optimizer) {
+    torch::serialize::InputArchive opt_archive;
+    if (in.try_read("optimizer", opt_archive)) optimizer->load(opt_archive);
+  }
+  return state;
+}
+
+}  // namespace layers::train

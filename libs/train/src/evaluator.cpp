@@ -1,0 +1,248 @@
+// Evaluation of a trained model on a split (see evaluator.h).
+#include "layers/train/evaluator.h"
+
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include "layers/core/atomic_file.h"
+#include "layers/core/error.h"
+#include "layers/core/progress.h"
+#include "layers/data/shard_writer.h"
+#include "layers/train/checkpoint.h"
+#include "layers/train/session.h"
+#include "layers/train/trainer.h"
+#include "layers/train/window_loader.h"
+
+namespace layers::train {
+namespace {
+
+using json = nlohmann::ordered_json;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Mean of the finite values (NaN when none).
+double finite_mean(const std::vector<double>& values) {
+  double sum = 0;
+  std::size_t n = 0;
+  for (double v : values)
+    if (std::isfinite(v)) sum += v, ++n;
+  return n ? sum / static_cast<double>(n) : kNaN;
+}
+
+std::vector<double> finite_only(const std::vector<double>& values) {
+  std::vector<double> out;
+  for (double v : values)
+    if (std::isfinite(v)) out.push_back(v);
+  return out;
+}
+
+json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+json to_json(const zoo::MeanStd& m) { return {{"mean", number(m.mean)}, {"std", number(m.std)}, {"count", m.count}}; }
+
+json to_json(const MetricSummary& s) {
+  return {{"error_mm", to_json(s.error_mm)}, {"h_collision", to_json(s.h_collision)},
+          {"l_collision", to_json(s.l_collision)}};
+}
+
+// Per-sequence values gathered for the summaries.
+struct Values {
+  std::vector<double> error, h, l;
+  MetricSummary summary() const {
+    return {zoo::mean_std(error), zoo::mean_std(finite_only(h)), zoo::mean_std(finite_only(l))};
+  }
+};
+
+// The rollout as a LAYERS-H5 sequence: ground-truth body and wind of the
+// rolled-out frames, garments = ground truth at frames 0 and 1, then the predictions.
+data::SequenceData prediction_sequence(const data::Dataset& dataset, const SequenceRollout& r,
+                                       const GarmentSelection& selection) {
+  const data::SequenceInfo& info = dataset.info(r.id);
+  auto statics = dataset.statics(r.id);
+  const std::int64_t n = r.frames.frames();
+  data::Window w = dataset.read_frames(r.id, 0, n);
+  data::SequenceData seq;
+  seq.id = r.id;
+  seq.n_frames = n;
+  seq.motion = info.motion;
+  seq.seed = info.seed;
+  seq.tags = info.tags;
+  seq.shape = info.shape;
+  static_cast<data::BodyStatic&>(seq.body) = statics->body;
+  static_cast<data::BodyFrames&>(seq.body) = std::move(w.body);
+  seq.wind = std::move(w.wind);
+  const std::vector<std::size_t> picked = selection.pick(statics->garments);
+  for (std::size_t j = 0; j < picked.size(); ++j) {
+    data::GarmentData g;
+    static_cast<data::GarmentStatic&>(g) = statics->garments[picked[j]];
+    const at::Tensor all = at::cat({r.frames.garments[j].slice(0, 0, 2), r.result.predictions[j]}).contiguous();
+    g.positions.assign(all.data_ptr<float>(), all.data_ptr<float>() + all.numel());
+    seq.garments.push_back(std::move(g));
+  }
+  return seq;
+}
+
+std::string csv_number(double v) {
+  if (!std::isfinite(v)) return "";
+  std::ostringstream out;
+  out.precision(6);
+  out << v;
+  return out.str();
+}
+
+// ---- error growth rate (stability studies, docs/studies.md) ----------------
+// Least-squares slope of a rollout's per-frame error (mm per frame) over
+// the frames before it diverged; NaN with fewer than two such frames.
+double error_growth_mm_per_frame(const std::vector<FrameMetrics>& frames) {
+  double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (const FrameMetrics& m : frames) {
+    if (m.diverged || !std::isfinite(m.error_mm)) break;
+    const double x = static_cast<double>(m.frame);
+    n += 1, sx += x, sy += m.error_mm, sxx += x * x, sxy += x * m.error_mm;
+  }
+  const double den = n * sxx - sx * sx;
+  return n >= 2 && den > 0 ? (n * sxy - sx * sy) / den : kNaN;
+}
+
+}  // namespace
+
+std::string resolve_checkpoint(const ExperimentConfig& config, const std::string& which) {
+  if (which == "best" || which == "last") return checkpoint_path(config, which);
+  return which;
+}
+
+EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& registry, const EvalOptions& options) {
+  Session s = open_session(config, registry);
+  EvalReport report;
+  report.model = s.model->name();
+  report.checkpoint = resolve_checkpoint(config, options.checkpoint);
+  const CheckpointState state = load_checkpoint(report.checkpoint, *s.model, nullptr);
+  s.model->train(false);
+  report.split = !options.split.empty() ? options.split
+                 : !config.eval.split.empty() ? config.eval.split
+                                              : config.data.test_split;
+  const int horizon = options.horizon >= 0 ? options.horizon : config.eval.horizon;
+  report.out_dir = !options.out_dir.empty()
+                       ? options.out_dir
+                       : (std::filesystem::path(config.run.output) / ("eval-" + report.split)).string();
+  std::filesystem::create_directories(report.out_dir);
+  const std::vector<std::string> ids =
+      options.sequences.empty() ? select_sequences(s.dataset, report.split, config.data.subsets) : options.sequences;
+  if (ids.empty())
+    throw InputError(config.data.dataset + "/splits.yaml", report.split, "at least one sequence to evaluate", "none");
+
+  std::unique_ptr<data::ShardWriter> writer;
+  if (config.eval.save_predictions)
+    writer = std::make_unique<data::ShardWriter>((std::filesystem::path(report.out_dir) / "predictions.h5").string());
+  Values overall, truth;
+  std::map<std::string, Values> per_type;
+  std::vector<std::vector<double>> step_error, step_h, step_l;  // [step][sequence]
+  json sequences = json::array();
+  std::ostringstream csv;
+  csv << "sequence,motion,tags,garment,type,layer,error_mm,h_collision,l_collision,diverged_at\n";
+  std::vector<double> growth_rates;  // mm per frame, per sequence (error growth)
+  double model_seconds = 0;
+  Progress progress("eval " + report.model + " on " + report.split, ids.size(), "sequences");
+  for (const std::string& id : ids) {
+    if (!s.dataset.contains(id))
+      throw InputError(config.data.dataset, "sequence '" + id + "'", "a sequence of the dataset", "unknown id");
+    SequenceRollout r = rollout_sequence(s, id, horizon, config.eval.diverge_mm, writer != nullptr);
+    const RolloutResult& res = r.result;
+    model_seconds += res.model_seconds;
+    report.frames += static_cast<std::int64_t>(res.frames.size());
+    if (res.diverged_at >= 0) ++report.diverged;
+    std::vector<double> e, h, l, th, tl;
+    for (std::size_t k = 0; k < res.frames.size(); ++k) {
+      const FrameMetrics& m = res.frames[k];
+      e.push_back(m.error_mm), h.push_back(m.h_collision), l.push_back(m.l_collision);
+      th.push_back(m.truth_h_collision), tl.push_back(m.truth_l_collision);
+      if (step_error.size() <= k) step_error.resize(k + 1), step_h.resize(k + 1), step_l.resize(k + 1);
+      step_error[k].push_back(m.error_mm), step_h[k].push_back(m.h_collision), step_l[k].push_back(m.l_collision);
+    }
+    const double seq_error = zoo::sequence_mean(e), seq_h = finite_mean(h), seq_l = finite_mean(l);
+    const double growth = error_growth_mm_per_frame(res.frames);
+    if (std::isfinite(growth)) growth_rates.push_back(growth);
+    overall.error.push_back(seq_error), overall.h.push_back(seq_h), overall.l.push_back(seq_l);
+    truth.h.push_back(finite_mean(th)), truth.l.push_back(finite_mean(tl));
+    const data::SequenceInfo& info = s.dataset.info(id);
+    std::string tags;
+    for (const std::string& t : info.tags) tags += (tags.empty() ? "" : " ") + t;
+    json garments = json::array();
+    for (std::size_t g = 0; g < r.statics->garments.size(); ++g) {
+      const zoo::GarmentStatic& gs = r.statics->garments[g];
+      std::vector<double> ge, gh;
+      for (const FrameMetrics& m : res.frames) {
+        ge.push_back(m.garment_error_mm[g]);
+        gh.push_back(m.diverged ? kNaN : m.garment_h_collision[g]);
+      }
+      const double g_error = zoo::sequence_mean(ge), g_h = finite_mean(gh);
+      const double g_l = gs.layer == 1 ? seq_l : kNaN;  // L-collision belongs to the outer garment
+      Values& type = per_type[gs.type];
+      type.error.push_back(g_error), type.h.push_back(g_h), type.l.push_back(g_l);
+      garments.push_back({{"name", gs.name}, {"type", gs.type}, {"layer", gs.layer}, {"error_mm", number(g_error)},
+                          {"h_collision", number(g_h)}, {"l_collision", number(g_l)}});
+      csv << id << ',' << info.motion << ',' << tags << ',' << gs.name << ',' << gs.type << ',' << gs.layer << ','
+          << csv_number(g_error) << ',' << csv_number(g_h) << ',' << csv_number(g_l) << ','
+          << (res.diverged_at >= 0 ? std::to_string(res.diverged_at) : "") << '\n';
+    }
+    sequences.push_back({{"id", id}, {"motion", info.motion}, {"tags", info.tags},
+                         {"frames", res.frames.size()}, {"error_mm", number(seq_error)},
+                         {"h_collision", number(seq_h)}, {"l_collision", number(seq_l)},
+                         {"truth_h_collision", number(truth.h.back())}, {"truth_l_collision", number(truth.l.back())},
+                         {"diverged_at", res.diverged_at >= 0 ? json(res.diverged_at) : json(nullptr)},
+                         {"diverge_reason", res.diverge_reason},
+                         {"error_growth_mm_per_frame", number(growth)}, {"garments", garments}});
+    if (writer) writer->append(prediction_sequence(s.dataset, r, s.selection));
+    char extra[64];
+    std::snprintf(extra, sizeof extra, "error %.1f mm", zoo::mean_std(overall.error).mean);
+    if (options.progress) progress.advance(1, extra);
+  }
+  if (options.progress) progress.finish();
+  if (writer) writer->commit();
+
+  report.sequences = static_cast<std::int64_t>(ids.size());
+  report.overall = overall.summary();
+  for (const auto& [type, values] : per_type) report.per_type.emplace_back(type, values.summary());
+  report.truth_h_collision = finite_mean(truth.h);
+  report.truth_l_collision = finite_mean(truth.l);
+  report.ms_per_frame = report.frames ? 1000.0 * model_seconds / static_cast<double>(report.frames) : 0;
+
+  json by_step = json::array();
+  for (std::size_t k = 0; k < step_error.size(); ++k) {
+    by_step.push_back({{"step", k + 1}, {"error_mm", number(zoo::mean_std(step_error[k]).mean)},
+                       {"h_collision", number(finite_mean(step_h[k]))}, {"l_collision", number(finite_mean(step_l[k]))},
+                       {"sequences", step_error[k].size()}});
+  }
+  json types = json::object();
+  for (const auto& [type, summary] : report.per_type) types[type] = to_json(summary);
+  json doc = {{"model", report.model},
+              {"checkpoint", report.checkpoint},
+              {"trained_epochs", state.epochs_done},
+              {"experiment", config.source},
+              {"dataset", config.data.dataset},
+              {"split", report.split},
+              {"subsets", config.data.subsets},
+              {"inner_only", config.data.inner_only},
+              {"horizon", horizon},
+              {"diverge_mm", config.eval.diverge_mm},
+              {"sequences", report.sequences},
+              {"frames", report.frames},
+              {"diverged", report.diverged},
+              {"ms_per_frame", report.ms_per_frame},
+              {"parameters", s.model->info().parameters},
+              {"overall", to_json(report.overall)},
+              {"error_growth_mm_per_frame", to_json(zoo::mean_std(growth_rates))},
+              {"truth", {{"h_collision", number(report.truth_h_collision)}, {"l_collision", number(report.truth_l_collision)}}},
+              {"per_type", types},
+              {"by_step", by_step},
+              {"per_sequence", sequences}};
+  write_text_atomic((std::filesystem::path(report.out_dir) / "metrics.json").string(), doc.dump(2) + "\n");
+  write_text_atomic((std::filesystem::path(report.out_dir) / "sequences.csv").string(), csv.str());
+  return report;
+}
+
+}  // namespace layers::train

@@ -1,0 +1,151 @@
+// Autoregressive rollouts with per-frame metrics (see rollout.h).
+#include "layers/train/rollout.h"
+
+#include <torch/csrc/autograd/grad_mode.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "layers/core/error.h"
+#include "layers/core/progress.h"
+#include "layers/geometry/penetration.h"
+#include "layers/zoo/metrics.h"
+
+namespace layers::train {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+geometry::Points points_of(const at::Tensor& t) {
+  const at::Tensor c = t.detach().to(at::kCPU, at::kFloat).contiguous();
+  geometry::Points p(c.size(0), 3);
+  std::memcpy(p.data(), c.data_ptr<float>(), sizeof(float) * static_cast<std::size_t>(c.numel()));
+  return p;
+}
+
+geometry::Faces faces_of(const at::Tensor& t) {
+  const at::Tensor c = t.to(at::kCPU, at::kInt).contiguous();
+  geometry::Faces f(c.size(0), 3);
+  std::memcpy(f.data(), c.data_ptr<int>(), sizeof(int) * static_cast<std::size_t>(c.numel()));
+  return f;
+}
+
+// The inner garments of one frame as one mesh (empty when none).
+geometry::TriMesh inner_mesh(const zoo::SequenceStatic& seq, const std::vector<at::Tensor>& garments) {
+  std::vector<at::Tensor> v, f;
+  std::int64_t offset = 0;
+  for (std::size_t k = 0; k < garments.size(); ++k) {
+    if (seq.garments[k].layer != 0) continue;
+    v.push_back(garments[k]);
+    f.push_back(seq.garments[k].faces + offset);
+    offset += garments[k].size(0);
+  }
+  geometry::TriMesh mesh;
+  if (v.empty()) return mesh;
+  mesh.vertices = points_of(at::cat(v));
+  mesh.faces = faces_of(at::cat(f));
+  return mesh;
+}
+
+at::Tensor outer_points(const zoo::SequenceStatic& seq, const std::vector<at::Tensor>& garments) {
+  std::vector<at::Tensor> v;
+  for (std::size_t k = 0; k < garments.size(); ++k)
+    if (seq.garments[k].layer != 0) v.push_back(garments[k]);
+  return v.empty() ? at::Tensor() : at::cat(v);
+}
+
+// H- and L-collision of one frame's garments.
+std::pair<double, double> collisions(const zoo::SequenceStatic& seq, const std::vector<at::Tensor>& garments,
+                                     const geometry::Surface& body, std::vector<double>* per_garment) {
+  double behind = 0, total = 0;
+  for (const at::Tensor& g : garments) {
+    const double share = zoo::behind_share(points_of(g), body);
+    if (per_garment) per_garment->push_back(share);
+    behind += share * static_cast<double>(g.size(0));
+    total += static_cast<double>(g.size(0));
+  }
+  double l = kNaN;
+  const at::Tensor outer = outer_points(seq, garments);
+  if (outer.defined()) {
+    geometry::TriMesh inner = inner_mesh(seq, garments);
+    if (inner.num_vertices() > 0) l = zoo::l_collision_rate(points_of(outer), inner);
+  }
+  return {total > 0 ? behind / total : 0.0, l};
+}
+
+}  // namespace
+
+RolloutResult rollout(zoo::Model& model, const zoo::SequenceStatic& seq, const FrameTensors& frames,
+                      const RolloutOptions& options) {
+  const std::int64_t last = frames.frames() - 1;
+  const std::int64_t steps = options.steps < 0 ? last - options.start : options.steps;
+  if (options.start < 1 || steps < 1 || options.start + steps > last)
+    throw Error("rollout of sequence '" + seq.id + "': start row " + std::to_string(options.start) + " and " +
+                std::to_string(steps) + " steps do not fit a window of " + std::to_string(frames.frames()) +
+                " frames");
+  torch::NoGradGuard no_grad;
+  const geometry::Faces body_faces = faces_of(seq.body_faces);
+  RolloutResult result;
+  std::vector<std::vector<at::Tensor>> kept(seq.garments.size());
+  std::vector<zoo::GarmentState> states = true_states(frames, options.start);
+  for (std::int64_t s = 0; s < steps; ++s) {
+    const std::int64_t i = options.start + s;  // predicting row i + 1
+    FrameMetrics m;
+    m.frame = frames.first_frame + i + 1;
+    std::vector<at::Tensor> truth;
+    for (const at::Tensor& g : frames.garments) truth.push_back(g[i + 1]);
+    if (result.diverged_at >= 0) {
+      m.diverged = true;
+      m.error_mm = options.diverge_mm;
+      m.garment_error_mm.assign(seq.garments.size(), options.diverge_mm);
+      m.h_collision = m.l_collision = kNaN;
+      result.frames.push_back(m);
+      continue;
+    }
+    Timer timer;
+    zoo::StepOutput out = model.step(step_input(frames, i, states));
+    result.model_seconds += timer.seconds();
+    double err_sum = 0, n_sum = 0;
+    for (std::size_t k = 0; k < out.garments.size(); ++k) {
+      const double e = zoo::euclidean_error_mm(points_of(out.garments[k]), points_of(truth[k]));
+      m.garment_error_mm.push_back(e);
+      err_sum += e * static_cast<double>(truth[k].size(0));
+      n_sum += static_cast<double>(truth[k].size(0));
+    }
+    m.error_mm = err_sum / n_sum;
+    if (!std::isfinite(m.error_mm) || m.error_mm > options.diverge_mm) {
+      result.diverged_at = m.frame;
+      result.diverge_reason = std::isfinite(m.error_mm)
+                                  ? "error " + std::to_string(m.error_mm) + " mm above the bound " +
+                                        std::to_string(options.diverge_mm) + " mm"
+                                  : "non-finite prediction";
+      m.diverged = true;
+      m.error_mm = options.diverge_mm;
+      m.garment_error_mm.assign(seq.garments.size(), options.diverge_mm);
+      m.h_collision = m.l_collision = kNaN;
+      result.frames.push_back(m);
+      continue;
+    }
+    geometry::TriMesh body_mesh{points_of(frames.body[i + 1]), body_faces};
+    const geometry::Surface body = geometry::Surface::from_mesh(body_mesh, "body");
+    std::tie(m.h_collision, m.l_collision) = collisions(seq, out.garments, body, &m.garment_h_collision);
+    if (options.truth_collisions)
+      std::tie(m.truth_h_collision, m.truth_l_collision) = collisions(seq, truth, body, nullptr);
+    result.frames.push_back(m);
+    for (std::size_t k = 0; k < kept.size(); ++k) {
+      if (options.keep_predictions) kept[k].push_back(out.garments[k].detach());
+      states[k] = {states[k].current, out.garments[k].detach()};
+    }
+  }
+  if (options.keep_predictions) {
+    // From the divergence on, the last finite prediction is held (the
+    // metrics record the divergence; the file stays valid and viewable).
+    for (std::size_t k = 0; k < kept.size(); ++k) {
+      while (static_cast<std::int64_t>(kept[k].size()) < steps) kept[k].push_back(states[k].current);
+      result.predictions.push_back(at::stack(kept[k]).to(at::kCPU));
+    }
+  }
+  return result;
+}
+
+}  // namespace layers::train

@@ -1,0 +1,54 @@
+// Opening an experiment's dataset and model (see session.h).
+#include "layers/train/session.h"
+
+#include <ATen/Context.h>
+#include <ATen/Parallel.h>
+
+#include <filesystem>
+
+#include "layers/core/error.h"
+#include "layers/data/stats.h"
+#include "layers/zoo/model_config.h"
+
+namespace layers::train {
+
+Session open_session(const ExperimentConfig& config, const zoo::Registry& registry) {
+  if (config.data.dataset.empty())
+    throw InputError(config.source, "data.dataset", "a dataset folder (made by `layers generate`)", "nothing");
+  if (config.run.device == "cuda" && !at::hasCUDA())
+    throw InputError(config.source, "run.device", "a device this build can use (cpu)", "cuda, but torch has no CUDA");
+  if (config.run.threads > 0) at::set_num_threads(config.run.threads);
+  at::manual_seed(config.run.seed);
+  Session s{config, data::Dataset::open(config.data.dataset), nullptr, GarmentSelection{config.data.inner_only},
+            at::Device(config.run.device == "cuda" ? at::kCUDA : at::kCPU)};
+  s.model = zoo::create_model(registry, config.model, "model");
+  s.model->to(s.device);
+  const std::string stats = (std::filesystem::path(config.data.dataset) / "stats.h5").string();
+  if (!std::filesystem::exists(stats))
+    throw InputError(config.data.dataset, "stats.h5", "the training statistics (layers generate / layers stats)",
+                     "no such file");
+  s.model->set_normalization(zoo::Normalization::from_stats(data::read_stats(stats)));
+  return s;
+}
+
+SequenceRollout rollout_sequence(Session& s, const std::string& id, std::int64_t horizon, double diverge_mm,
+                                 bool keep_predictions) {
+  SequenceRollout r;
+  r.id = id;
+  const std::int64_t n = s.dataset.info(id).n_frames;
+  if (n < 3) throw InputError(s.dataset.path(), "sequence '" + id + "'", "at least 3 frames", std::to_string(n));
+  const std::int64_t count = horizon <= 0 ? n : std::min(n, horizon + 2);
+  auto statics = s.dataset.statics(id);
+  r.statics = std::make_shared<const zoo::SequenceStatic>(to_model_static(*statics, s.selection));
+  r.frames = to_frame_tensors(s.dataset.read_frames(id, 0, count), statics->garments, s.selection);
+  s.model->prepare(*r.statics);
+  RolloutOptions options;
+  options.start = 1;
+  options.steps = count - 2;
+  options.diverge_mm = diverge_mm;
+  options.keep_predictions = keep_predictions;
+  r.result = rollout(*s.model, s.model->sequence(), to_device(r.frames, s.device), options);
+  return r;
+}
+
+}  // namespace layers::train

@@ -1,0 +1,206 @@
+// The training loop (see trainer.h).
+#include "layers/train/trainer.h"
+
+#include <ATen/Context.h>
+#include <spdlog/spdlog.h>
+#include <torch/nn/utils/clip_grad.h>
+#include <torch/optim/adam.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <numeric>
+
+#include "layers/core/error.h"
+#include "layers/core/progress.h"
+#include "layers/train/checkpoint.h"
+#include "layers/train/frame_loss.h"
+#include "layers/train/session.h"
+#include "layers/train/window_loader.h"
+#include "layers/zoo/metrics.h"
+
+namespace layers::train {
+namespace {
+
+std::vector<at::Tensor> trainable(zoo::Model& model) {
+  std::vector<at::Tensor> out;
+  for (const at::Tensor& p : model.parameters(true))
+    if (p.requires_grad()) out.push_back(p);
+  return out;
+}
+
+double learning_rate(const TrainConfig& t, int epoch) {
+  return t.lr * std::pow(t.lr_decay, epoch / t.lr_decay_every);
+}
+
+void set_learning_rate(torch::optim::Adam& optimizer, double lr) {
+  for (auto& group : optimizer.param_groups()) static_cast<torch::optim::AdamOptions&>(group.options()).lr(lr);
+}
+
+// One window: curriculum steps without gradient, then the loss steps.
+// Returns the loss (already backpropagated, divided by `scale`).
+double train_window(Session& s, const Sample& sample, std::int64_t free_steps, std::int64_t loss_steps,
+                    const zoo::TrainingContext& context, double scale) {
+  zoo::Model& model = *s.model;
+  model.prepare(*sample.statics);
+  const zoo::SequenceStatic& seq = model.sequence();
+  const FrameTensors frames = to_device(sample.frames, s.device);
+  std::int64_t i = 1;  // history = 1: row 1 is the window's start frame
+  std::vector<zoo::GarmentState> states = true_states(frames, i);
+  {
+    torch::NoGradGuard no_grad;
+    for (std::int64_t r = 0; r < free_steps; ++r, ++i) {
+      zoo::StepOutput out = model.step(step_input(frames, i, states));
+      for (std::size_t k = 0; k < states.size(); ++k) states[k] = {states[k].current, out.garments[k].detach()};
+    }
+  }
+  at::Tensor total;
+  for (std::int64_t r = 0; r < loss_steps; ++r, ++i) {
+    zoo::StepOutput out = model.step(step_input(frames, i, states));
+    std::vector<at::Tensor> truth;
+    for (const at::Tensor& g : frames.garments) truth.push_back(g[i + 1]);
+    LossSum loss = frame_loss(seq, out.garments, truth, frames.body[i + 1], s.config.loss);
+    total = total.defined() ? total + loss.total : loss.total;
+    for (std::size_t k = 0; k < states.size(); ++k) states[k] = {states[k].current, out.garments[k]};
+  }
+  for (const zoo::LossTerm& term : model.auxiliary_losses(context)) total = total + term.value;
+  total = total / static_cast<double>(loss_steps) / scale;
+  const double value = total.item<double>() * scale;
+  if (!std::isfinite(value))
+    throw Error("training diverged: loss " + std::to_string(value) + " on sequence '" + sample.id + "' frame " +
+                std::to_string(sample.start) + " (lower train.lr or check the data)");
+  total.backward();
+  return value;
+}
+
+// Mean rollout error (mm) over the validation sequences.
+double validate(Session& s) {
+  const TrainConfig& t = s.config.train;
+  std::vector<std::string> ids = select_sequences(s.dataset, s.config.data.val_split, s.config.data.subsets);
+  if (t.val_sequences > 0 && ids.size() > static_cast<std::size_t>(t.val_sequences)) ids.resize(t.val_sequences);
+  std::vector<double> errors;
+  for (const std::string& id : ids) {
+    const SequenceRollout r = rollout_sequence(s, id, t.val_horizon, s.config.eval.diverge_mm, false);
+    std::vector<double> per_frame;
+    for (const FrameMetrics& m : r.result.frames) per_frame.push_back(m.error_mm);
+    errors.push_back(zoo::sequence_mean(per_frame));
+  }
+  if (errors.empty()) return -1;
+  return std::accumulate(errors.begin(), errors.end(), 0.0) / static_cast<double>(errors.size());
+}
+
+}  // namespace
+
+std::string checkpoint_path(const ExperimentConfig& config, const std::string& which) {
+  return (std::filesystem::path(config.run.output) / ("checkpoint-" + which + ".pt")).string();
+}
+
+TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& registry, const TrainOptions& options) {
+  Session s = open_session(config, registry);
+  const TrainConfig& t = config.train;
+  TrainReport report;
+  report.run_dir = config.run.output;
+  report.last_checkpoint = checkpoint_path(config, "last");
+  report.best_checkpoint = checkpoint_path(config, "best");
+  std::filesystem::create_directories(config.run.output);
+  const std::vector<at::Tensor> params = trainable(*s.model);
+  for (const at::Tensor& p : params) report.trainable_parameters += p.numel();
+
+  CheckpointState state;
+  state.model_name = s.model->name();
+  if (params.empty()) {
+    // Nothing to learn (reference models): the checkpoint holds the
+    // normalisation, so evaluation runs the same way for every model.
+    save_checkpoint(report.last_checkpoint, *s.model, nullptr, state);
+    save_checkpoint(report.best_checkpoint, *s.model, nullptr, state);
+    spdlog::info("model '{}' has no trainable parameters: saved {} without training", s.model->name(),
+                 report.last_checkpoint);
+    return report;
+  }
+  torch::optim::Adam optimizer(params, torch::optim::AdamOptions(t.lr));
+  if (options.resume && std::filesystem::exists(report.last_checkpoint)) {
+    state = load_checkpoint(report.last_checkpoint, *s.model, &optimizer);
+    spdlog::info("resuming from {} after epoch {} ({} steps)", report.last_checkpoint, state.epochs_done, state.steps);
+  }
+  report.epochs_done = state.epochs_done;
+  report.steps = state.steps;
+
+  LoaderOptions lo;
+  lo.split = config.data.train_split;
+  lo.subsets = config.data.subsets;
+  lo.selection = s.selection;
+  lo.batch_size = t.batch_size;
+  lo.windows_per_epoch = t.windows_per_epoch;
+  lo.stride = t.window_stride;
+  lo.prefetch = t.prefetch;
+  lo.seed = config.run.seed;
+  WindowLoader loader(s.dataset, lo);
+  const std::int64_t loss_steps = t.two_step ? 2 : 1;
+  bool first_batch = true;
+
+  for (int epoch = state.epochs_done; epoch < t.epochs; ++epoch) {
+    at::manual_seed(config.run.seed * 7919 + static_cast<std::uint64_t>(epoch));  // resume-independent
+    const double lr = learning_rate(t, epoch);
+    set_learning_rate(optimizer, lr);
+    const std::int64_t free_steps = std::min(epoch, t.curriculum_max);
+    const std::size_t batches = loader.start_epoch(epoch, free_steps + loss_steps);
+    s.model->train(true);
+    Timer timer;
+    Progress progress("epoch " + std::to_string(epoch + 1) + "/" + std::to_string(t.epochs), batches, "batches");
+    double loss_sum = 0;
+    std::int64_t frames = 0;
+    std::size_t seen = 0;
+    while (std::optional<Batch> batch = loader.next()) {
+      optimizer.zero_grad();
+      const zoo::TrainingContext context{epoch, state.steps};
+      double batch_loss = 0;
+      for (const Sample& sample : *batch)
+        batch_loss += train_window(s, sample, free_steps, loss_steps, context, static_cast<double>(batch->size()));
+      batch_loss /= static_cast<double>(batch->size());
+      if (t.grad_clip > 0) torch::nn::utils::clip_grad_norm_(params, t.grad_clip);
+      optimizer.step();
+      ++state.steps;
+      ++seen;
+      if (first_batch) report.first_loss = batch_loss;
+      first_batch = false;
+      loss_sum += batch_loss;
+      frames += static_cast<std::int64_t>(batch->size()) * loss_steps;
+      char extra[96];
+      std::snprintf(extra, sizeof extra, "loss %.4g  %.1f frames/s", loss_sum / static_cast<double>(seen),
+                    static_cast<double>(frames) / std::max(timer.seconds(), 1e-9));
+      progress.advance(1, extra);
+    }
+    progress.finish();
+    EpochSummary e;
+    e.epoch = epoch + 1;
+    e.loss = seen ? loss_sum / static_cast<double>(seen) : 0;
+    e.seconds = timer.seconds();
+    e.frames_per_second = static_cast<double>(frames) / std::max(e.seconds, 1e-9);
+    e.lr = lr;
+    s.model->train(false);
+    e.val_error_mm = validate(s);
+    state.epochs_done = epoch + 1;
+    save_checkpoint(report.last_checkpoint, *s.model, &optimizer, state);
+    if (e.val_error_mm >= 0 && (state.best_val_mm < 0 || e.val_error_mm < state.best_val_mm)) {
+      state.best_val_mm = e.val_error_mm;
+      save_checkpoint(report.best_checkpoint, *s.model, &optimizer, state);
+      save_checkpoint(report.last_checkpoint, *s.model, &optimizer, state);  // same best in both
+    } else if (e.val_error_mm < 0) {
+      save_checkpoint(report.best_checkpoint, *s.model, &optimizer, state);
+    }
+    spdlog::info("epoch {}/{}: loss {:.4g}, val error {:.2f} mm, lr {:.3g}, {:.1f} frames/s, {:.1f} s", e.epoch,
+                 t.epochs, e.loss, e.val_error_mm, lr, e.frames_per_second, e.seconds);
+    report.epochs.push_back(e);
+  }
+  report.epochs_done = state.epochs_done;
+  report.steps = state.steps;
+  // No epoch ran now (e.g. train.epochs: 0): the checkpoints still exist,
+  // so evaluating the untrained model works the same way.
+  if (!std::filesystem::exists(report.last_checkpoint))
+    save_checkpoint(report.last_checkpoint, *s.model, &optimizer, state);
+  if (!std::filesystem::exists(report.best_checkpoint))
+    save_checkpoint(report.best_checkpoint, *s.model, &optimizer, state);
+  return report;
+}
+
+}  // namespace layers::train

@@ -1,0 +1,59 @@
+// plugins/layersnet/layersnet.h -- the LayersNet model (PAPER_NOTES.md
+// "LayersNet", docs/layersnet.md): garments as UV patches, body vertices
+// near the garment and abstract tokens (gravity, wind, attributes) as
+// senders, a TIE-attention processor with mesh-edge and world-edge heads,
+// a patch decoder back to vertices predicting accelerations.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "decoder.h"
+#include "factory.h"
+#include "layers/zoo/model.h"
+#include "mlp.h"
+#include "params.h"
+#include "tie_block.h"
+
+namespace layers::layersnet {
+
+// What the last step used (cost follows these).
+struct StepCounts {
+  std::int64_t vertices = 0;         // garment vertices, all garments
+  std::int64_t patches = 0;
+  std::int64_t body_tokens = 0;      // distinct body vertices encoded
+  std::int64_t abstract_tokens = 0;  // gravity + wind (if blowing) + attribute tokens
+  std::int64_t mesh_edges = 0;       // undirected E^M
+  std::int64_t world_edges = 0;      // undirected E^W
+  std::int64_t body_edges = 0;       // patch <- body sender pairs
+};
+
+class LayersNet : public zoo::Model {
+ public:
+  explicit LayersNet(const Params& params);
+  ~LayersNet() override;
+
+  cfg::Node config() const override;
+  const Params& params() const { return params_; }
+  const StepCounts& last_counts() const { return counts_; }
+  // last_counts() by name (vertices, patches, body_tokens, ...).
+  std::map<std::string, double> step_counters() const override;
+
+ protected:
+  std::shared_ptr<const Derived> derive(const zoo::SequenceStatic& data) override;
+  zoo::StepOutput predict(const zoo::StepInput& input) override;
+
+ private:
+  struct Cached;
+  Params params_;
+  StepCounts counts_;
+  std::shared_ptr<Mlp> encode_state_, encode_attributes_, encode_wind_;
+  std::shared_ptr<Decoder> decoder_;
+  at::Tensor gravity_;  // [1,width] learned token
+  std::vector<std::shared_ptr<TieBlock>> blocks_;
+};
+
+}  // namespace layers::layersnet

@@ -1,0 +1,37 @@
+// plugins/layersnet/params.h -- LayersNet's configuration (the `params` of
+// a `model: {name: layersnet}` section), defaults as in the paper scaled to
+// metres (docs/layersnet.md explains each choice). Torch-free.
+#pragma once
+
+#include <cstdint>
+
+#include "layers/core/config.h"
+
+namespace layers::layersnet {
+
+struct Params {
+  double patch_size = 0.1;       // UV square side (UVs are sewing-pattern metres)
+  double world_radius = 0.04;    // E^W: patch centroids closer than this (m)
+  double body_radius = 0.06;     // body senders / decoder body vertex (m)
+  std::int64_t max_body_senders = 16;  // body vertices per patch, closest first
+  std::int64_t width = 128;      // token width (encoders, processor, decoder)
+  std::int64_t blocks = 4;       // processor blocks
+  std::int64_t heads = 8;        // attention heads: half E^M, half E^W
+
+  template <class V>
+  void visit(V& v) {
+    v("patch_size", patch_size, cfg::opt().range(1e-4, 10).help("side of a UV patch square (UV units = m)"));
+    v("world_radius", world_radius, cfg::opt().range(0, 10).help("world-edge radius between patch centroids (m)"));
+    v("body_radius", body_radius, cfg::opt().range(0, 10).help("body vertices this close to a patch centroid are its senders (m)"));
+    v("max_body_senders", max_body_senders, cfg::opt().range(0, 1024).help("body senders per patch, closest first"));
+    v("width", width, cfg::opt().range(2, 4096).help("token width"));
+    v("blocks", blocks, cfg::opt().range(0, 64).help("processor blocks"));
+    v("heads", heads, cfg::opt().range(2, 256).help("attention heads (even: half E^M, half E^W; divides width)"));
+  }
+};
+
+// Reads and checks the parameters (null: all defaults). Throws InputError
+// naming the key (heads odd or not dividing width).
+Params read_params(const cfg::Node& node);
+
+}  // namespace layers::layersnet

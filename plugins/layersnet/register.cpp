@@ -1,0 +1,7 @@
+// The layersnet plugin's entry point: registers the model (layersnet.h).
+#include "factory.h"
+#include "layers/zoo/plugin.h"
+
+LAYERS_PLUGIN(registry) {
+  registry.add(layers::layersnet::kName, layers::layersnet::kDescription, layers::layersnet::make_layersnet);
+}

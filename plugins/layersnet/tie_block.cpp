@@ -1,0 +1,38 @@
+// One LayersNet processor block (see tie_block.h).
+#include "tie_block.h"
+
+#include "tie_attention.h"
+
+namespace layers::layersnet {
+
+TieBlock::TieBlock(std::int64_t width, std::int64_t heads)
+    : heads_(heads),
+      receiver_(register_module("receiver", torch::nn::Linear(width, width))),
+      sender_(register_module("sender", torch::nn::Linear(width, width))),
+      query_(register_module("query", torch::nn::Linear(width, width))),
+      key_(register_module("key", torch::nn::Linear(width, width))),
+      value_(register_module("value", torch::nn::Linear(width, width))),
+      out_(register_module("out", torch::nn::Linear(width, width))),
+      ffn_in_(register_module("ffn_in", torch::nn::Linear(width, 2 * width))),
+      ffn_out_(register_module("ffn_out", torch::nn::Linear(2 * width, width))),
+      norm_attn_(register_module("norm_attn", torch::nn::LayerNorm(torch::nn::LayerNormOptions({width})))),
+      norm_ffn_(register_module("norm_ffn", torch::nn::LayerNorm(torch::nn::LayerNormOptions({width})))) {}
+
+at::Tensor TieBlock::forward(const at::Tensor& patches, const at::Tensor& abstract, const at::Tensor& body,
+                             const SenderGraph& graph) {
+  TieSenders senders;
+  senders.dense = sender_->forward(at::cat({patches, abstract}, 0));
+  senders.dense_mask = graph.dense_mask;
+  const std::int64_t K = graph.body_slot.defined() ? graph.body_slot.size(1) : 0;
+  if (K > 0 && body.size(0) > 0) {
+    senders.local = sender_->forward(body);
+    senders.local_index = graph.body_slot;
+    senders.local_mask = graph.body_mask;
+  }
+  TieWeights w{key_->weight, key_->bias, value_->weight, value_->bias, heads_};
+  const at::Tensor attended = tie_attention(query_->forward(patches), receiver_->forward(patches), senders, w);
+  at::Tensor x = norm_attn_->forward(patches + out_->forward(attended));
+  return norm_ffn_->forward(x + ffn_out_->forward(at::relu(ffn_in_->forward(x))));
+}
+
+}  // namespace layers::layersnet

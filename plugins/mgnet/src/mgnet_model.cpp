@@ -1,0 +1,69 @@
+// The MGNet model: derive() builds the UV layout of a sequence's garments,
+// predict() encodes the step's UV maps (state and dynamic encoders), decodes
+// a displacement image, samples it at each vertex and adds it, in the
+// vertex's current tangent frame, to a base prediction (following the
+// body seeds, or root-relative constant velocity). All garments run as one
+// batch of images through the same weights; the layer map tells inner from
+// outer. See docs/mgnet.md.
+#include <memory>
+
+#include "layers/mgnet/input_maps.h"
+#include "layers/mgnet/layout.h"
+#include "layers/mgnet/mgnet.h"
+#include "layers/mgnet/params.h"
+#include "layers/mgnet/uv_network.h"
+#include "layers/zoo/model.h"
+
+namespace layers::mgnet {
+namespace {
+
+class MGNet : public zoo::Model {
+ public:
+  explicit MGNet(const Params& p) : Model(kName), params_(p), base_(base_from_name(p.base)) {
+    state_encoder_ = register_module(
+        "state_encoder", std::make_shared<UvEncoder>(kStateChannels, p.channels, p.resolution, p.latent));
+    dynamic_encoder_ = register_module(
+        "dynamic_encoder", std::make_shared<UvEncoder>(kDynamicChannels, p.channels, p.resolution, p.latent));
+    decoder_ = register_module("decoder", std::make_shared<UvDecoder>(2 * p.latent, p.channels, p.resolution, 3));
+  }
+
+  cfg::Node config() const override { return cfg::to_node(params_); }
+
+ protected:
+  struct Layout : Derived {
+    GarmentLayout value;
+  };
+
+  std::shared_ptr<const Derived> derive(const zoo::SequenceStatic& data) override {
+    auto out = std::make_shared<Layout>();
+    out->value = make_layout(data, params_.resolution);
+    return out;
+  }
+
+  zoo::StepOutput predict(const zoo::StepInput& in) override {
+    const GarmentLayout& layout = derived<Layout>().value;
+    zoo::StepOutput out;
+    if (layout.sizes.empty()) return out;
+    const zoo::Normalization& norm = normalization();
+    const StepMaps maps = step_maps(layout, in, norm, base_);
+    const at::Tensor code = at::cat({state_encoder_->forward(maps.state), dynamic_encoder_->forward(maps.dynamic)}, 1);
+    const at::Tensor local = sample(layout.splat, decoder_->forward(code));
+    // The decoder speaks normalised accelerations; the frame mixes the
+    // world axes, so one scale: the mean of the per-axis deviations.
+    const at::Tensor displacement = from_frame(maps.frames, local) * norm.garment_acceleration.std.mean();
+    out.garments = (maps.base + displacement).split_with_sizes(layout.sizes);
+    return out;
+  }
+
+ private:
+  Params params_;
+  Base base_;
+  std::shared_ptr<UvEncoder> state_encoder_, dynamic_encoder_;
+  std::shared_ptr<UvDecoder> decoder_;
+};
+
+}  // namespace
+
+std::shared_ptr<zoo::Model> make_mgnet(const cfg::Node& params) { return std::make_shared<MGNet>(read_params(params)); }
+
+}  // namespace layers::mgnet

@@ -1,0 +1,7 @@
+// The mgnet plugin: registers the MGNet model with the zoo.
+#include "layers/mgnet/mgnet.h"
+#include "layers/zoo/plugin.h"
+
+LAYERS_PLUGIN(registry) {
+  registry.add(layers::mgnet::kName, layers::mgnet::kDescription, layers::mgnet::make_mgnet);
+}

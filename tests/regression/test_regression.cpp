@@ -1,0 +1,204 @@
+// The CI regression test (docs/studies.md): `layers run
+// tests/regression/study.yaml` in a temporary folder -- a dataset smaller
+// than `tiny`, a very short deterministic train -> eval of every model
+// whose plugin is built -- then each run's eval-test/metrics.json against
+// goldens/<run>.json within tolerances.yaml.
+//
+//   LAYERS_UPDATE_GOLDENS=1   rewrite the goldens of the built models (on purpose)
+//   LAYERS_REGRESSION_DIR=d   work in d and keep it (a second run reuses every step)
+//
+// A model whose plugin is not built is skipped with a message; a built one
+// without a golden fails and says how to make it.
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <set>
+
+#include "golden_compare.h"
+#include "layers/core/atomic_file.h"
+#include "layers/core/progress.h"
+#include "layers/core/text_file.h"
+#include "layers/train/study.h"
+#include "layers/zoo/plugin_loader.h"
+#include "layers/zoo/registry.h"
+#include "run_command.h"
+#include "temp_dir.h"
+
+namespace fs = std::filesystem;
+using namespace layers;
+
+namespace {
+
+std::string regression_dir() { return test::source_dir() + "/tests/regression"; }
+std::string study_file() { return regression_dir() + "/study.yaml"; }
+std::string golden_file(const std::string& run) { return regression_dir() + "/goldens/" + run + ".json"; }
+bool updating() {
+  const char* v = std::getenv("LAYERS_UPDATE_GOLDENS");
+  return v && *v && std::string(v) != "0";
+}
+std::string layers_command(const std::string& args) {
+  return "LAYERS_PLUGIN_PATH=" + test::plugin_dir() + " " + test::layers_bin() + " --log-level warn " + args;
+}
+
+// The study run once for every test of this binary.
+struct Regression {
+  std::unique_ptr<test::TempDir> temp;
+  std::string work;                       // output and data live here
+  std::map<std::string, std::string> model_of;  // run -> model name
+  std::set<std::string> built;            // runs whose model is registered
+  test::CommandResult result;
+  double seconds = 0;
+  std::string setup_error;
+
+  std::string runs() const { return work + "/runs"; }
+  std::string metrics(const std::string& run) const { return runs() + "/" + run + "/eval-test/metrics.json"; }
+
+  static Regression& get() {
+    static Regression r = make();
+    return r;
+  }
+
+ private:
+  static Regression make() {
+    Regression r;
+    try {
+      const char* keep = std::getenv("LAYERS_REGRESSION_DIR");
+      if (keep && *keep) {
+        r.work = keep;
+        fs::create_directories(r.work);
+      } else {
+        r.temp = std::make_unique<test::TempDir>("layers-regression");
+        r.work = r.temp->path();
+      }
+      zoo::Registry registry;
+      const fs::path bin_plugins = fs::path(test::layers_bin()).parent_path() / "plugins";
+      zoo::load_all(registry, {test::plugin_dir(), bin_plugins.string()});
+      const train::StudyConfig study = train::load_study(study_file());
+      std::string only;
+      for (const train::StudyRun& run : train::resolve_runs(study)) {
+        const cfg::Node* name = run.config.model.find("name");
+        r.model_of[run.name] = name ? name->scalar : "";
+        if (name && registry.contains(name->scalar)) {
+          r.built.insert(run.name);
+          only += " --only '" + run.name + "'";
+        }
+      }
+      if (r.built.empty()) throw Error("no model of the regression study is built");
+      Timer timer;
+      r.result = test::run_command(layers_command("run " + study_file() + " --set output=" + r.runs() +
+                                                  " --set dataset.folder=" + r.work + "/data" + only));
+      r.seconds = timer.seconds();
+      std::printf("regression study: %zu runs in %.1f s (working in %s)\n", r.built.size(), r.seconds,
+                  r.work.c_str());
+    } catch (const std::exception& e) {
+      r.setup_error = e.what();
+    }
+    return r;
+  }
+};
+
+std::vector<std::string> study_runs() {
+  try {
+    std::vector<std::string> names;
+    for (const auto& e : train::load_study(study_file()).experiments) names.push_back(e.name);
+    return names;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "test_regression: cannot read %s: %s\n", study_file().c_str(), e.what());
+    return {"unreadable_study"};
+  }
+}
+
+std::string test_name(const testing::TestParamInfo<std::string>& info) {
+  std::string s;
+  for (char c : info.param) s += c == '+' ? std::string("_plus") : std::string(1, std::isalnum(static_cast<unsigned char>(c)) ? c : '_');
+  return s;
+}
+
+}  // namespace
+
+class RegressionRun : public testing::TestWithParam<std::string> {};
+
+TEST_P(RegressionRun, MatchesGoldenMetrics) {
+  const std::string run = GetParam();
+  Regression& r = Regression::get();
+  ASSERT_TRUE(r.setup_error.empty()) << r.setup_error;
+  const std::string model = r.model_of.count(run) ? r.model_of.at(run) : "?";
+  if (!r.built.count(run))
+    GTEST_SKIP() << "model '" << model << "' (run '" << run << "') has no plugin in this build; its golden "
+                 << golden_file(run) << " is checked once it is built";
+  ASSERT_TRUE(fs::exists(r.metrics(run))) << "the study made no " << r.metrics(run) << "; `layers run` said:\n"
+                                          << r.result.output;
+  const regression::Metrics now = regression::metrics_from_json(read_text_file(r.metrics(run)), r.metrics(run));
+  if (updating()) {
+    write_text_atomic(golden_file(run), regression::golden_json({run, model, now}));
+    std::printf("updated %s\n", golden_file(run).c_str());
+    return;
+  }
+  ASSERT_TRUE(fs::exists(golden_file(run)))
+      << "no golden for run '" << run << "' (model " << model << "): make it on purpose with\n"
+      << "  LAYERS_UPDATE_GOLDENS=1 ctest -R regression   (or LAYERS_UPDATE_GOLDENS=1 build/bin/test_regression)\n"
+      << "and commit " << golden_file(run);
+  const regression::Golden golden = regression::read_golden(golden_file(run));
+  const auto tolerances = regression::read_tolerances(regression_dir() + "/tolerances.yaml");
+  for (const std::string& message : regression::compare(golden, now, tolerances)) ADD_FAILURE() << message;
+}
+
+INSTANTIATE_TEST_SUITE_P(Study, RegressionRun, testing::ValuesIn(study_runs()), test_name);
+
+// The whole study again in the same folder: every step is current.
+TEST(RegressionStudy, SecondRunReusesEveryStep) {
+  Regression& r = Regression::get();
+  ASSERT_TRUE(r.setup_error.empty()) << r.setup_error;
+  ASSERT_EQ(r.result.exit_code, 0) << r.result.output;
+  std::string only;
+  for (const std::string& run : r.built) only += " --only '" + run + "'";
+  const auto again = test::run_command(layers_command("run " + study_file() + " --set output=" + r.runs() +
+                                                      " --set dataset.folder=" + r.work + "/data" + only));
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_NE(again.output.find("0 steps ran"), std::string::npos) << again.output;
+  EXPECT_EQ(again.output.find(": running"), std::string::npos) << again.output;
+}
+
+// A deliberately degraded model -- the study's trainable run trained for a
+// single optimiser step -- must fail the comparison with a readable
+// message naming the run, the metric and both values.
+TEST(RegressionStudy, DegradedModelFailsTheComparison) {
+  Regression& r = Regression::get();
+  ASSERT_TRUE(r.setup_error.empty()) << r.setup_error;
+  // The largest trained model that is built (the test plugin always is).
+  std::string run;
+  for (const char* candidate : {"layersnet", "mgnet", "deepsd", "constant_velocity"})
+    if (r.built.count(candidate) && fs::exists(golden_file(candidate))) {
+      run = candidate;
+      break;
+    }
+  if (run.empty()) GTEST_SKIP() << "no trained run with a golden yet";
+  const std::string experiment = r.runs() + "/" + run + "/experiment.yaml";
+  ASSERT_TRUE(fs::exists(experiment)) << r.result.output;
+  test::TempDir dir("layers-degraded");
+  const std::string sets = " --set run.output=" + dir.path() + " --set train.epochs=1 --set train.windows_per_epoch=1 "
+                           "--set train.batch_size=1 --quiet";
+  const auto t = test::run_command(layers_command("train " + experiment + sets));
+  ASSERT_EQ(t.exit_code, 0) << t.output;
+  EXPECT_NE(t.output.find("(1 steps)"), std::string::npos) << t.output;
+  const auto e = test::run_command(layers_command("eval " + experiment + sets));
+  ASSERT_EQ(e.exit_code, 0) << e.output;
+  const std::string metrics = dir.path() + "/eval-test/metrics.json";
+  const auto messages =
+      regression::compare(regression::read_golden(golden_file(run)),
+                          regression::metrics_from_json(read_text_file(metrics), metrics),
+                          regression::read_tolerances(regression_dir() + "/tolerances.yaml"));
+  ASSERT_FALSE(messages.empty()) << "a model trained for one step matched the golden of '" << run << "'";
+  bool named = false;
+  for (const std::string& m : messages) {
+    std::printf("degraded %s: %s\n", run.c_str(), m.c_str());
+    named = named || (m.find("run '" + run + "'") != std::string::npos && m.find("golden ") != std::string::npos &&
+                      m.find("new ") != std::string::npos);
+  }
+  EXPECT_TRUE(named) << messages.front();
+}

@@ -1,0 +1,274 @@
+// The scheduling of `layers run` (layers/train/study.h) with actions that
+// write the files the real steps write: what runs, what is current, what a
+// deleted checkpoint, a changed override, a failure or an interrupted
+// training reruns, dry runs, required studies and bad study files.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include "layers/core/error.h"
+#include "layers/core/text_file.h"
+#include "layers/train/study.h"
+#include "temp_dir.h"
+
+namespace fs = std::filesystem;
+using namespace layers;
+using train::StepStatus;
+
+namespace {
+
+class StudyTest : public testing::Test {
+ protected:
+  void SetUp() override {
+    dir.write("gen.yaml", "name: fixture\n");
+    dir.write("exp.yaml", "model: {name: anything, params: {}}\neval: {save_predictions: false}\n");
+    study = write_study("study.yaml", "out", "a", "");
+  }
+
+  // A study with runs a and b (b's name and extra lines configurable).
+  std::string write_study(const std::string& file, const std::string& output, const std::string& first,
+                          const std::string& extra) {
+    return dir.write(file, "output: " + dir.file(output) + "\ndataset: {config: gen.yaml, folder: " + dir.file("data") +
+                               "}\nsteps: [train, eval, bench, report]\nexperiments:\n  - {name: " + first +
+                               ", file: exp.yaml}\n  - {name: b, file: exp.yaml}\n" + extra);
+  }
+
+  static void touch(const fs::path& p, const std::string& text = "x") {
+    fs::create_directories(p.parent_path());
+    std::ofstream(p) << text;
+  }
+
+  train::StudyActions actions() {
+    train::StudyActions a;
+    a.dataset = [this](const train::StudyDataset& d) {
+      calls["dataset"]++;
+      if (fs::exists(fs::path(d.folder) / "dataset.yaml")) return false;
+      for (const char* f : {"dataset.yaml", "splits.yaml", "stats.h5", "shard-00000.h5"}) touch(fs::path(d.folder) / f);
+      return true;
+    };
+    a.train = [this](const train::StudyRun& run, bool resume) {
+      calls["train " + run.name]++;
+      if (resume) calls["resume " + run.name]++;
+      if (fail_train == run.name) throw Error("training diverged");
+      touch(fs::path(run.dir) / "checkpoint-last.pt");
+      touch(fs::path(run.dir) / "checkpoint-best.pt");
+    };
+    a.eval = [this](const train::StudyRun& run, const std::string& split) {
+      calls["eval " + run.name]++;
+      touch(fs::path(run.dir) / ("eval-" + split) / "metrics.json", "{}");
+      touch(fs::path(run.dir) / ("eval-" + split) / "sequences.csv");
+    };
+    a.bench = [this](const train::StudyRun& run, const train::StudyBench&) {
+      calls["bench " + run.name]++;
+      touch(fs::path(run.dir) / "bench.json", "{}");
+    };
+    a.report = [this](const train::StudyConfig&, const std::vector<std::string>& runs, const std::string& out) {
+      calls["report"]++;
+      report_runs = runs.size();
+      touch(fs::path(out) / "report.md");
+    };
+    return a;
+  }
+
+  train::StudyResult run(const std::vector<std::string>& sets = {}, train::StudyOptions options = {}) {
+    return train::run_study(study, sets, actions(), options);
+  }
+
+  // Status of one step ("a train", "report", ...) in a result.
+  static StepStatus status(const train::StudyResult& r, const std::string& who) {
+    for (const auto& o : r.steps)
+      if ((o.run.empty() ? o.step : o.run + " " + o.step) == who) return o.status;
+    ADD_FAILURE() << "no step " << who;
+    return StepStatus::Blocked;
+  }
+
+  test::TempDir dir{"layers-study"};
+  std::string study;
+  std::map<std::string, int> calls;
+  std::string fail_train;
+  std::size_t report_runs = 0;
+};
+
+TEST_F(StudyTest, SecondRunReusesEverything) {
+  const auto first = run();
+  EXPECT_TRUE(first.ok());
+  EXPECT_EQ(first.count(StepStatus::Ran), 8u);  // dataset, 2 x (train, eval-test, bench), report
+  EXPECT_EQ(report_runs, 2u);
+  EXPECT_EQ(first.report, dir.file("out") + "/report/report.md");
+  EXPECT_TRUE(fs::exists(dir.file("out/a/experiment.yaml")));
+  EXPECT_NE(read_text_file(dir.file("out/a/experiment.yaml")).find("output: " + dir.file("out") + "/a"),
+            std::string::npos);
+
+  const auto second = run();
+  EXPECT_TRUE(second.ok());
+  EXPECT_EQ(second.count(StepStatus::Ran), 0u);
+  EXPECT_EQ(second.count(StepStatus::Current), 8u);
+  EXPECT_EQ(calls["train a"], 1);
+  EXPECT_EQ(calls["eval b"], 1);
+  EXPECT_EQ(calls["report"], 1);
+}
+
+TEST_F(StudyTest, DeletedCheckpointRerunsOnlyWhatDependsOnIt) {
+  run();
+  fs::remove(dir.file("out/a/checkpoint-best.pt"));
+  const auto r = run();
+  EXPECT_EQ(status(r, "a train"), StepStatus::Ran);
+  EXPECT_EQ(status(r, "a eval-test"), StepStatus::Ran);
+  EXPECT_EQ(status(r, "a bench"), StepStatus::Ran);
+  EXPECT_EQ(status(r, "report"), StepStatus::Ran);
+  EXPECT_EQ(status(r, "b train"), StepStatus::Current);
+  EXPECT_EQ(status(r, "b eval-test"), StepStatus::Current);
+  EXPECT_EQ(status(r, "b bench"), StepStatus::Current);
+  EXPECT_EQ(calls["resume a"], 0);  // a finished training is redone from the start
+}
+
+TEST_F(StudyTest, EvaluationSettingsRerunEvaluationNotTraining) {
+  run();
+  const auto r = run({"set=[eval.horizon=5]"});
+  EXPECT_EQ(status(r, "a train"), StepStatus::Current);
+  EXPECT_EQ(status(r, "a eval-test"), StepStatus::Ran);
+  EXPECT_EQ(status(r, "b eval-test"), StepStatus::Ran);
+  const auto t = run({"set=[eval.horizon=5, train.epochs=1]"});
+  EXPECT_EQ(status(t, "a train"), StepStatus::Ran);
+  EXPECT_EQ(status(t, "a eval-test"), StepStatus::Ran);
+}
+
+TEST_F(StudyTest, FailureBlocksOnlyItsRun) {
+  fail_train = "a";
+  const auto r = run();
+  EXPECT_FALSE(r.ok());
+  EXPECT_EQ(status(r, "a train"), StepStatus::Failed);
+  EXPECT_EQ(status(r, "a eval-test"), StepStatus::Blocked);
+  EXPECT_EQ(status(r, "a bench"), StepStatus::Blocked);
+  EXPECT_EQ(status(r, "b eval-test"), StepStatus::Ran);
+  EXPECT_EQ(status(r, "report"), StepStatus::Ran);  // the report lists what is missing
+  for (const auto& o : r.steps)
+    if (o.status == StepStatus::Failed) EXPECT_NE(o.message.find("training diverged"), std::string::npos);
+  fail_train.clear();
+  const auto again = run();
+  EXPECT_TRUE(again.ok());
+  EXPECT_EQ(status(again, "a train"), StepStatus::Ran);
+  EXPECT_EQ(calls["resume a"], 0);  // a failed training starts over
+  EXPECT_EQ(status(again, "b train"), StepStatus::Current);
+  EXPECT_EQ(status(again, "report"), StepStatus::Ran);
+}
+
+TEST_F(StudyTest, InterruptedTrainingResumes) {
+  run();
+  // What a killed `layers run` leaves: the record says started.
+  const std::string steps = dir.file("out/a/steps.yaml");
+  std::string text = read_text_file(steps);
+  text.replace(text.find("state: done"), 11, "state: started");
+  std::ofstream(steps) << text;
+  const auto r = run();
+  EXPECT_EQ(status(r, "a train"), StepStatus::Ran);
+  EXPECT_EQ(calls["resume a"], 1);
+}
+
+TEST_F(StudyTest, DryRunRunsNothingAndMarksDependents) {
+  run();
+  fs::remove(dir.file("out/b/checkpoint-last.pt"));
+  train::StudyOptions dry;
+  dry.dry_run = true;
+  const auto r = run({}, dry);
+  EXPECT_EQ(status(r, "b train"), StepStatus::WouldRun);
+  EXPECT_EQ(status(r, "b eval-test"), StepStatus::WouldRun);
+  EXPECT_EQ(status(r, "report"), StepStatus::WouldRun);
+  EXPECT_EQ(status(r, "a eval-test"), StepStatus::Current);
+  EXPECT_EQ(calls["train b"], 1);
+  EXPECT_FALSE(fs::exists(dir.file("out/b/checkpoint-last.pt")));
+}
+
+TEST_F(StudyTest, OnlyAndForce) {
+  run();
+  train::StudyOptions o;
+  o.only = {"b"};
+  o.force = true;
+  const auto r = run({}, o);
+  EXPECT_EQ(calls["train b"], 2);
+  EXPECT_EQ(calls["train a"], 1);
+  for (const auto& s : r.steps) EXPECT_NE(s.step, "report");
+  o.only = {"c"};
+  EXPECT_THROW(run({}, o), InputError);
+}
+
+TEST_F(StudyTest, RequiredStudyRunsFirstAndLendsItsCheckpoint) {
+  const std::string other = dir.write(
+      "stability.yaml", "requires: [study.yaml]\noutput: " + dir.file("stab") + "\ndataset: {config: gen.yaml, folder: " +
+                            dir.file("data") + "}\nsteps: [train, eval]\nset: [eval.horizon=0]\nexperiments:\n"
+                            "  - {name: a, file: exp.yaml, checkpoint: " + dir.file("out/a") + "}\n");
+  const auto r = train::run_study(other, {}, actions(), {});
+  EXPECT_TRUE(r.ok());
+  EXPECT_EQ(calls["train a"], 1);  // in the required study only
+  EXPECT_EQ(calls["eval a"], 2);
+  EXPECT_TRUE(fs::exists(dir.file("stab/a/eval-test/metrics.json")));
+  EXPECT_FALSE(fs::exists(dir.file("stab/a/checkpoint-best.pt")));
+  // The lent checkpoint changes: only the evaluation that uses it reruns.
+  fs::remove(dir.file("out/a/checkpoint-best.pt"));
+  const auto again = train::run_study(other, {}, actions(), {});
+  EXPECT_EQ(calls["train a"], 2);
+  EXPECT_EQ(calls["eval a"], 4);
+  EXPECT_EQ(calls["eval b"], 1);
+}
+
+TEST_F(StudyTest, RequiredCycleAndMissingCheckpointAreReported) {
+  dir.write("x.yaml", "requires: [y.yaml]\ndataset: {config: gen.yaml, folder: d}\nexperiments: [{name: a, file: exp.yaml}]\n");
+  const std::string y = dir.write(
+      "y.yaml", "requires: [x.yaml]\ndataset: {config: gen.yaml, folder: d}\nexperiments: [{name: a, file: exp.yaml}]\n");
+  EXPECT_THROW(train::run_study(y, {}, actions(), {}), InputError);
+
+  const std::string lone = dir.write("lone.yaml", "output: " + dir.file("lone") + "\ndataset: {config: gen.yaml, folder: " +
+                                                      dir.file("data") + "}\nsteps: [eval]\nexperiments:\n"
+                                                      "  - {name: a, file: exp.yaml, checkpoint: " + dir.file("nowhere") +
+                                                      "}\n");
+  const auto r = train::run_study(lone, {}, actions(), {});
+  EXPECT_FALSE(r.ok());
+  EXPECT_EQ(status(r, "a eval-test"), StepStatus::Blocked);
+  for (const auto& o : r.steps)
+    if (o.step == "eval-test") EXPECT_NE(o.message.find("requires"), std::string::npos) << o.message;
+}
+
+TEST_F(StudyTest, BadStudyFilesNameFileAndKey) {
+  auto message = [&](const std::string& text) -> std::string {
+    const std::string f = dir.write("bad.yaml", text);
+    try {
+      train::load_study(f);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  const std::string head = "dataset: {config: gen.yaml, folder: d}\n";
+  EXPECT_NE(message(head + "steps: [train, plot]\nexperiments: [{name: a, file: exp.yaml}]\n").find("steps[1]"),
+            std::string::npos);
+  EXPECT_NE(message(head + "experiments: [{name: a, file: exp.yaml}, {name: a, file: exp.yaml}]\n")
+                .find("experiments[1].name"),
+            std::string::npos);
+  EXPECT_NE(message(head + "experiments: [{name: a/b, file: exp.yaml}]\n").find("experiments[0].name"),
+            std::string::npos);
+  EXPECT_NE(message(head + "experiments: [{name: a, file: missing.yaml}]\n").find("missing.yaml"), std::string::npos);
+  EXPECT_NE(message("dataset: {config: nope.yaml, folder: d}\nexperiments: [{name: a, file: exp.yaml}]\n")
+                .find("dataset.config"),
+            std::string::npos);
+  EXPECT_NE(message(head + "experiments: [{name: a, file: exp.yaml}]\ncolour: red\n").find("colour"),
+            std::string::npos);
+  EXPECT_NE(message(head + "experiments: []\n").find("experiments"), std::string::npos);
+}
+
+TEST(StudyFingerprint, StampsAndHashes) {
+  test::TempDir dir;
+  EXPECT_EQ(train::fingerprint_text("abc"), train::fingerprint_text("abc"));
+  EXPECT_NE(train::fingerprint_text("abc"), train::fingerprint_text("abd"));
+  EXPECT_EQ(train::fingerprint_text("abc").size(), 16u);
+  EXPECT_EQ(train::file_stamp(dir.file("none")), "missing");
+  const std::string f = dir.write("f", "12345");
+  EXPECT_EQ(train::file_stamp(f).substr(0, 2), "5:");
+  const std::string before = train::dataset_fingerprint(dir.path());
+  dir.write("shard-00000.h5", "x");
+  EXPECT_NE(train::dataset_fingerprint(dir.path()), before);
+  EXPECT_EQ(train::dataset_fingerprint(dir.file("nope")), "missing");
+}
+
+}  // namespace

@@ -1,0 +1,236 @@
+// The LayersNet model on synthetic layered scenes: shapes and counts of a
+// forward pass, any number of garments, body vertices far from the
+// garment change nothing, parameters and static data are checked, the
+// plugin registers it, and it overfits one window.
+#include <gtest/gtest.h>
+
+#include <iostream>
+
+#include <torch/optim/adam.h>
+
+#include "layers/core/config_node.h"
+#include "layers/core/error.h"
+#include "layers/zoo/plugin_loader.h"
+#include "layers/zoo/registry.h"
+#include "layersnet.h"
+#include "synthetic_scene.h"
+#include "topology.h"
+
+namespace ln = layers::layersnet;
+namespace zoo = layers::zoo;
+namespace cfg = layers::cfg;
+
+namespace {
+
+std::shared_ptr<ln::LayersNet> make(const std::string& yaml = "{}") {
+  return std::dynamic_pointer_cast<ln::LayersNet>(ln::make_layersnet(cfg::parse(yaml, "params.yaml")));
+}
+
+double position_mse(const std::vector<at::Tensor>& pred, const std::vector<at::Tensor>& truth) {
+  double sum = 0;
+  std::int64_t n = 0;
+  for (std::size_t k = 0; k < pred.size(); ++k) {
+    sum += (pred[k] - truth[k]).pow(2).sum(1).sum().item<double>();
+    n += pred[k].size(0);
+  }
+  return sum / static_cast<double>(n);
+}
+
+zoo::StepInput with_far_body(zoo::StepInput in, std::int64_t extra) {
+  const at::Tensor far = at::rand({extra, 3}) + at::tensor({10.0f, 10.0f, -10.0f});
+  in.body = at::cat({in.body, far});
+  in.body_next = at::cat({in.body_next, far + 0.01f});
+  return in;
+}
+
+}  // namespace
+
+TEST(LayersNet, TopologyJoinsGarmentsInOneIndexSpace) {
+  ln::testing::SceneSize size;
+  size.garment_rows = 6;
+  size.garment_cols = 12;
+  size.garments = 3;
+  auto scene = ln::testing::make_scene(size);
+  scene.statics.garments[2].attributes = scene.statics.garments[0].attributes.clone();
+  const ln::SceneTopology t = ln::build_topology(scene.statics, 0.1);
+  EXPECT_EQ(t.vertex_offset, (std::vector<std::int64_t>{0, 72, 144, 216}));
+  ASSERT_EQ(t.patch_offset.size(), 4u);
+  const std::int64_t P = t.patches();
+
+  // Means: of a constant, the constant; of the vertex index, within the
+  // patch's index range; back to vertices, a mean of patch means.
+  const at::Tensor ones = at::ones({t.vertices(), 1});
+  EXPECT_TRUE(at::allclose(ln::patch_mean(t, ones), at::ones({P, 1})));
+  EXPECT_TRUE(at::allclose(ln::vertex_mean(t, at::ones({P, 2})), at::ones({t.vertices(), 2})));
+  const at::Tensor index = at::arange(t.vertices(), at::kFloat).unsqueeze(1);
+  const at::Tensor mean_index = ln::patch_mean(t, index).squeeze(1);
+  for (std::size_t k = 0; k < 3; ++k) {
+    const at::Tensor m = mean_index.narrow(0, t.patch_offset[k], t.patch_offset[k + 1] - t.patch_offset[k]);
+    EXPECT_GE(m.min().item<float>(), static_cast<float>(t.vertex_offset[k]));
+    EXPECT_LE(m.max().item<float>(), static_cast<float>(t.vertex_offset[k + 1] - 1));
+  }
+
+  // E^M: symmetric, no self edges, never across garments.
+  EXPECT_TRUE(at::equal(t.mesh_mask, t.mesh_mask.t()));
+  EXPECT_FALSE(t.mesh_mask.diagonal().any().item<bool>());
+  EXPECT_EQ(t.mesh_mask.sum().item<std::int64_t>(), 2 * t.mesh_edges);
+  const std::int64_t p1 = t.patch_offset[1];
+  EXPECT_FALSE(t.mesh_mask.narrow(0, 0, p1).narrow(1, p1, P - p1).any().item<bool>());
+
+  // Garments 0 and 2 share their attribute token; garment 1 has its own.
+  ASSERT_EQ(t.attributes.size(0), 2);
+  EXPECT_TRUE(t.patch_attribute.narrow(0, 0, p1).select(1, 0).all().item<bool>());
+  EXPECT_TRUE(t.patch_attribute.narrow(0, t.patch_offset[2], P - t.patch_offset[2]).select(1, 0).all().item<bool>());
+  EXPECT_EQ(t.patch_attribute.sum().item<std::int64_t>(), P);
+  // Kinds: garment 0 inner, the others outer (synthetic layers 0, 1, 1).
+  EXPECT_EQ(t.patch_kind.select(1, 0).sum().item<float>(), static_cast<float>(p1));
+  // Min-max scaling: mass 0.3 in [0.2, 0.8] -> 1/6.
+  EXPECT_NEAR(t.attributes[0][0].item<float>(), 1.0f / 6, 1e-6);
+}
+
+TEST(LayersNet, ForwardPassOnTwoGarments) {
+  at::manual_seed(0);
+  const auto scene = ln::testing::make_scene({});
+  auto model = make();
+  model->set_normalization(ln::testing::scene_normalization(scene));
+  model->prepare(scene.statics);
+
+  // t = 5: wind blows (second half); t = 1: calm.
+  for (std::int64_t t : {5, 1}) {
+    const zoo::StepOutput out = model->step(scene.input(t));
+    ASSERT_EQ(out.garments.size(), 2u);
+    for (std::size_t k = 0; k < 2; ++k) {
+      EXPECT_EQ(out.garments[k].sizes(), scene.garments[k][t].sizes());
+      EXPECT_TRUE(at::isfinite(out.garments[k]).all().item<bool>());
+      // An untrained model still moves the garment by a bounded amount.
+      EXPECT_LT((out.garments[k] - scene.garments[k][t]).abs().max().item<double>(), 1.0);
+    }
+    const ln::StepCounts& c = model->last_counts();
+    EXPECT_EQ(c.vertices, 320);
+    EXPECT_GT(c.patches, 20);
+    EXPECT_LT(c.patches, 160);
+    // gravity, wind while it blows, one token per distinct attribute vector
+    EXPECT_EQ(c.abstract_tokens, t == 5 ? 4 : 3);
+    EXPECT_GT(c.mesh_edges, c.patches);
+    EXPECT_GT(c.world_edges, 0);  // the layers are 2.5 cm apart
+    EXPECT_GT(c.body_tokens, 0);
+    EXPECT_LE(c.body_tokens, 288);
+    EXPECT_LE(c.body_edges, 16 * c.patches);
+    EXPECT_GE(c.body_edges, c.body_tokens);
+    EXPECT_EQ(model->step_counters().at("patches"), static_cast<double>(c.patches));
+    EXPECT_EQ(model->step_counters().at("body_tokens"), static_cast<double>(c.body_tokens));
+  }
+}
+
+TEST(LayersNet, BodyVerticesFarFromTheGarmentChangeNothing) {
+  at::manual_seed(1);
+  const auto scene = ln::testing::make_scene({});
+  auto model = make("{width: 32, blocks: 2, heads: 4}");
+  model->set_normalization(ln::testing::scene_normalization(scene));
+  model->prepare(scene.statics);
+  const zoo::StepOutput base = model->step(scene.input(5));
+  const ln::StepCounts counts = model->last_counts();
+  const zoo::StepOutput more = model->step(with_far_body(scene.input(5), 1000));
+  for (std::size_t k = 0; k < base.garments.size(); ++k)
+    EXPECT_TRUE(at::equal(base.garments[k], more.garments[k])) << "garment " << k;
+  EXPECT_EQ(model->last_counts().body_tokens, counts.body_tokens);
+  EXPECT_EQ(model->last_counts().body_edges, counts.body_edges);
+
+  // Moving the body away from the garment does change the prediction.
+  zoo::StepInput moved = scene.input(5);
+  moved.body_next = moved.body_next + at::tensor({0.0f, 0.0f, 0.5f});
+  const zoo::StepOutput other = model->step(moved);
+  EXPECT_FALSE(at::allclose(base.garments[0], other.garments[0]));
+  EXPECT_EQ(model->last_counts().body_tokens, 0);
+}
+
+TEST(LayersNet, AnyNumberOfGarments) {
+  at::manual_seed(2);
+  auto model = make("{width: 32, blocks: 1, heads: 2}");
+  for (int garments : {1, 3}) {
+    ln::testing::SceneSize size;
+    size.garments = garments;
+    size.garment_rows = 7 + garments;  // unseen shapes: nothing garment-specific in the weights
+    const auto scene = ln::testing::make_scene(size, "g" + std::to_string(garments));
+    model->prepare(scene.statics);
+    const zoo::StepOutput out = model->step(scene.input(2));
+    ASSERT_EQ(out.garments.size(), static_cast<std::size_t>(garments));
+    for (int k = 0; k < garments; ++k) {
+      EXPECT_EQ(out.garments[k].size(0), size.garment_rows * size.garment_cols);
+      EXPECT_TRUE(at::isfinite(out.garments[k]).all().item<bool>());
+    }
+  }
+}
+
+TEST(LayersNet, SharedAttributesMakeOneTokenAndMissingOnesNone) {
+  auto scene = ln::testing::make_scene({}, "shared");
+  scene.statics.garments[1].attributes = scene.statics.garments[0].attributes.clone();
+  auto model = make("{width: 16, blocks: 1, heads: 2}");
+  model->prepare(scene.statics);
+  model->step(scene.input(1));
+  EXPECT_EQ(model->last_counts().abstract_tokens, 2);  // gravity + one attribute token
+
+  scene.statics.id = "none";
+  for (auto& g : scene.statics.garments) g.attributes = at::zeros({0});
+  model->prepare(scene.statics);
+  model->step(scene.input(1));
+  EXPECT_EQ(model->last_counts().abstract_tokens, 1);  // gravity only
+}
+
+TEST(LayersNet, RejectsBadParametersAndStaticData) {
+  EXPECT_THROW(make("{heads: 3}"), layers::InputError);
+  EXPECT_THROW(make("{width: 100}"), layers::InputError);  // 8 heads do not divide 100
+  EXPECT_THROW(make("{patch_size: 0}"), layers::InputError);
+  EXPECT_THROW(make("{patch_sise: 0.1}"), layers::InputError);
+  EXPECT_EQ(cfg::to_yaml(make("{blocks: 2}")->config()).find("blocks: 2") != std::string::npos, true);
+
+  auto scene = ln::testing::make_scene({}, "bad");
+  scene.statics.garments[1].attributes = at::ones({5});
+  auto model = make("{width: 16, blocks: 1, heads: 2}");
+  try {
+    model->prepare(scene.statics);
+    FAIL() << "no error";
+  } catch (const layers::InputError& e) {
+    EXPECT_EQ(e.file(), "sequence 'bad' garments[1] (garment1)");
+    EXPECT_EQ(e.field(), "attributes");
+  }
+}
+
+TEST(LayersNet, PluginRegistersTheModel) {
+  zoo::Registry registry;
+  zoo::load_file(registry, LAYERSNET_PLUGIN_FILE);
+  ASSERT_TRUE(registry.contains("layersnet"));
+  auto model = registry.create("layersnet", cfg::parse("{width: 32, heads: 4}", "p.yaml"));
+  EXPECT_GT(model->info().parameters, 10000);
+}
+
+TEST(LayersNet, OverfitsOneWindow) {
+  at::manual_seed(3);
+  const auto scene = ln::testing::make_scene({});
+  auto model = make("{width: 32, blocks: 1, heads: 4}");
+  model->set_normalization(ln::testing::scene_normalization(scene));
+  model->prepare(scene.statics);
+  const zoo::StepInput input = scene.input(4);
+  const std::vector<at::Tensor> target = scene.target(4);
+
+  torch::optim::Adam adam(model->parameters(), torch::optim::AdamOptions(1e-3));
+  auto loss_of = [&](const zoo::StepOutput& out) {
+    at::Tensor loss = at::zeros({});
+    std::int64_t n = 0;
+    for (std::size_t k = 0; k < target.size(); ++k) {
+      loss = loss + (out.garments[k] - target[k]).pow(2).sum();
+      n += target[k].size(0);
+    }
+    return loss / static_cast<double>(n);
+  };
+  const double before = position_mse(model->step(input).garments, target);
+  for (int i = 0; i < 200; ++i) {
+    adam.zero_grad();
+    at::Tensor loss = loss_of(model->step(input));
+    loss.backward();
+    adam.step();
+  }
+  const double after = position_mse(model->step(input).garments, target);
+  EXPECT_LT(after, before / 10) << "before " << before << " after " << after;
+  std::cout << "position MSE before " << before << " after " << after << " (m^2)\n";
+}

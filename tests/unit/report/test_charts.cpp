@@ -1,0 +1,131 @@
+// The whole report on two fake runs whose predictions and ground truth are
+// tiny synthetic LAYERS-H5 files: every chart is drawn as a non-empty PNG
+// next to its script and data, and report.md embeds them. Skipped when
+// gnuplot is not installed.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "layers/data/dataset_writer.h"
+#include "layers/data/shard_writer.h"
+#include "layers/report/gnuplot.h"
+#include "layers/report/report.h"
+#include "report_fixtures.h"
+#include "synthetic_sequence.h"
+
+namespace layers::report {
+namespace {
+
+namespace fs = std::filesystem;
+using layers::test::TempDir;
+using testing::FakeRun;
+
+bool is_png(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char sig[8] = {};
+  in.read(sig, 8);
+  return in && std::string(sig + 1, 3) == "PNG" && fs::file_size(path) > 1000;
+}
+
+// A dataset with two short sequences and, per run, predictions of both
+// (the garments shifted by `offset` after frame 1, as a rollout would drift).
+struct Fixture {
+  TempDir dir{"report-charts"};
+  std::string dataset = dir.file("dataset");
+  std::vector<data::SequenceData> sequences;
+
+  Fixture() {
+    data::testing::SyntheticSize size;
+    size.frames = 8;
+    data::DatasetWriter writer(dataset);
+    for (int k = 0; k < 2; ++k) {
+      sequences.push_back(data::testing::make_sequence("seq-" + std::to_string(k), 7 + k, size));
+      writer.add(sequences.back());
+    }
+    writer.set_split("test", {"seq-0", "seq-1"});
+    writer.finish();
+  }
+
+  std::string run(const std::string& name, FakeRun r, float offset) {
+    r.dataset = dataset;
+    const std::string folder = testing::write_run(dir, name, r);
+    std::vector<data::SequenceData> predicted = sequences;
+    for (data::SequenceData& s : predicted)
+      for (data::GarmentData& g : s.garments) {
+        const std::size_t per_frame = g.positions.size() / static_cast<std::size_t>(s.n_frames);
+        for (std::size_t i = 2 * per_frame; i < g.positions.size(); ++i) g.positions[i] += offset * (i % 3 == 0);
+      }
+    data::write_shard(folder + "/eval-test/predictions.h5", predicted);
+    return folder;
+  }
+};
+
+TEST(Charts, EveryChartIsANonEmptyPng) {
+  try {
+    Gnuplot::find();
+  } catch (const std::exception& e) {
+    GTEST_SKIP() << e.what();
+  }
+  Fixture f;
+  FakeRun fast, slow;
+  fast.model = "fastnet", fast.ms_per_frame = 0.5, fast.error = 30;
+  slow.model = "slownet", slow.ms_per_frame = 8.0, slow.error = 6, slow.diverged_at = 3;
+  slow.step_errors = {1, 2, 1000};
+  ReportInputs inputs;
+  inputs.runs = {f.run("fast_run", fast, 0.05f), f.run("slow_run", slow, -0.02f)};
+  f.dir.write("slow_run/bench.json", testing::bench_json("slownet", 2.0, 9.0));
+  inputs.title = "Test report";
+  inputs.picture.frames = 3;
+  const std::string out = f.dir.file("out");
+  const ReportResult result = write_report(inputs, out);
+
+  // The only missing piece: fast_run has no bench.json.
+  ASSERT_EQ(result.problems.size(), 1u) << ::testing::PrintToString(result.problems);
+  EXPECT_NE(result.problems[0].find("fast_run: no bench.json"), std::string::npos) << result.problems[0];
+  const std::vector<std::string> expected = {"speed_accuracy", "by_step_error", "by_step_h_collision",
+                                             "by_step_l_collision", "per_type", "frames"};
+  ASSERT_EQ(result.charts.size(), expected.size()) << ::testing::PrintToString(result.charts);
+  std::ifstream md_in(result.report);
+  std::stringstream md;
+  md << md_in.rdbuf();
+  for (const std::string& name : expected) {
+    const std::string png = out + "/charts/" + name + ".png";
+    EXPECT_TRUE(is_png(png)) << png;
+    EXPECT_TRUE(fs::exists(out + "/charts/" + name + ".gp")) << name;
+    EXPECT_NE(md.str().find("(charts/" + name + ".png)"), std::string::npos) << name;
+  }
+  // Data files stay next to the PNGs; no temporary file is left behind.
+  EXPECT_TRUE(fs::exists(out + "/charts/speed_accuracy_bench.dat"));
+  EXPECT_TRUE(fs::exists(out + "/charts/frames_0_0.dat"));
+  for (const auto& entry : fs::recursive_directory_iterator(out))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
+  EXPECT_EQ(result.pareto_front, (std::vector<std::string>{"fast_run", "slow_run"}));
+  EXPECT_NE(md.str().find("first at step 2 (frame 3, s2: non-finite prediction)"), std::string::npos);
+  EXPECT_NE(md.str().find("Sequence `seq-0` at frames 2, 5, 7"), std::string::npos) << md.str();
+  EXPECT_NE(md.str().find("The top row is the dataset's ground truth"), std::string::npos);
+}
+
+TEST(Charts, PictureWithoutGroundTruthSaysSo) {
+  try {
+    Gnuplot::find();
+  } catch (const std::exception& e) {
+    GTEST_SKIP() << e.what();
+  }
+  Fixture f;
+  FakeRun r;
+  const std::string run = f.run("only_run", r, 0.01f);
+  std::vector<RunResults> runs = {load_run(run)};
+  runs[0].dataset = f.dir.file("moved-away");
+  std::vector<std::string> notes;
+  fs::create_directories(f.dir.file("charts"));
+  const Chart chart = frames_picture(Gnuplot::find(), f.dir.file("charts"), runs, PictureOptions{}, notes);
+  EXPECT_TRUE(is_png(f.dir.file("charts/frames.png")));
+  EXPECT_NE(chart.caption.find("No ground truth"), std::string::npos);
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("moved-away not found"), std::string::npos) << notes[0];
+}
+
+}  // namespace
+}  // namespace layers::report

@@ -1,0 +1,79 @@
+// The strain cap (internal StrainLimiter): it converges where Gauss-Seidel
+// needs many sweeps (the stretch has to travel along the cloth against the
+// sweep order) while later sweeps visit only the edges around what moved,
+// and held vertices (in contact) give way less than free ones.
+#include <gtest/gtest.h>
+
+#include "fixtures.h"
+#include "layers/sim/cloth.h"
+#include "strain_limit.h"
+
+namespace layers::sim {
+namespace {
+
+using test::V3;
+
+// A strip 2 cm wide along x, 1 m long, 1 cm edges, stretched by 30% along x
+// and pinned at its far end (x = 1.3), so each sweep in index order (from
+// x = 0) passes the correction on by one edge only.
+Cloth stretched_strip() {
+  geometry::TriMesh rest = test::grid(V3(0, 0, 0), V3(1, 0, 0), V3(0, 0.02, 0), 100, 2);
+  ClothOptions options;
+  for (Eigen::Index i = 0; i < rest.vertices.rows(); ++i)
+    if (rest.vertices(i, 0) > 0.999f) options.pinned.push_back(static_cast<int>(i));
+  Cloth cloth(rest, Material{}, options);
+  geometry::Points x = rest.vertices;
+  x.col(0) *= 1.3f;
+  cloth.set_positions(x);
+  return cloth;
+}
+
+double max_stretch(const Cloth& c) {
+  double worst = 0;
+  const auto& x = c.state().x;
+  for (Eigen::Index e = 0; e < c.edges().rows(); ++e)
+    worst = std::max(worst, (x[c.edges()(e, 0)] - x[c.edges()(e, 1)]).norm() / c.rest_lengths()[e] - 1);
+  return worst;
+}
+
+TEST(StrainLimit, ConvergesWhereManySweepsAreNeeded) {
+  Cloth cloth = stretched_strip();
+  Cloth::State state = cloth.state();
+  detail::StrainLimiter limiter;
+  const int sweeps = limiter.apply(cloth, state, 0.08, 1000);
+  EXPECT_GT(sweeps, 30);    // far more than one pass...
+  EXPECT_LT(sweeps, 1000);  // ...but it converges
+  Cloth capped = cloth;
+  capped.set_velocities(geometry::Points::Zero(cloth.num_vertices(), 3));
+  geometry::Points x(cloth.num_vertices(), 3);
+  for (int i = 0; i < cloth.num_vertices(); ++i) x.row(i) = state.x[i].cast<float>().transpose();
+  capped.set_positions(x);
+  EXPECT_LE(max_stretch(capped), 0.08 + 1e-6);
+  EXPECT_GT(max_stretch(cloth), 0.29);
+  // The pinned end did not move; the free end came most of the way back.
+  EXPECT_NEAR(state.x[cloth.num_vertices() - 1].x(), 1.3, 1e-12);
+  EXPECT_GT(state.x[0].x(), 1.3 - 1.08 - 1e-6);
+  // Capped again, nothing moves.
+  const Cloth::State before = state;
+  EXPECT_EQ(limiter.apply(cloth, state, 0.08, 1000), 1);
+  for (std::size_t i = 0; i < state.x.size(); ++i) EXPECT_EQ(state.x[i], before.x[i]);
+}
+
+TEST(StrainLimit, HeldVerticesGiveWayLess) {
+  // One over-long edge between a held and a free vertex: the free one takes
+  // five sixths of the correction (a held vertex a fifth of its share).
+  geometry::TriMesh tri = test::make_mesh({V3(0, 0, 0), V3(0.01, 0, 0), V3(0, 0.01, 0)}, {{0, 1, 2}});
+  Cloth cloth(tri, Material{});
+  Cloth::State state = cloth.state();
+  state.x[1] = V3(0.02, 0, 0);
+  state.x[2] = V3(0, 0.0101, 0);  // within the cap
+  std::vector<std::uint8_t> held = {1, 0, 0};
+  detail::StrainLimiter limiter;
+  limiter.apply(cloth, state, 0.08, 100, &held);
+  const double moved0 = -state.x[0].x(), moved1 = 0.02 - state.x[1].x();
+  EXPECT_GT(moved0, 0);
+  EXPECT_NEAR(moved1 / moved0, 5.0, 0.3);  // equal masses
+}
+
+}  // namespace
+}  // namespace layers::sim

@@ -1,0 +1,155 @@
+// Checkpoints, rollouts, the trainer and the evaluator on a synthetic
+// dataset with the tiny test model.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+#include "layers/core/error.h"
+#include "layers/train/checkpoint.h"
+#include "layers/train/evaluator.h"
+#include "layers/train/session.h"
+#include "layers/train/trainer.h"
+#include "temp_dir.h"
+#include "train_fixture.h"
+
+namespace layers::train {
+namespace {
+
+struct Fixture : ::testing::Test {
+  test::TempDir dir;
+  zoo::Registry registry;
+  std::string dataset;
+  void SetUp() override {
+    testing::register_test_models(registry);
+    dataset = testing::write_dataset(dir.path() + "/data", 5, 12);
+  }
+  ExperimentConfig config(const std::string& run, const std::string& model = "tiny") {
+    return testing::experiment(dataset, dir.path() + "/" + run, model);
+  }
+  TrainOptions quiet() {
+    TrainOptions o;
+    o.progress = false;
+    return o;
+  }
+};
+
+at::Tensor params_of(const ExperimentConfig& c, zoo::Registry& registry) {
+  Session s = open_session(c, registry);
+  load_checkpoint(checkpoint_path(c, "last"), *s.model, nullptr);
+  std::vector<at::Tensor> all;
+  for (const at::Tensor& p : s.model->parameters()) all.push_back(p.detach().flatten());
+  return at::cat(all);
+}
+
+TEST_F(Fixture, TrainingLowersTheLossAndValidates) {
+  ExperimentConfig c = config("run");
+  c.train.epochs = 6;
+  c.train.lr = 0.05;
+  c.train.curriculum_max = 0;  // same task every epoch: losses comparable
+  const TrainReport r = run_training(c, registry, quiet());
+  ASSERT_EQ(r.epochs.size(), 6u);
+  EXPECT_EQ(r.trainable_parameters, 4);
+  EXPECT_LT(r.epochs.back().loss, 0.1 * r.epochs.front().loss);
+  EXPECT_GT(r.epochs.back().val_error_mm, 0.0);
+  EXPECT_LT(r.epochs.back().val_error_mm, 50.0);  // a few mm per frame of drift at most
+  EXPECT_DOUBLE_EQ(r.epochs[2].lr, 0.05 * 0.5);  // halved every 2 epochs
+  EXPECT_TRUE(std::filesystem::exists(r.last_checkpoint));
+  EXPECT_TRUE(std::filesystem::exists(r.best_checkpoint));
+}
+
+TEST_F(Fixture, ResumingGivesTheSameModelAsOneRun) {
+  ExperimentConfig straight = config("straight");
+  straight.train.epochs = 3;
+  run_training(straight, registry, quiet());
+
+  ExperimentConfig split = config("split");
+  split.train.epochs = 1;
+  run_training(split, registry, quiet());
+  split.train.epochs = 3;
+  TrainOptions resume = quiet();
+  resume.resume = true;
+  const TrainReport r = run_training(split, registry, resume);
+  EXPECT_EQ(r.epochs.size(), 2u);  // epochs 2 and 3 only
+  EXPECT_EQ(r.epochs_done, 3);
+  EXPECT_TRUE(at::equal(params_of(straight, registry), params_of(split, registry)));
+}
+
+TEST_F(Fixture, CheckpointRestoresParametersAndNormalisation) {
+  ExperimentConfig c = config("ckpt");
+  Session a = open_session(c, registry);
+  auto& tiny = dynamic_cast<testing::TinyModel&>(*a.model);
+  {
+    at::NoGradGuard g;
+    tiny.gain_.fill_(0.75);
+  }
+  save_checkpoint(dir.path() + "/x.pt", *a.model, nullptr, {2, 17, 3.5, "tiny"});
+  Session b = open_session(c, registry);
+  b.model->set_normalization(zoo::Normalization::identity());
+  const CheckpointState st = load_checkpoint(dir.path() + "/x.pt", *b.model, nullptr);
+  EXPECT_EQ(st.epochs_done, 2);
+  EXPECT_EQ(st.steps, 17);
+  EXPECT_DOUBLE_EQ(st.best_val_mm, 3.5);
+  EXPECT_FLOAT_EQ(dynamic_cast<testing::TinyModel&>(*b.model).gain_.item<float>(), 0.75f);
+  EXPECT_TRUE(at::equal(b.model->normalization().garment_velocity.std, a.model->normalization().garment_velocity.std));
+  EXPECT_FALSE(at::equal(a.model->normalization().garment_position.std, at::ones({3})));
+
+  // Another model's checkpoint, and a file that is not one.
+  Session other = open_session(config("ckpt2", "exploding"), registry);
+  save_checkpoint(dir.path() + "/other.pt", *other.model, nullptr, {0, 0, -1, "exploding"});
+  EXPECT_THROW(load_checkpoint(dir.path() + "/other.pt", *b.model, nullptr), InputError);
+  std::ofstream(dir.path() + "/junk.pt") << "not a checkpoint";
+  EXPECT_THROW(load_checkpoint(dir.path() + "/junk.pt", *b.model, nullptr), InputError);
+  EXPECT_THROW(load_checkpoint(dir.path() + "/missing.pt", *b.model, nullptr), InputError);
+}
+
+TEST_F(Fixture, DivergenceIsRecordedNotThrown) {
+  ExperimentConfig c = config("boom", "exploding");
+  Session s = open_session(c, registry);
+  const SequenceRollout r = rollout_sequence(s, "s4", 0, 1000.0, true);
+  ASSERT_EQ(r.result.frames.size(), 10u);  // 12 frames: 0 and 1 given
+  ASSERT_GE(r.result.diverged_at, 2);
+  EXPECT_FALSE(r.result.diverge_reason.empty());
+  EXPECT_DOUBLE_EQ(r.result.frames.back().error_mm, 1000.0);
+  EXPECT_TRUE(r.result.frames.back().diverged);
+  ASSERT_EQ(r.result.predictions.size(), 2u);
+  EXPECT_TRUE(at::isfinite(r.result.predictions[0]).all().item<bool>());
+}
+
+TEST_F(Fixture, EvaluationWritesMetricsAndPredictions) {
+  ExperimentConfig c = config("eval");
+  c.train.epochs = 1;
+  run_training(c, registry, quiet());
+  EvalOptions o;
+  o.progress = false;
+  const EvalReport r = run_evaluation(c, registry, o);
+  EXPECT_EQ(r.split, "test");
+  EXPECT_EQ(r.sequences, 1);
+  EXPECT_EQ(r.frames, 6);
+  EXPECT_EQ(r.per_type.size(), 2u);  // tshirt and jacket
+  EXPECT_GT(r.overall.error_mm.mean, 0.0);
+  std::ifstream in(r.out_dir + "/metrics.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["model"], "tiny");
+  EXPECT_EQ(j["by_step"].size(), 6u);
+  EXPECT_NEAR(j["overall"]["error_mm"]["mean"].get<double>(), r.overall.error_mm.mean, 1e-9);
+  const data::Dataset pred = data::Dataset::open(r.out_dir + "/predictions.h5");
+  ASSERT_TRUE(pred.contains("s4"));
+  EXPECT_EQ(pred.info("s4").n_frames, 8);  // 2 given + 6 predicted
+  EXPECT_TRUE(std::filesystem::exists(r.out_dir + "/sequences.csv"));
+}
+
+TEST_F(Fixture, MissingDatasetIsAClearError) {
+  ExperimentConfig c = config("nodata");
+  c.data.dataset.clear();
+  try {
+    open_session(c, registry);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("data.dataset"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace layers::train
