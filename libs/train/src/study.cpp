@@ -310,11 +310,19 @@ class StudyRunner {
     write_text_atomic(file.string(), run.config_yaml);
   }
 
-  // The experiment text without its eval section: what training depends on.
-  static std::string training_text(const StudyRun& run) {
+  // The experiment as fingerprinted: without run.output and data.dataset
+  // (locations: the run folder holds the records, the dataset's files are
+  // fingerprinted themselves, so a study folder copied with its dataset
+  // stays current) and, for training, without the eval section.
+  static std::string fingerprinted_text(const StudyRun& run, bool training) {
     cfg::Node tree = cfg::to_node(run.config);
-    tree.map.erase(std::remove_if(tree.map.begin(), tree.map.end(), [](const auto& kv) { return kv.first == "eval"; }),
-                   tree.map.end());
+    auto drop = [](cfg::Node& map, const char* key) {
+      map.map.erase(std::remove_if(map.map.begin(), map.map.end(), [&](const auto& kv) { return kv.first == key; }),
+                    map.map.end());
+    };
+    if (cfg::Node* r = tree.find("run")) drop(*r, "output");
+    if (cfg::Node* d = tree.find("data")) drop(*d, "dataset");
+    if (training) drop(tree, "eval");
     return cfg::to_yaml(tree);
   }
 
@@ -332,7 +340,7 @@ class StudyRunner {
     bool checkpoint_ok = true;
     std::string blocked_why;
     if (contains(run.steps, "train")) {
-      const std::string inputs = Fingerprint().add("experiment", training_text(run)).add("dataset", dataset_fp).str();
+      const std::string inputs = Fingerprint().add("experiment", fingerprinted_text(run, true)).add("dataset", dataset_fp).str();
       const StepStatus s = step(study.name, run.name, "train", records, inputs,
                                 {"checkpoint-last.pt", "checkpoint-best.pt"}, dataset_changed, top,
                                 [&](const Record* previous) {
@@ -352,9 +360,9 @@ class StudyRunner {
     const std::string checkpoint_fp = file_stamp(run.checkpoint);
     auto inputs_with = [&](const std::string& what) {
       return Fingerprint()
-          .add("experiment", run.config_yaml)
+          .add("experiment", fingerprinted_text(run, false))
           .add("dataset", dataset_fp)
-          .add("checkpoint", run.checkpoint)
+          .add("checkpoint", run.external_checkpoint ? run.checkpoint : fs::path(run.checkpoint).filename().string())
           .add("checkpoint_stamp", checkpoint_fp)
           .add("step", what)
           .str();
