@@ -1,12 +1,17 @@
 // Generator speed: seconds per simulated frame of the cloth solver for a
 // two-layer outfit (a jumpsuit under a jacket) on the full MPFB2 body
 // (13,380 vertices) walking (procedural walk), with strong wind, at about
-// 1k, 4k and 16k garment vertices (edge lengths 50, 25 and 12.5 mm), as
-// `layers generate` runs it: one simulation alone (threads:1) and two side
-// by side on two cores (threads:2, each thread its own scene, as with
-// `--threads 2`). Set-up and warm-up (a short drape and blend) are not
-// timed; each iteration is one recorded frame (1/30 s of motion). Counters:
-// garment vertices, and the solver's own split of the time per frame.
+// 1k, 4k and 16k garment vertices (edge lengths 50, 25 and 12.5 mm) with
+// the 16 substeps of configs/data/small.yaml, and at 5k vertices (22.5 mm)
+// with 10 and 16 substeps, as `layers generate` runs it: one simulation
+// alone (threads:1) and two side by side on two cores (threads:2, each
+// thread its own scene, as with `--threads 2`). Set-up and warm-up (a
+// short drape and blend) are not timed; each iteration is one recorded
+// frame (1/30 s of motion). Arguments: edge length in tenths of a mm,
+// substeps. Counters: garment vertices, the solver's own split of the time
+// per frame (per thread), the strain cap's sweeps per frame, and the
+// generator's validation measures over the timed frames (measured outside
+// the timing): mean H- and L-penetration (%) and max edge stretch (%).
 #include <benchmark/benchmark.h>
 
 #include <string>
@@ -14,14 +19,15 @@
 #include "layers/generate/generator_config.h"
 #include "layers/generate/scene_spec.h"
 #include "layers/generate/simulate.h"
+#include "layers/sim/measures.h"
 
 namespace gen = layers::generate;
 
 namespace {
 
-// The scene of one benchmark thread: the given edge length, the settings
-// of configs/data/small.yaml otherwise (16 substeps, 2 iterations).
-gen::SceneSimulation make_scene(double edge_mm, int frames) {
+// The scene of one benchmark thread: the given edge length and substeps,
+// the settings of configs/data/small.yaml otherwise (2 iterations).
+gen::SceneSimulation make_scene(double edge_mm, int substeps, int frames) {
   gen::GeneratorConfig config;
   config.name = "bench";
   config.seed = 3;
@@ -33,7 +39,7 @@ gen::SceneSimulation make_scene(double edge_mm, int frames) {
   config.garments.outfits = {gen::OutfitConfig{{"jumpsuit"}, "jacket", 1.0}};
   config.wind.calm_weight = config.wind.mixed_weight = 0;
   config.wind.strong_weight = 1;
-  config.sim.substeps = 16;
+  config.sim.substeps = substeps;
   config.sim.iterations = 2;
   gen::SceneSpec spec = gen::sample_scene(config, 0);
   spec.shape = {};  // the average body
@@ -41,9 +47,9 @@ gen::SceneSimulation make_scene(double edge_mm, int frames) {
 }
 
 void BM_GeneratorFrame(benchmark::State& state) {
-  const double edge_mm = 0.1 * static_cast<double>(state.range(0));  // argument: tenths of a mm
+  const double edge_mm = 0.1 * static_cast<double>(state.range(0));
   const int frames = static_cast<int>(state.max_iterations);
-  gen::SceneSimulation scene = make_scene(edge_mm, frames);
+  gen::SceneSimulation scene = make_scene(edge_mm, static_cast<int>(state.range(1)), frames);
   if (!scene.usable()) {
     state.SkipWithError(scene.problem().c_str());
     return;
@@ -51,24 +57,41 @@ void BM_GeneratorFrame(benchmark::State& state) {
   scene.warm_up();
   layers::sim::Solver& solver = scene.solver();
   solver.reset_timings();
+  layers::sim::SequenceMeasures measures;  // validation measures, not timed
   int r = 0;
-  for (auto _ : state) scene.record(r++);
+  for (auto _ : state) {
+    scene.record(r++);
+    state.PauseTiming();
+    measures.add(layers::sim::measure_frame(solver));
+    state.ResumeTiming();
+  }
   int vertices = 0;
   for (int c = 0; c < solver.num_cloths(); ++c) vertices += solver.cloth(c).num_vertices();
   const layers::sim::StepTimings& t = solver.timings();
-  const double n = static_cast<double>(t.frames);
-  state.counters["garment_vertices"] = vertices;
-  state.counters["elastic_ms"] = 1e3 * t.elastic / n;
-  state.counters["layer_contact_ms"] = 1e3 * t.layer_contact / n;
-  state.counters["body_contact_ms"] = 1e3 * t.body_contact / n;
-  state.counters["self_contact_ms"] = 1e3 * t.self_contact / n;
+  // Per frame, averaged over the threads (each thread simulates its own scene).
+  const auto per_frame_ms = [&](double seconds) {
+    return benchmark::Counter(1e3 * seconds / static_cast<double>(t.frames), benchmark::Counter::kAvgThreads);
+  };
+  state.counters["garment_vertices"] = benchmark::Counter(vertices, benchmark::Counter::kAvgThreads);
+  state.counters["elastic_ms"] = per_frame_ms(t.elastic);
+  state.counters["layer_ms"] = per_frame_ms(t.layer_contact);
+  state.counters["body_ms"] = per_frame_ms(t.body_contact);
+  state.counters["self_ms"] = per_frame_ms(t.self_contact);
+  state.counters["cap_ms"] = per_frame_ms(t.strain_cap);
+  state.counters["H_pct"] = benchmark::Counter(100 * measures.mean_h_penetration(), benchmark::Counter::kAvgThreads);
+  state.counters["L_pct"] = benchmark::Counter(100 * measures.mean_l_penetration(), benchmark::Counter::kAvgThreads);
+  state.counters["stretch_pct"] = benchmark::Counter(100 * measures.max_stretch(), benchmark::Counter::kAvgThreads);
+  state.counters["cap_sweeps"] = benchmark::Counter(static_cast<double>(t.cap_sweeps) / static_cast<double>(t.frames),
+                                                    benchmark::Counter::kAvgThreads);
 }
 
 // Iterations are fixed (frames of the walk to record); wall time, since two
 // threads run at once.
-BENCHMARK(BM_GeneratorFrame)->Arg(500)->Iterations(30)->Threads(1)->Threads(2)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_GeneratorFrame)->Arg(250)->Iterations(20)->Threads(1)->Threads(2)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_GeneratorFrame)->Arg(125)->Iterations(8)->Threads(1)->Threads(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_GeneratorFrame)->Args({500, 16})->Iterations(30)->Threads(1)->Threads(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_GeneratorFrame)->Args({250, 16})->Iterations(20)->Threads(1)->Threads(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_GeneratorFrame)->Args({125, 16})->Iterations(8)->Threads(1)->Threads(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_GeneratorFrame)->Args({225, 10})->Iterations(20)->Threads(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_GeneratorFrame)->Args({225, 16})->Iterations(20)->Threads(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 

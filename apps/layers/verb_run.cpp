@@ -4,7 +4,6 @@
 // docs/studies.md). This file binds the study's steps to the libraries, all
 // in-process: layers::generate for the dataset, layers::train for
 // train/eval/bench and layers::report (write_report) for the report.
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 

@@ -10,8 +10,10 @@
 // A model whose plugin is not built is skipped with a message; a built one
 // without a golden fails and says how to make it.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -21,6 +23,7 @@
 
 #include "golden_compare.h"
 #include "layers/core/atomic_file.h"
+#include "layers/core/error.h"
 #include "layers/core/progress.h"
 #include "layers/core/text_file.h"
 #include "layers/train/study.h"
@@ -93,6 +96,16 @@ struct Regression {
       r.result = test::run_command(layers_command("run " + study_file() + " --set output=" + r.runs() +
                                                   " --set dataset.folder=" + r.work + "/data" + only));
       r.seconds = timer.seconds();
+      // The study's own lines (steps, metrics), without progress lines.
+      std::size_t start = 0;
+      while (start < r.result.output.size()) {
+        std::size_t end = r.result.output.find('\n', start);
+        if (end == std::string::npos) end = r.result.output.size();
+        const std::string line = r.result.output.substr(start, end - start);
+        if (line.rfind("[regression]", 0) == 0 || line.rfind("  ", 0) == 0 || line.find("steps ran") != std::string::npos)
+          std::printf("%s\n", line.c_str());
+        start = end + 1;
+      }
       std::printf("regression study: %zu runs in %.1f s (working in %s)\n", r.built.size(), r.seconds,
                   r.work.c_str());
     } catch (const std::exception& e) {
@@ -201,4 +214,28 @@ TEST(RegressionStudy, DegradedModelFailsTheComparison) {
                       m.find("new ") != std::string::npos);
   }
   EXPECT_TRUE(named) << messages.front();
+}
+
+// The evaluator's error growth rate (metrics.json) is the least-squares
+// slope of the per-frame error before divergence. A slope is linear in the
+// errors, so without divergence the mean of the sequences' slopes equals
+// the slope of by_step (the mean error at each rollout step).
+TEST(RegressionStudy, ErrorGrowthIsTheSlopeOfTheErrorCurve) {
+  Regression& r = Regression::get();
+  ASSERT_TRUE(r.setup_error.empty()) << r.setup_error;
+  for (const std::string& run : r.built) {
+    if (!fs::exists(r.metrics(run))) continue;  // reported by MatchesGoldenMetrics
+    const auto doc = nlohmann::json::parse(read_text_file(r.metrics(run)));
+    if (doc.at("diverged").get<int>() != 0) continue;
+    double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (const auto& s : doc.at("by_step")) {
+      const double x = s.at("step").get<double>(), y = s.at("error_mm").get<double>();
+      n += 1, sx += x, sy += y, sxx += x * x, sxy += x * y;
+    }
+    const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+    const auto& growth = doc.at("error_growth_mm_per_frame");
+    EXPECT_EQ(growth.at("count").get<int>(), doc.at("sequences").get<int>()) << run;
+    EXPECT_NEAR(growth.at("mean").get<double>(), slope, 1e-6 * (1 + std::fabs(slope))) << run;
+    for (const auto& s : doc.at("per_sequence")) EXPECT_TRUE(s.at("error_growth_mm_per_frame").is_number()) << run;
+  }
 }

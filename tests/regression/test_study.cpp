@@ -4,6 +4,7 @@
 // training reruns, dry runs, required studies and bad study files.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -135,6 +136,18 @@ TEST_F(StudyTest, EvaluationSettingsRerunEvaluationNotTraining) {
   EXPECT_EQ(status(t, "a eval-test"), StepStatus::Ran);
 }
 
+TEST_F(StudyTest, CopiedStudyAndDatasetStayCurrent) {
+  run();
+  ASSERT_EQ(std::system(("cp -a " + dir.file("out") + " " + dir.file("out2") + " && cp -a " + dir.file("data") + " " +
+                         dir.file("data2")).c_str()),
+            0);
+  const auto r = run({"output=" + dir.file("out2"), "dataset.folder=" + dir.file("data2")});
+  EXPECT_EQ(r.count(StepStatus::Ran), 1u);  // the report: it names the run folders
+  EXPECT_EQ(status(r, "report"), StepStatus::Ran);
+  EXPECT_EQ(calls["train a"], 1);
+  EXPECT_EQ(calls["dataset"], 2);  // asked, found complete
+}
+
 TEST_F(StudyTest, FailureBlocksOnlyItsRun) {
   fail_train = "a";
   const auto r = run();
@@ -144,8 +157,11 @@ TEST_F(StudyTest, FailureBlocksOnlyItsRun) {
   EXPECT_EQ(status(r, "a bench"), StepStatus::Blocked);
   EXPECT_EQ(status(r, "b eval-test"), StepStatus::Ran);
   EXPECT_EQ(status(r, "report"), StepStatus::Ran);  // the report lists what is missing
-  for (const auto& o : r.steps)
-    if (o.status == StepStatus::Failed) EXPECT_NE(o.message.find("training diverged"), std::string::npos);
+  for (const auto& o : r.steps) {
+    if (o.status == StepStatus::Failed) {
+      EXPECT_NE(o.message.find("training diverged"), std::string::npos);
+    }
+  }
   fail_train.clear();
   const auto again = run();
   EXPECT_TRUE(again.ok());
@@ -226,8 +242,11 @@ TEST_F(StudyTest, RequiredCycleAndMissingCheckpointAreReported) {
   const auto r = train::run_study(lone, {}, actions(), {});
   EXPECT_FALSE(r.ok());
   EXPECT_EQ(status(r, "a eval-test"), StepStatus::Blocked);
-  for (const auto& o : r.steps)
-    if (o.step == "eval-test") EXPECT_NE(o.message.find("requires"), std::string::npos) << o.message;
+  for (const auto& o : r.steps) {
+    if (o.step == "eval-test") {
+      EXPECT_NE(o.message.find("requires"), std::string::npos) << o.message;
+    }
+  }
 }
 
 TEST_F(StudyTest, BadStudyFilesNameFileAndKey) {

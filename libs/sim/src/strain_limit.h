@@ -1,7 +1,7 @@
 // strain_limit.h (internal) -- a safety net after the elastic solve:
 // edges stretched beyond (1 + max_strain) times their rest length are
-// shortened back to it (mass-weighted, Gauss-Seidel over the edges in a
-// fixed order), as in Provot's strain limiting. Where the elastic solve has
+// shortened back below it (mass-weighted, Gauss-Seidel over the edges in a
+// fixed order, over-relaxed), as in Provot's strain limiting. Where the elastic solve has
 // converged it does nothing; where a contact conflict or a tangle would
 // over-stretch the cloth it caps the stretch. Vertices flagged in `held`
 // (touching the body or an inner layer) take a fifth of their share of a
@@ -24,7 +24,9 @@ namespace layers::sim::detail {
 class StrainLimiter {
  public:
   // Runs at most `sweeps` sweeps, stopping after the first that moves
-  // nothing; returns how many it ran.
+  // nothing; an edge is corrected back to the cap only when it is more
+  // than 0.5% of its length over it (8.54% for an 8% cap). Returns how
+  // many sweeps it ran.
   int apply(const Cloth& cloth, Cloth::State& state, double max_strain, int sweeps,
             const std::vector<std::uint8_t>* held = nullptr);
 

@@ -207,12 +207,6 @@ class StudyRunner {
   }
 
  private:
-  struct Step {
-    std::string run, name;
-    bool current = false;
-    std::string why;
-  };
-
   void say(const std::string& study, const StepOutcome& o) {
     const std::string who = o.run.empty() ? o.step : o.run + " " + o.step;
     std::string line = "[" + study + "] " + who + ": " + status_word(o.status);

@@ -1,8 +1,10 @@
 // The strain cap (internal StrainLimiter): it converges where Gauss-Seidel
 // needs many sweeps (the stretch has to travel along the cloth against the
-// sweep order) while later sweeps visit only the edges around what moved,
-// and held vertices (in contact) give way less than free ones.
+// sweep order; later sweeps visit only the edges around what moved), and
+// held vertices (in contact) give way less than free ones.
 #include <gtest/gtest.h>
+
+#include <cstdio>
 
 #include "fixtures.h"
 #include "layers/sim/cloth.h"
@@ -13,14 +15,14 @@ namespace {
 
 using test::V3;
 
-// A strip 2 cm wide along x, 1 m long, 1 cm edges, stretched by 30% along x
-// and pinned at its far end (x = 1.3), so each sweep in index order (from
+// A strip 2 cm wide along x, 12 cm long, 1 cm edges, stretched by 30% along
+// x and pinned at its far end (x = 0.156), so each sweep in index order (from
 // x = 0) passes the correction on by one edge only.
 Cloth stretched_strip() {
-  geometry::TriMesh rest = test::grid(V3(0, 0, 0), V3(1, 0, 0), V3(0, 0.02, 0), 100, 2);
+  geometry::TriMesh rest = test::grid(V3(0, 0, 0), V3(0.12, 0, 0), V3(0, 0.02, 0), 12, 2);
   ClothOptions options;
   for (Eigen::Index i = 0; i < rest.vertices.rows(); ++i)
-    if (rest.vertices(i, 0) > 0.999f) options.pinned.push_back(static_cast<int>(i));
+    if (rest.vertices(i, 0) > 0.1199f) options.pinned.push_back(static_cast<int>(i));
   Cloth cloth(rest, Material{}, options);
   geometry::Points x = rest.vertices;
   x.col(0) *= 1.3f;
@@ -41,18 +43,19 @@ TEST(StrainLimit, ConvergesWhereManySweepsAreNeeded) {
   Cloth::State state = cloth.state();
   detail::StrainLimiter limiter;
   const int sweeps = limiter.apply(cloth, state, 0.08, 1000);
-  EXPECT_GT(sweeps, 30);    // far more than one pass...
-  EXPECT_LT(sweeps, 1000);  // ...but it converges
+  std::printf("[sim] strip pinned at the far end: capped in %d sweeps\n", sweeps);
+  EXPECT_GT(sweeps, 5);     // the correction travels edge by edge...
+  EXPECT_LT(sweeps, 200);   // ...and converges within the solver's default
   Cloth capped = cloth;
   capped.set_velocities(geometry::Points::Zero(cloth.num_vertices(), 3));
   geometry::Points x(cloth.num_vertices(), 3);
   for (int i = 0; i < cloth.num_vertices(); ++i) x.row(i) = state.x[i].cast<float>().transpose();
   capped.set_positions(x);
-  EXPECT_LE(max_stretch(capped), 0.08 + 1e-6);
+  EXPECT_LE(max_stretch(capped), 1.08 * 1.005 - 1 + 1e-9);  // within the slack
   EXPECT_GT(max_stretch(cloth), 0.29);
   // The pinned end did not move; the free end came most of the way back.
-  EXPECT_NEAR(state.x[cloth.num_vertices() - 1].x(), 1.3, 1e-12);
-  EXPECT_GT(state.x[0].x(), 1.3 - 1.08 - 1e-6);
+  EXPECT_EQ(state.x[cloth.num_vertices() - 1], cloth.state().x[cloth.num_vertices() - 1]);
+  EXPECT_GT(state.x[0].x(), 0.156 - 0.12 * 1.08 * 1.005 - 1e-6);
   // Capped again, nothing moves.
   const Cloth::State before = state;
   EXPECT_EQ(limiter.apply(cloth, state, 0.08, 1000), 1);
@@ -62,15 +65,16 @@ TEST(StrainLimit, ConvergesWhereManySweepsAreNeeded) {
 TEST(StrainLimit, HeldVerticesGiveWayLess) {
   // One over-long edge between a held and a free vertex: the free one takes
   // five sixths of the correction (a held vertex a fifth of its share).
-  geometry::TriMesh tri = test::make_mesh({V3(0, 0, 0), V3(0.01, 0, 0), V3(0, 0.01, 0)}, {{0, 1, 2}});
+  geometry::TriMesh tri = test::make_mesh({V3(0, 0, 0), V3(0.01, 0, 0), V3(0.005, 0.01, 0)}, {{0, 1, 2}});
   Cloth cloth(tri, Material{});
   Cloth::State state = cloth.state();
-  state.x[1] = V3(0.02, 0, 0);
-  state.x[2] = V3(0, 0.0101, 0);  // within the cap
+  state.x[1] = V3(0.0115, 0, 0);  // edge 0-1 +15%, edge 1-2 +6.7% (within the cap)
   std::vector<std::uint8_t> held = {1, 0, 0};
   detail::StrainLimiter limiter;
   limiter.apply(cloth, state, 0.08, 100, &held);
-  const double moved0 = -state.x[0].x(), moved1 = 0.02 - state.x[1].x();
+  // Over-relaxed: shortened by 1.8 times its excess over the cap.
+  EXPECT_NEAR((state.x[1] - state.x[0]).norm(), 0.0108 - 0.8 * (0.0115 - 0.0108), 1e-9);
+  const double moved0 = state.x[0].x(), moved1 = 0.0115 - state.x[1].x();
   EXPECT_GT(moved0, 0);
   EXPECT_NEAR(moved1 / moved0, 5.0, 0.3);  // equal masses
 }

@@ -36,10 +36,12 @@ namespace layers::sim {
 // Wall-clock seconds spent per phase since the last reset_timings().
 struct StepTimings {
   double predict = 0;        // forces, damping, prediction, velocity update
-  double elastic = 0;        // supports and refactorisation, stretch/shear/bending iterations, strain caps
+  double elastic = 0;        // supports and refactorisation, stretch/shear/bending iterations, first strain cap
   double layer_contact = 0;  // inner/outer garments
   double self_contact = 0;
   double body_contact = 0;   // including the per-substep body interpolation and grid
+  double strain_cap = 0;     // the strain cap after the contacts
+  long cap_sweeps = 0;       // sweeps it ran (all cloths and substeps)
   double total = 0;
   long frames = 0;
 };
