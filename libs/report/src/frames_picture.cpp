@@ -20,6 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr std::uint32_t kBody = 0xdcdcdc, kInner = 0x3b75af, kOuter = 0xe1812c;
+constexpr float kLayerBias = 0.03f;  // sort-depth bias per layer (mesh_view.h), metres
 
 // One row of the picture: a label and where its garments come from.
 struct Row {
@@ -72,7 +73,8 @@ void add_garments(std::vector<ScreenTriangle>& tris, ScreenBounds* bounds, const
   const data::Window w = ds.read_frames(sequence, frame, 1);
   for (std::size_t g = 0; g < statics->garments.size(); ++g) {
     const data::GarmentStatic& gs = statics->garments[g];
-    add_mesh(tris, w.garments[g].data(), gs.n_vertices(), gs.faces, gs.layer == 0 ? kInner : kOuter, false);
+    add_mesh(tris, w.garments[g].data(), gs.n_vertices(), gs.faces, gs.layer == 0 ? kInner : kOuter, false,
+             kLayerBias * static_cast<float>(1 + gs.layer));
     if (bounds) bounds->add(mesh_bounds(w.garments[g].data(), gs.n_vertices()));
   }
 }
@@ -157,7 +159,7 @@ Chart frames_picture(const Gnuplot& gp, const std::string& dir, const std::vecto
 
   const double pad = 0.03 * std::max(bounds.xmax - bounds.xmin, bounds.ymax - bounds.ymin);
   const double w = bounds.xmax - bounds.xmin + 2 * pad, h = bounds.ymax - bounds.ymin + 2 * pad;
-  const int panel_w = 200, label_w = 40, title_h = 50;
+  const int panel_w = 200, label_w = 40, title_h = 64;
   const int panel_h = static_cast<int>(std::clamp(panel_w * h / w, 120.0, 520.0));
   const int width = label_w + panel_w * static_cast<int>(frames.size()) + 10;
   const int height = title_h + panel_h * static_cast<int>(rows.size()) + 10;

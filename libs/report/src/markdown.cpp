@@ -101,7 +101,8 @@ void divergence_list(std::ostringstream& md, const std::vector<RunResults>& runs
     md << "- `" << r.name << "`: ";
     const std::int64_t step = e.first_divergence_step();
     if (step < 0) {
-      md << "stable in all " << e.sequences << " sequences over " << e.by_step.size() << " steps";
+      md << "no divergence in " << e.sequences << " sequence" << (e.sequences == 1 ? "" : "s") << " over "
+         << e.by_step.size() << " steps";
     } else {
       std::string where;
       for (const SequenceMetrics& s : e.per_sequence)

@@ -34,7 +34,7 @@ std::uint32_t shade(std::uint32_t base_rgb, double nz, double ambient) {
 }
 
 void add_mesh(std::vector<ScreenTriangle>& out, const float* p, std::int64_t n_vertices,
-              const std::vector<std::int32_t>& faces, std::uint32_t base_rgb, bool cull_back) {
+              const std::vector<std::int32_t>& faces, std::uint32_t base_rgb, bool cull_back, float depth_bias) {
   for (std::size_t f = 0; f + 2 < faces.size(); f += 3) {
     const float* v[3];
     bool finite = true;
@@ -56,7 +56,7 @@ void add_mesh(std::vector<ScreenTriangle>& out, const float* p, std::int64_t n_v
     if (cull_back && nz <= 0) continue;
     ScreenTriangle t;
     for (int k = 0; k < 3; ++k) t.x[k] = v[k][0], t.y[k] = v[k][1];
-    t.depth = (v[0][2] + v[1][2] + v[2][2]) / 3.0f;
+    t.depth = (v[0][2] + v[1][2] + v[2][2]) / 3.0f + depth_bias;
     t.rgb = shade(base_rgb, nz);
     out.push_back(t);
   }
@@ -79,7 +79,7 @@ std::string polygon_data(std::vector<ScreenTriangle> triangles) {
   char line[96];
   for (const ScreenTriangle& t : triangles) {
     for (int k = 0; k < 3; ++k) {
-      std::snprintf(line, sizeof line, "%.5f %.5f %u\n", t.x[k], t.y[k], static_cast<unsigned>(t.rgb));
+      std::snprintf(line, sizeof line, "%.4f %.4f %u\n", t.x[k], t.y[k], static_cast<unsigned>(t.rgb));
       out += line;
     }
     out += '\n';

@@ -72,7 +72,7 @@ Chart speed_accuracy_chart(const Gnuplot& gp, const std::string& dir, const std:
                 << " using 1:2 with linespoints pt 4 ps 1.2 dt 3 lc rgb " << gnuplot_string(run_color(i))
                 << " title " << gnuplot_string(r.name + ": benchmarked sizes") << ", \\\n     "
                 << gnuplot_string(name + "_bench.dat") << " index " << bench_blocks
-                << " using 1:2:3 with labels offset char 0,-1 font ',8' tc rgb " << gnuplot_string(run_color(i))
+                << " using 1:2:3 with labels rotate by -35 left offset char 0.2,-0.8 font ',8' tc rgb " << gnuplot_string(run_color(i))
                 << " notitle";
     ++bench_blocks;
   }
@@ -86,7 +86,7 @@ Chart speed_accuracy_chart(const Gnuplot& gp, const std::string& dir, const std:
   std::ostringstream s;
   s << gp.preamble(name, 900, 600) << "set title 'Accuracy against speed'\n"
     << "set xlabel 'ms per predicted frame (log scale)'\nset ylabel 'mean Euclidean error (mm)'\n"
-    << "set logscale x\nset grid\nset key outside right top\nset datafile missing 'NaN'\n"
+    << "set logscale x\nset yrange [0:*]\nset grid\nset key outside right top\nset datafile missing 'NaN'\n"
     << "set offsets graph 0.15, graph 0.35, graph 0.15, graph 0.15\n"
     << "plot " << gnuplot_string(name + "_front.dat")
     << " using 1:2 with steps dt 2 lw 1.5 lc rgb '#999999' title 'Pareto front', \\\n     "
@@ -168,10 +168,17 @@ std::vector<Chart> by_step_charts(const Gnuplot& gp, const std::string& dir, con
       s << "set arrow from " << step << ", graph 0 to " << step << ", graph 1 nohead dt 2 lw 1.5 lc rgb "
         << gnuplot_string(run_color(i)) << "\n"
         << "set label " << gnuplot_string(runs[i].name + " diverges (step " + std::to_string(step) + ")") << " at "
-        << step << ", graph 0.98 right rotate by 90 offset char -0.6,0 tc rgb " << gnuplot_string(run_color(i))
+        << step << ", graph 0.98 right rotate by 90 offset char -1.2,0 tc rgb " << gnuplot_string(run_color(i))
         << "\n";
     }
+    // The ground truth's own collision rate (mean over sequences) for reference.
+    double truth = kAbsent;
+    for (std::size_t i : plotted)
+      if (m > 0 && !std::isfinite(truth))
+        truth = m == 1 ? runs[i].eval->truth_h_collision : runs[i].eval->truth_l_collision;
     s << "plot ";
+    if (std::isfinite(truth))
+      s << exact(100.0 * truth) << " with lines dt 3 lw 1.5 lc rgb '#555555' title 'ground truth', \\\n     ";
     for (std::size_t k = 0; k < plotted.size(); ++k) {
       const std::size_t i = plotted[k];
       s << (k ? ", \\\n     " : "") << "'by_step.dat' index " << k << " using 1:" << m + 2
@@ -184,7 +191,10 @@ std::vector<Chart> by_step_charts(const Gnuplot& gp, const std::string& dir, con
                            : m == 1 ? "the share of garment vertices behind the body surface (H-collision, %)"
                                     : "the share of outer-garment vertices behind the inner garment (L-collision, %)") +
                           " at each rollout step: the model's own predictions are fed back, the body and wind "
-                          "stay ground truth, so growth along the x axis is accumulated drift.";
+                          "stay ground truth, so growth along the x axis is accumulated drift." +
+                          (m > 0 ? " The dotted grey line is the ground truth's own rate (mean over the first "
+                                   "run's sequences): the simulator's data is not collision-free either."
+                                 : "");
     if (diverged)
       caption += " A dashed vertical line marks the first step at which any sequence of that run diverged "
                  "(non-finite or above the error bound); from there its error counts as the bound" +

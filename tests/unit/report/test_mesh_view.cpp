@@ -43,6 +43,13 @@ TEST(MeshView, CullsBackFacesAndOrdersFarthestFirst) {
   EXPECT_DOUBLE_EQ(x, 1.0);
   EXPECT_EQ(std::count(data.begin(), data.end(), '\n'), 8) << "3 lines and a blank line per polygon";
 
+  // A bias larger than the 1 m gap puts the far triangle in front (written last).
+  std::vector<ScreenTriangle> biased;
+  add_mesh(biased, p, 10, {0, 1, 2}, 0x0000ff, true);
+  add_mesh(biased, p, 10, {3, 4, 5}, 0xff0000, true, 1.5f);
+  const std::string order = polygon_data(biased);
+  EXPECT_LT(order.find(std::to_string(0x0000ff)), order.find(std::to_string(0xff0000)));
+
   std::vector<ScreenTriangle> out;
   EXPECT_THROW(add_mesh(out, p, 10, {0, 1, 10}, 0xffffff, false), Error);
   const ScreenBounds b = mesh_bounds(p, 10);

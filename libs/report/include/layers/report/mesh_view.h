@@ -33,10 +33,16 @@ std::uint32_t shade(std::uint32_t base_rgb, double nz, double ambient = 0.4);
 // Appends the faces of a mesh (positions [V,3] metres, faces [F,3]).
 // With `cull_back`, faces whose normal points away from the camera are
 // dropped (closed meshes such as the body; garments keep both sides).
-// Degenerate faces and faces with a non-finite vertex are skipped. Throws
-// layers::Error for a face index out of range.
+// Degenerate faces and faces with a non-finite vertex are skipped.
+// `depth_bias` (metres) moves the faces' sort depth toward the camera: a
+// garment a few millimetres outside the skin has larger triangles than the
+// body, whose centroids can sort behind the skin's and let it show
+// through; a bias of a few centimetres per layer keeps body < inner <
+// outer where they overlap, while a limb well in front still covers them.
+// Throws layers::Error for a face index out of range.
 void add_mesh(std::vector<ScreenTriangle>& out, const float* positions, std::int64_t n_vertices,
-              const std::vector<std::int32_t>& faces, std::uint32_t base_rgb, bool cull_back);
+              const std::vector<std::int32_t>& faces, std::uint32_t base_rgb, bool cull_back,
+              float depth_bias = 0.0f);
 
 // Screen bounds of the finite vertices of a mesh.
 ScreenBounds mesh_bounds(const float* positions, std::int64_t n_vertices);
