@@ -74,10 +74,22 @@ SceneSimulation::SceneSimulation(const GeneratorConfig& config, const SceneSpec&
                                                  static_cast<Eigen::Index>(body_arrays.faces.size() / 3), 3);
   body.vertices = body_frame(0);
 
-  // Garments fitted around the T-pose body, moved to where the motion starts.
+  // Garments fitted around the T-pose body, moved to where the motion
+  // starts. A garment the templates cannot make into a valid cloth (a
+  // degenerate face) makes this scene unusable, not the whole dataset.
+  try {
+    add_garments();
+  } catch (const Error& e) {
+    problem_ = std::string("the garments could not be built: ") + e.what();
+    return;
+  }
+  solver_.set_body(body);
+}
+
+void SceneSimulation::add_garments() {
   garments_ = fit_outfit(generated_.body, spec_, config_.garments.fit);
   const scene::BodyFrame t_pose = scene::pose_body(generated_.body, generated_.body.t_pose);
-  place_ = rigid_fit(t_pose.vertices, body.vertices);
+  place_ = rigid_fit(t_pose.vertices, body_frame(0));
   for (auto& g : garments_) {
     geometry::TriMesh rest;
     rest.vertices = (place_ * rows(g.rest).cast<double>().transpose()).transpose().cast<float>();
@@ -93,7 +105,6 @@ SceneSimulation::SceneSimulation(const GeneratorConfig& config, const SceneSpec&
     const std::string what = spec_.id + " " + g.name;
     solver_.add_cloth(sim::Cloth(rest, sim::to_material(garment_attributes(g.attributes, what), {}, what), options));
   }
-  solver_.set_body(body);
 }
 
 geometry::Points SceneSimulation::body_frame(int frame) const {

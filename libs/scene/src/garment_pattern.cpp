@@ -365,6 +365,7 @@ GarmentMesh sew(const Pattern& pattern, double h, const geometry::PointIndex& bo
       throw Error("garment panel '" + pattern.panels[tri_panel[f]].name + "': a seam collapses a triangle");
     out.panel[f] = tri_panel[f];
   }
+  repair_slivers(out);
   // Openings: edges used by a single face.
   std::map<std::pair<int, int>, int> uses;
   for (int f = 0; f < out.num_faces(); ++f)

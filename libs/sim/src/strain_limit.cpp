@@ -8,7 +8,7 @@ namespace layers::sim::detail {
 
 // Share of a correction a held vertex takes, relative to its mass weight.
 constexpr double kHeldWeight = 0.2;
-// An edge is corrected (back to the cap) only when it is over the cap by
+// An edge is corrected only when it is over the cap by
 // more than this share of its capped length, i.e. at 8.54% for an 8% cap.
 // Gauss-Seidel converges slowly where a whole region must contract (a
 // neckline ring dragged open by the skin shrinks only through the small

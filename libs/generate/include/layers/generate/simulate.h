@@ -46,7 +46,8 @@ class SceneSimulation {
   SceneSimulation(const GeneratorConfig& config, const SceneSpec& spec);
 
   // False when the body self-intersects in frames that could not be
-  // repaired; problem() says why. Nothing can be simulated then.
+  // repaired, or a garment could not be made into a valid cloth;
+  // problem() says why. Nothing can be simulated then.
   bool usable() const { return problem_.empty(); }
   const std::string& problem() const { return problem_; }
 
@@ -69,6 +70,7 @@ class SceneSimulation {
 
  private:
   geometry::Points body_frame(int frame) const;
+  void add_garments();
 
   GeneratorConfig config_;
   SceneSpec spec_;

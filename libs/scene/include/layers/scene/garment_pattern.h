@@ -101,4 +101,15 @@ std::vector<Eigen::Vector2d> develop(const PanelGrid& grid);
 // layers::Error on an inconsistent pattern.
 GarmentMesh sew(const Pattern& pattern, double h, const geometry::PointIndex& body);
 
+// Lifting a flat panel onto its 3D grid can flatten a triangle whose
+// corners all lie on a straight stretch of a 3D outline (three samples of
+// a neckline that is curved in UV but straight across the back), or lift
+// two corners onto one point where grid rows meet: its 3D area is then a
+// tiny share of its UV area. Each such face (3D area under a tenth of its
+// UV area) gets its longest edge flipped, when that edge is inside one
+// panel and the flip leaves both faces larger in 3D and not inverted in
+// UV; what remains has its corners that are not on an opening relaxed
+// towards their neighbours. Returns the number of repairs.
+int repair_slivers(GarmentMesh& mesh);
+
 }  // namespace layers::scene::garment
