@@ -9,14 +9,10 @@
 #include "layers/core/error.h"
 #include "layers/geometry/nearest.h"
 #include "layers/zoo/model.h"
+#include "layers/zoo/model_config.h"
 
 namespace layers::reference {
 namespace {
-
-struct NoParams {
-  template <class V>
-  void visit(V&) {}
-};
 
 [[noreturn]] void fail(const std::string& field, const std::string& expected, const std::string& got) {
   throw Error(std::string("model '") + kSkinnedName + "': " + field + ": expected " + expected + ", got " + got);
@@ -33,14 +29,9 @@ geometry::Points finite_cpu_points(const at::Tensor& t, const std::string& field
 
 class SkinnedModel : public zoo::Model {
  public:
-  SkinnedModel() : Model(kSkinnedName) {
-    // No parameters; this empty buffer only lets the model follow
-    // to(device), so that device() (and the step checks) report where the
-    // caller moved it.
-    register_buffer("device_anchor", at::zeros({0}));
-  }
+  SkinnedModel() : Model(kSkinnedName) {}
 
-  cfg::Node config() const override { return cfg::to_node(NoParams{}); }
+  cfg::Node config() const override { return cfg::to_node(zoo::NoParams{}); }
 
  protected:
   // Per garment: the joints [V,4] (int64) and weights [V,4] (sum 1) of the
@@ -141,7 +132,7 @@ class SkinnedModel : public zoo::Model {
 }  // namespace
 
 std::shared_ptr<zoo::Model> make_skinned_model(const cfg::Node& params) {
-  if (params.kind != cfg::Node::Kind::Null) cfg::read<NoParams>(params);
+  if (params.kind != cfg::Node::Kind::Null) cfg::read<zoo::NoParams>(params);
   return std::make_shared<SkinnedModel>();
 }
 

@@ -4,14 +4,10 @@
 #include "layers/core/config.h"
 #include "layers/core/error.h"
 #include "layers/zoo/model.h"
+#include "layers/zoo/model_config.h"
 
 namespace layers::reference {
 namespace {
-
-struct NoParams {
-  template <class V>
-  void visit(V&) {}
-};
 
 // Rotation matrices [N,3,3] of quaternions [N,4] (w,x,y,z; normalised
 // here, so any non-zero length will do).
@@ -27,14 +23,9 @@ at::Tensor rotation_matrices(const at::Tensor& quaternions) {
 
 class StaticModel : public zoo::Model {
  public:
-  StaticModel() : Model(kStaticName) {
-    // No parameters; this empty buffer only lets the model follow
-    // to(device), so that device() (and the step checks) report where the
-    // caller moved it.
-    register_buffer("device_anchor", at::zeros({0}));
-  }
+  StaticModel() : Model(kStaticName) {}
 
-  cfg::Node config() const override { return cfg::to_node(NoParams{}); }
+  cfg::Node config() const override { return cfg::to_node(zoo::NoParams{}); }
 
  protected:
   zoo::StepOutput predict(const zoo::StepInput& in) override {
@@ -60,7 +51,7 @@ class StaticModel : public zoo::Model {
 }  // namespace
 
 std::shared_ptr<zoo::Model> make_static_model(const cfg::Node& params) {
-  if (params.kind != cfg::Node::Kind::Null) cfg::read<NoParams>(params);
+  if (params.kind != cfg::Node::Kind::Null) cfg::read<zoo::NoParams>(params);
   return std::make_shared<StaticModel>();
 }
 

@@ -5,6 +5,7 @@
 #include <torch/serialize/input-archive.h>
 #include <torch/serialize/output-archive.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "layers/core/atomic_file.h"
@@ -14,15 +15,11 @@
 namespace layers::train {
 namespace {
 
-// The six statistics in a fixed order with their archive keys.
-template <class N, class F>
-void each_norm(N& n, F&& f) {
-  f("garment_position", n.garment_position);
-  f("garment_velocity", n.garment_velocity);
-  f("garment_acceleration", n.garment_acceleration);
-  f("body_position", n.body_position);
-  f("body_velocity", n.body_velocity);
-  f("body_acceleration", n.body_acceleration);
+// Archive key of a statistic: "garment/position" -> "garment_position".
+std::string norm_key(const char* quantity) {
+  std::string key = quantity;
+  std::replace(key.begin(), key.end(), '/', '_');
+  return key;
 }
 
 at::Tensor read_tensor(torch::serialize::InputArchive& in, const std::string& key, const std::string& path) {
@@ -38,9 +35,9 @@ void save_checkpoint(const std::string& path, zoo::Model& model, const torch::op
   torch::serialize::OutputArchive out, model_archive, norm_archive;
   model.save(model_archive);
   out.write("model", model_archive);
-  each_norm(model.normalization(), [&](const char* key, const zoo::NormPair& p) {
-    norm_archive.write(std::string(key) + ".mean", p.mean.cpu());
-    norm_archive.write(std::string(key) + ".std", p.std.cpu());
+  data::for_each_quantity(model.normalization(), [&](const char* quantity, const zoo::NormPair& p) {
+    norm_archive.write(norm_key(quantity) + ".mean", p.mean.cpu());
+    norm_archive.write(norm_key(quantity) + ".std", p.std.cpu());
   });
   out.write("normalization", norm_archive);
   if (optimizer) {
@@ -90,9 +87,9 @@ CheckpointState load_checkpoint(const std::string& path, zoo::Model& model, torc
   if (!in.try_read("normalization", norm_archive))
     throw InputError(path, "normalization", "the training statistics", "nothing");
   zoo::Normalization norm;
-  each_norm(norm, [&](const char* key, zoo::NormPair& p) {
-    p.mean = read_tensor(norm_archive, std::string(key) + ".mean", path);
-    p.std = read_tensor(norm_archive, std::string(key) + ".std", path);
+  data::for_each_quantity(norm, [&](const char* quantity, zoo::NormPair& p) {
+    p.mean = read_tensor(norm_archive, norm_key(quantity) + ".mean", path);
+    p.std = read_tensor(norm_archive, norm_key(quantity) + ".std", path);
   });
   model.set_normalization(norm);
   if (optimizer) {

@@ -94,12 +94,16 @@ RolloutResult rollout(zoo::Model& model, const zoo::SequenceStatic& seq, const F
     m.frame = frames.first_frame + i + 1;
     std::vector<at::Tensor> truth;
     for (const at::Tensor& g : frames.garments) truth.push_back(g[i + 1]);
-    if (result.diverged_at >= 0) {
+    // A frame at or after the divergence: the bound as its error, no collision rates.
+    const auto record_diverged = [&] {
       m.diverged = true;
       m.error_mm = options.diverge_mm;
       m.garment_error_mm.assign(seq.garments.size(), options.diverge_mm);
       m.h_collision = m.l_collision = kNaN;
       result.frames.push_back(m);
+    };
+    if (result.diverged_at >= 0) {
+      record_diverged();
       continue;
     }
     Timer timer;
@@ -119,11 +123,7 @@ RolloutResult rollout(zoo::Model& model, const zoo::SequenceStatic& seq, const F
                                   ? "error " + std::to_string(m.error_mm) + " mm above the bound " +
                                         std::to_string(options.diverge_mm) + " mm"
                                   : "non-finite prediction";
-      m.diverged = true;
-      m.error_mm = options.diverge_mm;
-      m.garment_error_mm.assign(seq.garments.size(), options.diverge_mm);
-      m.h_collision = m.l_collision = kNaN;
-      result.frames.push_back(m);
+      record_diverged();
       continue;
     }
     geometry::TriMesh body_mesh{points_of(frames.body[i + 1]), body_faces};

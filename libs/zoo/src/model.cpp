@@ -158,7 +158,11 @@ class StepChecker {
 
 }  // namespace
 
-Model::Model(const std::string& name) : torch::nn::Module(name) {}
+Model::Model(const std::string& name) : torch::nn::Module(name) {
+  // An empty buffer every model has, so that device() follows to(device)
+  // even for a model without parameters or buffers of its own.
+  register_buffer("device_anchor", at::zeros({0}));
+}
 Model::~Model() = default;
 
 ModelInfo Model::info() const {

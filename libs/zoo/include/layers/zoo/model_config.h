@@ -18,6 +18,13 @@ namespace layers::zoo {
 class Model;
 class Registry;
 
+// The parameters of a model that has none: reading rejects any key
+// (`params: {}` or no `params:` at all is fine).
+struct NoParams {
+  template <class V>
+  void visit(V&) {}
+};
+
 struct ModelConfig {
   std::string name;
   cfg::Node params;
