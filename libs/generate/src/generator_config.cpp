@@ -18,7 +18,38 @@ void check_pair(const std::vector<T>& range, const std::string& file, const std:
 
 bool is_outer(const std::string& type) { return type == "jacket" || type == "jacket_hood"; }
 
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+// Every held-out motion and outfit is one the config samples, and at
+// least one of each stays seen.
+void check_holdouts(const GeneratorConfig& c, const std::string& file) {
+  std::vector<std::string> labels;
+  for (const auto& o : c.garments.outfits) labels.push_back(outfit_label(o));
+  auto check_list = [&](const std::vector<std::string>& held, const std::vector<std::string>& known,
+                        const std::string& path) {
+    for (std::size_t i = 0; i < held.size(); ++i) {
+      if (std::find(known.begin(), known.end(), held[i]) == known.end())
+        throw InputError(file, path + "[" + std::to_string(i) + "]", "one of " + joined(known), "'" + held[i] + "'");
+    }
+    std::size_t kept = 0;
+    for (const auto& k : known) kept += std::find(held.begin(), held.end(), k) == held.end();
+    if (kept == 0) throw InputError(file, path, "at least one entry left for training", "all of them held out");
+  };
+  check_list(c.splits.unseen_motions, c.body.motions, "splits.unseen_motions");
+  check_list(c.splits.unseen_outfits, labels, "splits.unseen_outfits");
+}
+
 }  // namespace
+
+std::string outfit_label(const OutfitConfig& outfit) {
+  std::string label;
+  for (const auto& t : outfit.inner) label += (label.empty() ? "" : "+") + t;
+  return label + "/" + outfit.outer;
+}
 
 void check(const GeneratorConfig& c, const std::string& file) {
   const auto& shape = c.body.shape;
@@ -56,6 +87,7 @@ void check(const GeneratorConfig& c, const std::string& file) {
     }
   }
   if (total <= 0) throw InputError(file, "garments.outfits", "at least one outfit with a positive weight", "all zero");
+  check_holdouts(c, file);
   scene::validate(c.garments.fit);
   sim::check(c.sim, "sim");
 }

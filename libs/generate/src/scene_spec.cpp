@@ -120,6 +120,14 @@ SceneSpec sample_scene(const GeneratorConfig& config, int index) {
 
   s.split = assign_splits(config).at(index);
   s.tags = subset_tags(s.garments, s.wind);
+  auto held = [](const std::vector<std::string>& list, const std::string& name) {
+    return std::find(list.begin(), list.end(), name) != list.end();
+  };
+  const bool unseen_motion = held(config.splits.unseen_motions, s.motion);
+  const bool unseen_outfit = held(config.splits.unseen_outfits, outfit_label(outfit));
+  if (unseen_motion) s.tags.push_back("unseen_motion");
+  if (unseen_outfit) s.tags.push_back("unseen_garment");
+  if (unseen_motion || unseen_outfit) s.split.clear();
   return s;
 }
 

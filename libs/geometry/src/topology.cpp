@@ -6,21 +6,44 @@
 
 namespace layers::geometry {
 
-Edges unique_edges(const Faces& faces) {
+namespace {
+
+// Every face's three edges as (min, max) pairs, sorted (an edge shared by
+// two faces appears twice).
+std::vector<std::pair<int, int>> sorted_face_edges(const Faces& faces) {
   std::vector<std::pair<int, int>> pairs;
   pairs.reserve(static_cast<std::size_t>(faces.rows()) * 3);
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
     for (int c = 0; c < 3; ++c) {
-      int a = faces(f, c), b = faces(f, (c + 1) % 3);
+      const int a = faces(f, c), b = faces(f, (c + 1) % 3);
       pairs.emplace_back(std::min(a, b), std::max(a, b));
     }
   }
   std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+}  // namespace
+
+Edges unique_edges(const Faces& faces) {
+  std::vector<std::pair<int, int>> pairs = sorted_face_edges(faces);
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
   Edges out(static_cast<Eigen::Index>(pairs.size()), 2);
   for (std::size_t e = 0; e < pairs.size(); ++e) {
     out(static_cast<Eigen::Index>(e), 0) = pairs[e].first;
     out(static_cast<Eigen::Index>(e), 1) = pairs[e].second;
+  }
+  return out;
+}
+
+std::vector<char> boundary_vertices(const Faces& faces, int num_vertices) {
+  const std::vector<std::pair<int, int>> pairs = sorted_face_edges(faces);
+  std::vector<char> out(static_cast<std::size_t>(num_vertices), 0);
+  for (std::size_t i = 0; i < pairs.size();) {
+    std::size_t j = i;
+    while (j < pairs.size() && pairs[j] == pairs[i]) ++j;
+    if (j - i == 1) out.at(static_cast<std::size_t>(pairs[i].first)) = out.at(static_cast<std::size_t>(pairs[i].second)) = 1;
+    i = j;
   }
   return out;
 }

@@ -40,13 +40,18 @@ void set_learning_rate(torch::optim::Adam& optimizer, double lr) {
 // One window: curriculum steps without gradient, then the loss steps.
 // Returns the loss (already backpropagated, divided by `scale`).
 double train_window(Session& s, const Sample& sample, std::int64_t free_steps, std::int64_t loss_steps,
-                    const zoo::TrainingContext& context, double scale) {
+                    const zoo::TrainingContext& context, double scale, double noise_std) {
   zoo::Model& model = *s.model;
   model.prepare(*sample.statics);
   const zoo::SequenceStatic& seq = model.sequence();
   const FrameTensors frames = to_device(sample.frames, s.device);
   std::int64_t i = 1;  // history = 1: row 1 is the window's start frame
   std::vector<zoo::GarmentState> states = true_states(frames, i);
+  // Training noise: the window starts from perturbed current positions
+  // (so a perturbed velocity too) and the loss still asks for the true
+  // next frames, so the model learns to pull a drifting state back.
+  if (noise_std > 0)
+    for (zoo::GarmentState& g : states) g.current = g.current + at::randn_like(g.current) * noise_std;
   {
     torch::NoGradGuard no_grad;
     for (std::int64_t r = 0; r < free_steps; ++r, ++i) {
@@ -155,7 +160,8 @@ TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& re
       const zoo::TrainingContext context{epoch, state.steps};
       double batch_loss = 0;
       for (const Sample& sample : *batch)
-        batch_loss += train_window(s, sample, free_steps, loss_steps, context, static_cast<double>(batch->size()));
+        batch_loss += train_window(s, sample, free_steps, loss_steps, context, static_cast<double>(batch->size()),
+                                   t.noise_std);
       batch_loss /= static_cast<double>(batch->size());
       if (t.grad_clip > 0) torch::nn::utils::clip_grad_norm_(params, t.grad_clip);
       optimizer.step();

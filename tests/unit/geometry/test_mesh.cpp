@@ -5,6 +5,7 @@
 #include "layers/geometry/mesh.h"
 #include "layers/geometry/normals.h"
 #include "layers/geometry/topology.h"
+#include "grid_mesh.h"
 
 namespace g = layers::geometry;
 
@@ -110,6 +111,22 @@ TEST(Topology, CubeEdgesAndAdjacency) {
   // above runs 1-2, 1-4, 2-4, 3-6, 3-5, 5-6.
   EXPECT_EQ(std::vector<int>(adj.begin(0), adj.end(0)), (std::vector<int>{1, 2, 4}));
   EXPECT_EQ(std::vector<int>(adj.begin(1), adj.end(1)), (std::vector<int>{0, 2, 3, 4, 5}));
+}
+
+TEST(Topology, BoundaryVerticesOfAGridAndAClosedTetra) {
+  const g::TriMesh grid = layers::test::unit_square_grid(4, 0.0f);
+  const std::vector<char> open = g::boundary_vertices(grid.faces, 17);  // one isolated vertex
+  int count = 0;
+  for (int v = 0; v < 16; ++v) {
+    const int i = v % 4, j = v / 4;
+    EXPECT_EQ(open[v] != 0, i == 0 || i == 3 || j == 0 || j == 3) << v;
+    count += open[v];
+  }
+  EXPECT_EQ(count, 12);
+  EXPECT_EQ(open[16], 0);
+  g::Faces tetra(4, 3);
+  tetra << 0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2;
+  for (char b : g::boundary_vertices(tetra, 4)) EXPECT_EQ(b, 0);
 }
 
 TEST(Topology, TetraAndIsolatedVertex) {

@@ -76,6 +76,22 @@ TEST_F(Fixture, ResumingGivesTheSameModelAsOneRun) {
   EXPECT_TRUE(at::equal(params_of(straight, registry), params_of(split, registry)));
 }
 
+TEST_F(Fixture, TrainingNoiseChangesTheStartStateAndStaysDeterministic) {
+  auto train = [&](const std::string& run, double noise) {
+    ExperimentConfig c = config(run);
+    c.train.epochs = 1;
+    c.train.noise_std = noise;
+    return run_training(c, registry, quiet()).first_loss;
+  };
+  const double clean = train("clean", 0.0), noisy = train("noisy", 0.01), again = train("again", 0.01);
+  // 1 cm of noise on the start positions (so on the start velocity too)
+  // makes the first batch's loss larger than from the clean state...
+  EXPECT_GT(noisy, clean);
+  // ...and the same seed gives the same noise.
+  EXPECT_DOUBLE_EQ(noisy, again);
+  EXPECT_TRUE(at::equal(params_of(config("noisy"), registry), params_of(config("again"), registry)));
+}
+
 TEST_F(Fixture, CheckpointRestoresParametersAndNormalisation) {
   ExperimentConfig c = config("ckpt");
   Session a = open_session(c, registry);

@@ -73,6 +73,17 @@ TEST(Metrics, LCollisionAgainstAnInnerPlane) {
   EXPECT_DOUBLE_EQ(zoo::l_collision_rate(outer, both), 0.5);
 }
 
+TEST(Metrics, LCollisionIgnoresOuterVerticesBesideAnOpenEdge) {
+  // A jacket hanging past the hem of a shorter inner garment: its vertices
+  // are below the inner surface's plane but beside its open edge, not
+  // behind it; one vertex under the middle of the inner garment is.
+  g::TriMesh inner = layers::test::unit_square_grid(6, 0.1f);
+  g::Points outer = points({{1.1f, 0.5f, 0.05f}, {-0.1f, 0.3f, 0.0f}, {0.5f, 0.5f, 0.05f}, {0.3f, 0.7f, 0.2f}});
+  EXPECT_DOUBLE_EQ(zoo::l_collision_rate(outer, inner), 0.25);
+  // The plain nearest-vertex test counts the first two as well.
+  EXPECT_DOUBLE_EQ(zoo::behind_share(outer, g::Surface::from_mesh(inner)), 0.75);
+}
+
 TEST(Metrics, CollisionRateNeedsVerticesAndValidFaces) {
   EXPECT_THROW(zoo::h_collision_rate(g::Points(0, 3), layers::test::unit_square_grid(3, 0.0f)), layers::Error);
   g::TriMesh bad = layers::test::unit_square_grid(3, 0.0f);

@@ -99,14 +99,27 @@ struct GarmentSampling {
   }
 };
 
+// The label of an outfit in configs and reports: inner types joined by
+// '+', then '/' and the outer type, e.g. "tshirt+skirt/jacket_hood".
+std::string outfit_label(const OutfitConfig& outfit);
+
+// Held-out scenes (generalisation studies): a scene whose motion is in
+// `unseen_motions` or whose outfit is in `unseen_outfits` is in none of
+// train/val/test but in the subset `unseen_motion` / `unseen_garment` of
+// splits.yaml, so no model trains or validates on it.
 struct SplitConfig {
   double val = 0.1;   // share of scenes in val
   double test = 0.1;  // share in test; the rest is train
+  std::vector<std::string> unseen_motions;  // entries of body.motions
+  std::vector<std::string> unseen_outfits;  // outfit labels (outfit_label)
 
   template <class V>
   void visit(V& v) {
     v("val", val, cfg::opt().range(0, 1));
     v("test", test, cfg::opt().range(0, 1));
+    v("unseen_motions", unseen_motions, cfg::opt().help("motions held out of train/val/test (subset unseen_motion)"));
+    v("unseen_outfits", unseen_outfits,
+      cfg::opt().help("outfits held out of train/val/test, as inner+inner/outer (subset unseen_garment)"));
   }
 };
 

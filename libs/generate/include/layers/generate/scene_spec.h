@@ -30,11 +30,13 @@ struct SceneSpec {
   std::vector<GarmentSpec> garments;  // inner garments first, then the outer one
   std::string wind_regime;            // calm, strong or mixed
   std::vector<sim::WindSpan> wind;    // over the recorded frames [0, frames)
-  std::string split;                  // train, val or test
-  std::vector<std::string> tags;      // subsets: T, T+W, L, L+W (or none)
+  std::string split;                  // train, val or test; empty when held out
+  std::vector<std::string> tags;      // subsets: T, T+W, L, L+W, unseen_motion, unseen_garment (or none)
 };
 
-// Scene `index` (0-based) of the dataset `config` describes.
+// Scene `index` (0-based) of the dataset `config` describes. A scene with a
+// held-out motion or outfit (config.splits.unseen_*) has no split and the
+// tag unseen_motion / unseen_garment.
 SceneSpec sample_scene(const GeneratorConfig& config, int index);
 
 // The split of every scene: a seeded permutation of the indices, the first

@@ -22,6 +22,10 @@ struct Adjacency {
   const int* end(int v) const { return neighbours.data() + offsets[v + 1]; }
 };
 
+// 1 for every vertex on an open boundary (an edge used by one face only:
+// a hem, a cuff, a neckline), 0 otherwise; `num_vertices` entries.
+std::vector<char> boundary_vertices(const Faces& faces, int num_vertices);
+
 // Vertex-to-vertex adjacency through mesh edges. Indices must lie in
 // [0, num_vertices); `num_vertices` may exceed the largest index used
 // (isolated vertices have no neighbours). The Edges overload expects each

@@ -67,6 +67,7 @@ struct TrainConfig {
   double grad_clip = 1.0;       // max gradient norm; 0 = off
   bool two_step = true;         // loss on t+1 and t+2 (predicted t+1 fed back)
   int curriculum_max = 4;       // epoch k rolls min(k-1, this) steps without gradient first
+  double noise_std = 0.0;       // m: Gaussian noise on each window's start positions (0 = off)
   int prefetch = 4;             // batches loaded ahead by the loader thread
   int val_horizon = 10;         // rollout length of the per-epoch validation
   int val_sequences = 8;        // sequences of the validation split used; 0 = all
@@ -83,6 +84,8 @@ struct TrainConfig {
     v("grad_clip", grad_clip, cfg::opt().min(0));
     v("two_step", two_step);
     v("curriculum_max", curriculum_max, cfg::opt().range(0, 1000));
+    v("noise_std", noise_std,
+      cfg::opt().range(0, 0.1).help("m: noise added to the garment positions a window starts from (0 = off)"));
     v("prefetch", prefetch, cfg::opt().range(1, 64));
     v("val_horizon", val_horizon, cfg::opt().range(1, 100000));
     v("val_sequences", val_sequences, cfg::opt().min(0));

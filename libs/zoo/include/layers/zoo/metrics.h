@@ -26,7 +26,12 @@ double behind_share(const geometry::Points& points, const geometry::Surface& sur
 // H-collision: share of garment vertices behind the body surface.
 double h_collision_rate(const geometry::Points& garment, const geometry::TriMesh& body);
 // L-collision: share of outer-garment vertices behind the inner garment
-// surface (with several inner garments, geometry::concatenate them).
+// surface (with several inner garments, geometry::concatenate them): the
+// same nearest-vertex test, except that an outer vertex whose nearest
+// inner vertex lies on an open edge of the inner garment (a hem, a cuff, a
+// neckline) is beside that garment, not behind it, and does not count.
+// (The plain test counted every jacket vertex hanging below a shorter
+// inner garment: ~5% of the outer vertices in collision-free ground truth.)
 double l_collision_rate(const geometry::Points& outer, const geometry::TriMesh& inner);
 
 // Mean and population standard deviation (divided by n, as numpy's std) of
