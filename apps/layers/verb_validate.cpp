@@ -1,25 +1,93 @@
 // `layers validate`: every schema problem of a dataset, one per line;
-// exit 1 if there is any.
+// exit 1 if there is any. With --physics, also the generator's validation
+// measures recomputed from the stored frames of every sequence (H- and
+// L-penetration, stretch, non-finite values) beside the evaluation's
+// L-collision; exit 1 if a sequence is over the generator's thresholds.
+#include <cmath>
 #include <cstdio>
 
+#include "layers/data/dataset.h"
 #include "layers/data/validate.h"
+#include "layers/generate/stored_measures.h"
+#include "layers/zoo/metrics.h"
 #include "verbs.h"
 
 namespace layers::app {
+namespace {
+
+// Mean over a sequence's frames of the evaluation's L-collision (zoo
+// metric: nearest inner vertex), NaN without an inner and an outer layer.
+struct EvalL {
+  double sum = 0;
+  int frames = 0;
+  void add(const generate::StoredFrame& f) {
+    std::vector<geometry::TriMesh> inner;
+    std::vector<geometry::TriMesh> outer;
+    for (const sim::MeasuredGarment& g : f.garments) (g.outer ? outer : inner).push_back({g.positions, g.faces});
+    if (inner.empty() || outer.empty()) return;
+    sum += zoo::l_collision_rate(geometry::concatenate(outer).vertices, geometry::concatenate(inner));
+    ++frames;
+  }
+  double mean() const { return frames > 0 ? sum / frames : std::nan(""); }
+};
+
+int check_physics(const std::string& path, const sim::ValidationConfig& limits) {
+  const data::Dataset dataset = data::Dataset::open(path);
+  sim::SequenceMeasures all;
+  EvalL all_eval;
+  int over = 0;
+  std::printf("%-14s %6s %9s %9s %11s %9s  %s\n", "sequence", "frames", "H-pen", "L-pen", "L-coll(eval)", "stretch",
+              "verdict");
+  for (const std::string& id : dataset.ids()) {
+    const data::SequenceData seq = dataset.read_sequence(id);
+    sim::SequenceMeasures m;
+    EvalL eval;
+    generate::for_each_stored_frame(seq, [&](std::int64_t, const generate::StoredFrame& f) {
+      const sim::FrameMeasures frame = sim::measure_frame(f.body, f.garments, limits.l_reach);
+      m.add(frame);
+      all.add(frame);
+      eval.add(f);
+      all_eval.add(f);
+    });
+    const std::vector<std::string> violations = m.violations(limits);
+    std::string verdict = violations.empty() ? "ok" : "";
+    for (const std::string& v : violations) verdict += (verdict.empty() ? "" : "; ") + v;
+    over += !violations.empty();
+    std::printf("%-14s %6d %8.3f%% %8.3f%% %10.2f%% %8.2f%%  %s\n", id.c_str(), m.frames(),
+                100 * m.mean_h_penetration(), 100 * m.mean_l_penetration(), 100 * eval.mean(), 100 * m.max_stretch(),
+                verdict.c_str());
+  }
+  std::printf(
+      "%s: %zu sequences, %d frames: mean H-penetration %.3f%%, mean L-penetration %.3f%% (generator rule, reach %.0f "
+      "mm), mean L-collision %.2f%% (evaluation rule), max stretch %.2f%%, %lld non-finite values; %d over the "
+      "thresholds (H %.2f%%, L %.2f%%, stretch %.0f%%)\n",
+      path.c_str(), dataset.ids().size(), all.frames(), 100 * all.mean_h_penetration(), 100 * all.mean_l_penetration(),
+      1000 * limits.l_reach, 100 * all_eval.mean(), 100 * all.max_stretch(), static_cast<long long>(all.nonfinite()),
+      over, 100 * limits.max_h_penetration, 100 * limits.max_l_penetration, 100 * limits.max_stretch);
+  return over == 0 ? static_cast<int>(kOk) : static_cast<int>(kFailure);
+}
+
+}  // namespace
 
 VerbRun register_validate(CLI::App& app, const Global&) {
   auto* cmd = app.add_subcommand("validate", "Check a dataset folder or shard file against LAYERS-H5 v1; exit 1 on any problem");
   auto path = std::make_shared<std::string>();
+  auto physics = std::make_shared<bool>(false);
+  auto limits = std::make_shared<sim::ValidationConfig>();
   cmd->add_option("path", *path, "dataset folder or shard .h5 file")->required();
-  return [path]() {
+  cmd->add_flag("--physics", *physics,
+                "also recompute the generator's validation measures from the stored frames (H/L-penetration, "
+                "stretch; slow: every frame of every sequence)");
+  cmd->add_option("--l-reach", limits->l_reach, "L-penetration reach in metres (generator default 0.03)");
+  return [path, physics, limits]() {
     auto problems = data::validate_dataset(*path);
     for (const auto& p : problems) std::printf("%s\n", p.to_string().c_str());
-    if (problems.empty()) {
-      std::printf("%s: valid LAYERS-H5 (format version 1)\n", path->c_str());
-      return static_cast<int>(kOk);
+    if (!problems.empty()) {
+      std::printf("%s: %zu problem%s\n", path->c_str(), problems.size(), problems.size() == 1 ? "" : "s");
+      return static_cast<int>(kFailure);
     }
-    std::printf("%s: %zu problem%s\n", path->c_str(), problems.size(), problems.size() == 1 ? "" : "s");
-    return static_cast<int>(kFailure);
+    std::printf("%s: valid LAYERS-H5 (format version 1)\n", path->c_str());
+    return *physics ? check_physics(*path, *limits) : static_cast<int>(kOk);
   };
 }
 

@@ -59,6 +59,17 @@ TEST(CliGenerate, ShardsThenCompleteDatasetThatValidates) {
   const std::string splits = bytes(out + "/splits.yaml");
   for (const char* key : {"train:", "val:", "test:", "T:", "T+W:", "L:", "L+W:"})
     EXPECT_NE(splits.find(key), std::string::npos) << key << " in " << splits;
+
+  // The validation measures recomputed from the stored frames: one line per
+  // sequence and the totals; the exit code follows the count over the
+  // (default) thresholds.
+  auto physics = run_command(test::layers_bin() + " validate --physics " + out);
+  EXPECT_NE(physics.output.find("3 sequences, 18 frames: mean H-penetration"), std::string::npos) << physics.output;
+  EXPECT_NE(physics.output.find("0 non-finite values"), std::string::npos) << physics.output;
+  for (const char* id : {"seq-000000", "seq-000001", "seq-000002"})
+    EXPECT_NE(physics.output.find(id), std::string::npos) << id;
+  const bool clean = physics.output.find("; 0 over the thresholds") != std::string::npos;
+  EXPECT_EQ(physics.exit_code, clean ? 0 : 1) << physics.output;
 }
 
 TEST(CliGenerate, SameSeedSameBytesAndResumeRedoesOnlyWhatIsMissing) {
