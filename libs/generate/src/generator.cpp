@@ -82,6 +82,7 @@ bool finalize(const Layout& layout, const std::string& config_yaml) {
   // subsets of every sequence that was written.
   std::map<std::string, std::vector<std::string>> splits;
   std::int64_t sequences = 0, frames = 0, garments = 0;
+  const std::vector<std::string> split_of = assign_splits(layout.config);
   for (int j = 0; j < layout.n_shards(); ++j) {
     data::Dataset shard = data::Dataset::open(layout.shard(j).string());
     for (const auto& id : shard.ids()) {
@@ -89,16 +90,15 @@ bool finalize(const Layout& layout, const std::string& config_yaml) {
       ++sequences;
       frames += info.n_frames;
       garments += static_cast<std::int64_t>(info.garments.size());
-      const std::string split = sample_scene(layout.config, std::stoi(id.substr(4))).split;
-      if (!split.empty()) splits[split].push_back(id);
+      if (!is_held_out(info.tags)) splits[split_of.at(std::stoi(id.substr(4)))].push_back(id);
       for (const auto& tag : info.tags) splits[tag].push_back(id);
     }
   }
   data::Splits out;
   for (const char* name : {"train", "val", "test"}) out.set(name, splits[name]);
   for (const char* name : {"T", "T+W", "L", "L+W"}) out.set(name, splits[name]);
-  if (!layout.config.splits.unseen_motions.empty()) out.set("unseen_motion", splits["unseen_motion"]);
-  if (!layout.config.splits.unseen_outfits.empty()) out.set("unseen_garment", splits["unseen_garment"]);
+  if (!layout.config.splits.unseen_motions.empty()) out.set(kUnseenMotion, splits[kUnseenMotion]);
+  if (!layout.config.splits.unseen_outfits.empty()) out.set(kUnseenGarment, splits[kUnseenGarment]);
   data::write_splits((layout.out / "splits.yaml").string(), out);
   data::DatasetManifest manifest;
   manifest.name = layout.config.name;

@@ -72,6 +72,12 @@ std::vector<std::string> subset_tags(const std::vector<GarmentSpec>& garments, c
   return {};
 }
 
+bool is_held_out(const std::vector<std::string>& tags) {
+  for (const std::string& t : tags)
+    if (t == kUnseenMotion || t == kUnseenGarment) return true;
+  return false;
+}
+
 std::vector<std::string> assign_splits(const GeneratorConfig& config) {
   const int n = config.sequences;
   std::vector<int> order(n);
@@ -123,11 +129,9 @@ SceneSpec sample_scene(const GeneratorConfig& config, int index) {
   auto held = [](const std::vector<std::string>& list, const std::string& name) {
     return std::find(list.begin(), list.end(), name) != list.end();
   };
-  const bool unseen_motion = held(config.splits.unseen_motions, s.motion);
-  const bool unseen_outfit = held(config.splits.unseen_outfits, outfit_label(outfit));
-  if (unseen_motion) s.tags.push_back("unseen_motion");
-  if (unseen_outfit) s.tags.push_back("unseen_garment");
-  if (unseen_motion || unseen_outfit) s.split.clear();
+  if (held(config.splits.unseen_motions, s.motion)) s.tags.push_back(kUnseenMotion);
+  if (held(config.splits.unseen_outfits, outfit_label(outfit))) s.tags.push_back(kUnseenGarment);
+  if (is_held_out(s.tags)) s.split.clear();
   return s;
 }
 

@@ -25,10 +25,7 @@ void for_each_stored_frame(const data::SequenceData& seq,
     sim::MeasuredGarment m;
     m.faces = faces_of(g.faces);
     m.edges = geometry::unique_edges(m.faces);
-    const geometry::Points rest = frame_points(g.rest, 0, g.n_vertices());
-    m.rest_lengths.resize(m.edges.rows());
-    for (Eigen::Index e = 0; e < m.edges.rows(); ++e)
-      m.rest_lengths[e] = (rest.row(m.edges(e, 0)) - rest.row(m.edges(e, 1))).cast<double>().norm();
+    m.rest_lengths = geometry::edge_lengths(frame_points(g.rest, 0, g.n_vertices()), m.edges);
     m.outer = g.layer == 1;
     f.garments.push_back(std::move(m));
   }

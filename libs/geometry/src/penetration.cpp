@@ -6,6 +6,7 @@
 
 #include "layers/core/error.h"
 #include "layers/geometry/normals.h"
+#include "layers/geometry/topology.h"
 
 namespace layers::geometry {
 
@@ -17,14 +18,17 @@ Surface::Surface(Points vertices, Points normals) : normals_(std::move(normals))
   index_ = PointIndex(std::move(vertices));
 }
 
-Surface Surface::from_mesh(const TriMesh& mesh, const std::string& what) {
+Surface Surface::from_mesh(const TriMesh& mesh, const std::string& what, OpenEdges open) {
   validate(mesh, what);
-  return Surface(mesh.vertices, vertex_normals(mesh));
+  Surface surface(mesh.vertices, vertex_normals(mesh));
+  if (open == OpenEdges::Ignore) surface.open_ = boundary_vertices(mesh.faces, mesh.num_vertices());
+  return surface;
 }
 
 float Surface::offset(const Eigen::RowVector3f& x) const {
   Neighbour h = index_.nearest(x);
-  if (h.index < 0) return std::numeric_limits<float>::quiet_NaN();
+  if (h.index < 0 || (!open_.empty() && open_[static_cast<std::size_t>(h.index)]))
+    return std::numeric_limits<float>::quiet_NaN();
   return (x - index_.points().row(h.index)).dot(normals_.row(h.index));
 }
 

@@ -36,6 +36,13 @@ Edges unique_edges(const Faces& faces) {
   return out;
 }
 
+Eigen::VectorXd edge_lengths(const Points& points, const Edges& edges) {
+  Eigen::VectorXd out(edges.rows());
+  for (Eigen::Index e = 0; e < edges.rows(); ++e)
+    out[e] = (points.row(edges(e, 0)).cast<double>() - points.row(edges(e, 1)).cast<double>()).norm();
+  return out;
+}
+
 std::vector<char> boundary_vertices(const Faces& faces, int num_vertices) {
   const std::vector<std::pair<int, int>> pairs = sorted_face_edges(faces);
   std::vector<char> out(static_cast<std::size_t>(num_vertices), 0);

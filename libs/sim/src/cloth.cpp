@@ -88,8 +88,7 @@ Cloth::Cloth(const geometry::TriMesh& rest, const Material& material, ClothOptio
   for (int p : options_.pinned) pin(p);
 
   edges_ = geometry::unique_edges(faces_);
-  rest_lengths_.resize(edges_.rows());
-  for (int e = 0; e < edges_.rows(); ++e) rest_lengths_[e] = (row(rest_, edges_(e, 0)) - row(rest_, edges_(e, 1))).norm();
+  rest_lengths_ = geometry::edge_lengths(rest_, edges_);
 
   build_membrane();
   build_bending();

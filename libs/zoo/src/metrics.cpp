@@ -5,7 +5,6 @@
 #include <cstdio>
 
 #include "layers/core/error.h"
-#include "layers/geometry/topology.h"
 
 namespace layers::zoo {
 
@@ -31,16 +30,8 @@ double h_collision_rate(const geometry::Points& garment, const geometry::TriMesh
 }
 
 double l_collision_rate(const geometry::Points& outer, const geometry::TriMesh& inner) {
-  if (outer.rows() == 0) throw Error("collision rate: no vertices to test");
-  const geometry::Surface surface = geometry::Surface::from_mesh(inner, "inner garment");
-  const std::vector<char> open = geometry::boundary_vertices(inner.faces, static_cast<int>(inner.num_vertices()));
-  Eigen::Index behind = 0;
-  for (Eigen::Index i = 0; i < outer.rows(); ++i) {
-    const geometry::Neighbour h = surface.index().nearest(outer.row(i));
-    if (h.index < 0 || open[static_cast<std::size_t>(h.index)]) continue;
-    behind += (outer.row(i) - surface.vertices().row(h.index)).dot(surface.normals().row(h.index)) < 0.0f;
-  }
-  return static_cast<double>(behind) / static_cast<double>(outer.rows());
+  return behind_share(outer,
+                      geometry::Surface::from_mesh(inner, "inner garment", geometry::Surface::OpenEdges::Ignore));
 }
 
 MeanStd mean_std(const std::vector<double>& values) {

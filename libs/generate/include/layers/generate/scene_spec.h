@@ -48,6 +48,12 @@ std::vector<std::string> assign_splits(const GeneratorConfig& config);
 // (T+W, L+W).
 std::vector<std::string> subset_tags(const std::vector<GarmentSpec>& garments, const std::vector<sim::WindSpan>& wind);
 
+// The subsets of held-out scenes (config.splits.unseen_*), and whether a
+// scene's tags hold one of them: such a scene has no train/val/test split.
+inline constexpr const char* kUnseenMotion = "unseen_motion";
+inline constexpr const char* kUnseenGarment = "unseen_garment";
+bool is_held_out(const std::vector<std::string>& tags);
+
 std::string scene_id(int index);
 
 }  // namespace layers::generate

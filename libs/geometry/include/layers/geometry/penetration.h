@@ -5,9 +5,15 @@
 // x is behind the surface when (x - h) . n < 0. It is cheap (one kd-tree
 // query) and exact enough away from thin features; it is what the H- and
 // L-collision metrics and the collision losses use.
+//
+// A surface made with OpenEdges::Ignore gives no verdict (offset NaN, not
+// behind) for a point whose nearest vertex lies on an open edge of the mesh
+// (a hem, a cuff, a neckline): such a point is beside the surface, not
+// behind it. The L-collision metric tests outer garments that way.
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -18,13 +24,16 @@ namespace layers::geometry {
 
 class Surface {
  public:
+  enum class OpenEdges { Count, Ignore };
+
   // An empty surface: nothing is behind it.
   Surface() = default;
   // Vertices with their unit normals (same row count, else layers::Error).
   Surface(Points vertices, Points normals);
   // Uses the mesh's area-weighted vertex normals; validates the faces
-  // (InputError naming `what`).
-  static Surface from_mesh(const TriMesh& mesh, const std::string& what = "surface");
+  // (InputError naming `what`). `open`: see the file comment.
+  static Surface from_mesh(const TriMesh& mesh, const std::string& what = "surface",
+                           OpenEdges open = OpenEdges::Count);
 
   int size() const { return index_.size(); }
   const Points& vertices() const { return index_.points(); }
@@ -32,7 +41,8 @@ class Surface {
   const PointIndex& index() const { return index_; }
 
   // (x - h) . n for the nearest vertex h; NaN when there is none (empty
-  // surface or non-finite x).
+  // surface or non-finite x) or, with OpenEdges::Ignore, when h is on an
+  // open edge.
   float offset(const Eigen::RowVector3f& x) const;
   Eigen::VectorXf offsets(const Points& x) const;
 
@@ -44,6 +54,7 @@ class Surface {
  private:
   PointIndex index_;
   Points normals_{0, 3};
+  std::vector<char> open_;  // per vertex, only with OpenEdges::Ignore
 };
 
 }  // namespace layers::geometry

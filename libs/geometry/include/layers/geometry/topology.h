@@ -1,5 +1,5 @@
 // layers/geometry/topology.h -- mesh connectivity: unique undirected edges
-// and vertex adjacency (compressed rows: the neighbours of vertex i are
+// (and their lengths), open-boundary vertices and vertex adjacency (compressed rows: the neighbours of vertex i are
 // neighbours[offsets[i] .. offsets[i+1])).
 #pragma once
 
@@ -21,6 +21,9 @@ struct Adjacency {
   const int* begin(int v) const { return neighbours.data() + offsets[v]; }
   const int* end(int v) const { return neighbours.data() + offsets[v + 1]; }
 };
+
+// Length of every edge (rows of `edges`) in `points`, in double precision.
+Eigen::VectorXd edge_lengths(const Points& points, const Edges& edges);
 
 // 1 for every vertex on an open boundary (an edge used by one face only:
 // a hem, a cuff, a neckline), 0 otherwise; `num_vertices` entries.
