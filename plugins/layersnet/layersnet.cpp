@@ -6,6 +6,7 @@
 
 #include "body_contacts.h"
 #include "decoder.h"
+#include "frame.h"
 #include "tokens.h"
 #include "topology.h"
 
@@ -66,12 +67,13 @@ zoo::StepOutput LayersNet::predict(const zoo::StepInput& in) {
     prev.push_back(g.prev.to(at::kFloat));
   }
   const at::Tensor x = at::cat(current), x_prev = at::cat(prev);
-  const at::Tensor root = in.root.to(at::kFloat);
-  const at::Tensor p_rel = x - root[1], v_rel = p_rel - (x_prev - root[0]);
+  const StepFrames frames(in, params_.heading_frame);
+  const at::Tensor p_rel = frames.to_local(1, x), v_rel = p_rel - frames.to_local(0, x_prev);
   const at::Tensor state = at::cat({norm.garment_position.normalize(p_rel), norm.garment_velocity.normalize(v_rel)}, 1);
   const at::Tensor body = in.body.to(at::kFloat), body_next = in.body_next.to(at::kFloat);
   auto body_state = [&](const at::Tensor& ids) {
-    const at::Tensor next = body_next.index_select(0, ids) - root[2], now = body.index_select(0, ids) - root[1];
+    const at::Tensor next = frames.to_local(2, body_next.index_select(0, ids));
+    const at::Tensor now = frames.to_local(1, body.index_select(0, ids));
     return at::cat({norm.body_position.normalize(next), norm.body_velocity.normalize(next - now)}, 1);
   };
 
@@ -93,7 +95,7 @@ zoo::StepOutput LayersNet::predict(const zoo::StepInput& in) {
   std::vector<at::Tensor> abstract = {gravity_};
   std::vector<at::Tensor> abstract_mask = {at::ones({P, 1}, f32.dtype(at::kBool))};
   if (wind_present(in)) {
-    abstract.push_back(encode_wind_->forward(wind_features(in, norm)));
+    abstract.push_back(encode_wind_->forward(wind_features(in, norm, frames)));
     abstract_mask.push_back(at::ones({P, 1}, f32.dtype(at::kBool)));
   }
   if (t.attributes.size(0) > 0) {
@@ -114,14 +116,15 @@ zoo::StepOutput LayersNet::predict(const zoo::StepInput& in) {
   // embedding and its nearest next-frame body vertex (zero if none is
   // within the radius).
   const at::Tensor near_ids = contacts.nearest.to(dev), near_valid = contacts.nearest_valid.to(dev).unsqueeze(1);
-  const at::Tensor offset = (body_next.index_select(0, near_ids) - x) / std::max(radius, 1e-12f);
+  const at::Tensor offset =
+      frames.vectors_to_local(2, body_next.index_select(0, near_ids) - x) / std::max(radius, 1e-12f);
   const at::Tensor near = at::cat({body_state(near_ids), offset, at::ones({V, 1}, f32)}, 1);
   const at::Tensor features =
       at::cat({state - vertex_mean(t, patch_state), at::where(near_valid, near, at::zeros_like(near))}, 1);
   const at::Tensor acceleration = norm.garment_acceleration.denormalize(decoder_->forward(features, patches, t));
 
-  // v(t+1) = v(t) + a, p(t+1) = p(t) + v(t+1), root-relative; back to world.
-  const at::Tensor next = p_rel + v_rel + acceleration + root[2];
+  // v(t+1) = v(t) + a, p(t+1) = p(t) + v(t+1) in the moving frame; back to world.
+  const at::Tensor next = frames.to_world(2, p_rel + v_rel + acceleration);
   zoo::StepOutput out;
   for (std::size_t k = 0; k + 1 < t.vertex_offset.size(); ++k)
     out.garments.push_back(next.narrow(0, t.vertex_offset[k], t.vertex_offset[k + 1] - t.vertex_offset[k]));

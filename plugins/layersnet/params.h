@@ -17,6 +17,7 @@ struct Params {
   std::int64_t width = 128;      // token width (encoders, processor, decoder)
   std::int64_t blocks = 4;       // processor blocks
   std::int64_t heads = 8;        // attention heads: half E^M, half E^W
+  bool heading_frame = false;    // positions in the root's heading frame (else world axes)
 
   template <class V>
   void visit(V& v) {
@@ -27,6 +28,8 @@ struct Params {
     v("width", width, cfg::opt().range(2, 4096).help("token width"));
     v("blocks", blocks, cfg::opt().range(0, 64).help("processor blocks"));
     v("heads", heads, cfg::opt().range(2, 256).help("attention heads (even: half E^M, half E^W; divides width)"));
+    v("heading_frame", heading_frame,
+      cfg::opt().help("express each step in the body root's heading frame (yaw about +y) instead of world axes"));
   }
 };
 

@@ -12,12 +12,12 @@ at::Tensor scale_attributes(const at::Tensor& raw) {
 
 bool wind_present(const zoo::StepInput& in) { return (in.wind_strength > 0).any().item<bool>(); }
 
-at::Tensor wind_features(const zoo::StepInput& in, const zoo::Normalization& norm) {
+at::Tensor wind_features(const zoo::StepInput& in, const zoo::Normalization& norm, const StepFrames& frames) {
   const at::Tensor root = in.root.to(at::kFloat);
-  const at::Tensor vel = root.narrow(0, 1, 2) - root.narrow(0, 0, 2);  // [2,3]: t, t+1
+  const at::Tensor vel = frames.vectors_to_local(2, root.narrow(0, 1, 2) - root.narrow(0, 0, 2));  // [2,3]: t, t+1
   const at::Tensor acc = vel[1] - vel[0];
   return at::cat({norm.garment_velocity.scale(vel).reshape({-1}), norm.garment_acceleration.scale(acc),
-                  in.wind_rotation.to(at::kFloat).reshape({-1}), in.wind_strength.to(at::kFloat) / 400.0})
+                  frames.wind_to_local(in.wind_rotation).reshape({-1}), in.wind_strength.to(at::kFloat) / 400.0})
       .unsqueeze(0);
 }
 

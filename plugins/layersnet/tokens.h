@@ -7,6 +7,7 @@
 
 #include <ATen/ATen.h>
 
+#include "frame.h"
 #include "layers/zoo/model.h"
 
 namespace layers::layersnet {
@@ -22,12 +23,13 @@ at::Tensor scale_attributes(const at::Tensor& raw);
 
 // Wind token input: root velocity at t and t+1 and root acceleration at t
 // (root-relative quantities' scales: garment velocity / acceleration std),
-// wind rotation (w,x,y,z) at t and t+1, strength/400 at t and t+1.
+// wind rotation (w,x,y,z) at t and t+1, strength/400 at t and t+1; vectors
+// and rotations in the step's frame of t+1.
 inline constexpr std::int64_t kWindFeatures = 19;
 
 // Whether the wind blows at t or t+1 (strength > 0).
 bool wind_present(const zoo::StepInput& in);
 // [1,19] float on the input's device.
-at::Tensor wind_features(const zoo::StepInput& in, const zoo::Normalization& norm);
+at::Tensor wind_features(const zoo::StepInput& in, const zoo::Normalization& norm, const StepFrames& frames);
 
 }  // namespace layers::layersnet

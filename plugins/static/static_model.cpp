@@ -5,21 +5,10 @@
 #include "layers/core/error.h"
 #include "layers/zoo/model.h"
 #include "layers/zoo/model_config.h"
+#include "layers/zoo/rotations.h"
 
 namespace layers::reference {
 namespace {
-
-// Rotation matrices [N,3,3] of quaternions [N,4] (w,x,y,z; normalised
-// here, so any non-zero length will do).
-at::Tensor rotation_matrices(const at::Tensor& quaternions) {
-  at::Tensor q = quaternions / quaternions.norm(2, {1}, /*keepdim=*/true);
-  at::Tensor w = q.select(1, 0), x = q.select(1, 1), y = q.select(1, 2), z = q.select(1, 3);
-  at::Tensor rows = at::stack({1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y),
-                               2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x),
-                               2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)},
-                              1);
-  return rows.view({-1, 3, 3});
-}
 
 class StaticModel : public zoo::Model {
  public:
@@ -36,7 +25,7 @@ class StaticModel : public zoo::Model {
       throw Error("model 'static': step input root_rot: expected non-zero, finite quaternions (w,x,y,z) at t and t+1, "
                   "got lengths " + std::to_string(lengths[0].item<double>()) + " and " +
                   std::to_string(lengths[1].item<double>()));
-    at::Tensor r = rotation_matrices(rot);
+    at::Tensor r = zoo::rotation_matrices(rot);
     zoo::StepOutput out;
     for (const zoo::GarmentState& g : in.garments) {
       const auto type = g.current.scalar_type();

@@ -12,6 +12,7 @@
 #include "layers/core/error.h"
 #include "layers/zoo/plugin_loader.h"
 #include "layers/zoo/registry.h"
+#include "layers/zoo/rotations.h"
 #include "layersnet.h"
 #include "synthetic_scene.h"
 #include "topology.h"
@@ -40,6 +41,26 @@ zoo::StepInput with_far_body(zoo::StepInput in, std::int64_t extra) {
   const at::Tensor far = at::rand({extra, 3}) + at::tensor({10.0f, 10.0f, -10.0f});
   in.body = at::cat({in.body, far});
   in.body_next = at::cat({in.body_next, far + 0.01f});
+  return in;
+}
+
+// [1,4] quaternion of `yaw` radians about +y.
+at::Tensor yaw_quaternion(double yaw) {
+  return at::tensor({std::cos(yaw / 2), 0.0, std::sin(yaw / 2), 0.0}, at::kFloat).unsqueeze(0);
+}
+
+// The whole step turned by `yaw` about +y (around the world origin) and
+// moved by `shift`: garments, body, root, root and wind rotations.
+zoo::StepInput turned(zoo::StepInput in, double yaw, const at::Tensor& shift) {
+  const at::Tensor q = yaw_quaternion(yaw);
+  const at::Tensor r = zoo::rotation_matrices(q)[0];
+  auto move = [&](const at::Tensor& p) { return at::matmul(p, r.t()) + shift; };
+  for (zoo::GarmentState& g : in.garments) g = {move(g.prev), move(g.current)};
+  in.body = move(in.body);
+  in.body_next = move(in.body_next);
+  in.root = move(in.root);
+  in.root_rot = zoo::quaternion_multiply(q.expand({3, 4}), in.root_rot);
+  in.wind_rotation = zoo::quaternion_multiply(q.expand({2, 4}), in.wind_rotation);
   return in;
 }
 
@@ -142,6 +163,34 @@ TEST(LayersNet, BodyVerticesFarFromTheGarmentChangeNothing) {
   const zoo::StepOutput other = model->step(moved);
   EXPECT_FALSE(at::allclose(base.garments[0], other.garments[0]));
   EXPECT_EQ(model->last_counts().body_tokens, 0);
+}
+
+TEST(LayersNet, HeadingFrameTurnsThePredictionWithTheBody) {
+  at::manual_seed(4);
+  const auto scene = ln::testing::make_scene({});
+  zoo::StepInput in = scene.input(5);  // the wind blows
+  // The root already faces somewhere, leaning a little forward.
+  in.root_rot = at::tensor({0.95f, 0.1f, 0.29f, 0.0f}).repeat({3, 1});
+  const double yaw = 1.1;
+  const at::Tensor shift = at::tensor({0.7f, 0.0f, -1.3f});
+  const at::Tensor r = zoo::rotation_matrices(yaw_quaternion(yaw))[0];
+  for (const bool heading : {true, false}) {
+    auto model = make(heading ? "{width: 32, blocks: 2, heads: 4, heading_frame: true}" : "{width: 32, blocks: 2, heads: 4}");
+    model->set_normalization(ln::testing::scene_normalization(scene));
+    model->prepare(scene.statics);
+    const zoo::StepOutput base = model->step(in), other = model->step(turned(in, yaw, shift));
+    const zoo::StepOutput moved = model->step(turned(in, 0.0, shift));
+    for (std::size_t k = 0; k < base.garments.size(); ++k) {
+      // Translation never matters; turning matters only without the heading frame.
+      EXPECT_TRUE(at::allclose(moved.garments[k], base.garments[k] + shift, 1e-5, 1e-5)) << k;
+      const double off = (other.garments[k] - (at::matmul(base.garments[k], r.t()) + shift)).abs().max().item<double>();
+      std::cout << (heading ? "heading" : "world") << " garment " << k << ": " << off << " m off the turned prediction\n";
+      if (heading)
+        EXPECT_LT(off, 1e-5) << "garment " << k;
+      else
+        EXPECT_GT(off, 1e-4) << "garment " << k;
+    }
+  }
 }
 
 TEST(LayersNet, AnyNumberOfGarments) {
