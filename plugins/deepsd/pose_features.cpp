@@ -3,6 +3,8 @@
 
 #include <vector>
 
+#include "layers/zoo/rotations.h"
+
 namespace layers::deepsd {
 namespace {
 
@@ -11,12 +13,6 @@ constexpr double kMaxWindStrength = 400.0;  // LAYERS-H5 wind/strength range
 // Rotations [J,3,3] relative to the root's: R_r^T R_j.
 at::Tensor relative_to_root(const at::Tensor& rotations, std::int64_t root) {
   return at::matmul(rotations[root].transpose(0, 1).unsqueeze(0), rotations);
-}
-
-// +z rotated by unit quaternions q [...,4] (w,x,y,z).
-at::Tensor rotate_z(const at::Tensor& q) {
-  const at::Tensor w = q.select(-1, 0), x = q.select(-1, 1), y = q.select(-1, 2), z = q.select(-1, 3);
-  return at::stack({2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)}, -1);
 }
 
 }  // namespace
@@ -32,7 +28,7 @@ at::Tensor pose_features(const at::Tensor& tpose, const at::Tensor& frame, std::
   std::vector<at::Tensor> parts{relative.slice(2, 0, 2).reshape({-1}), at::matmul(to_rest, down)};
   if (wind) {
     const at::Tensor q = wind_rotation.to(frame.scalar_type());
-    parts.push_back(at::matmul(to_rest, rotate_z(q)));
+    parts.push_back(at::matmul(to_rest, zoo::rotate_z(q)));
     parts.push_back((wind_strength.to(frame.scalar_type()) / kMaxWindStrength).reshape({1}));
   }
   return at::cat(parts);

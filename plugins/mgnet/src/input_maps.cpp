@@ -6,6 +6,7 @@
 
 #include "layers/core/error.h"
 #include "layers/mgnet/body_seeds.h"
+#include "layers/zoo/rotations.h"
 
 namespace layers::mgnet {
 namespace {
@@ -28,12 +29,6 @@ Base base_from_name(const std::string& name) {
   if (name == "constant_velocity") return Base::constant_velocity;
   if (name == "body_seeds") return Base::body_seeds;
   throw Error("mgnet: unknown base prediction '" + name + "'");
-}
-
-at::Tensor wind_direction(const at::Tensor& rotation) {
-  const at::Tensor q = rotation / rotation.norm().clamp_min(1e-12);
-  const at::Tensor w = q[0], x = q[1], y = q[2], z = q[3];
-  return at::stack({2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)});
 }
 
 StepMaps step_maps(const GarmentLayout& layout, const zoo::StepInput& in, const zoo::Normalization& norm,
@@ -66,7 +61,7 @@ StepMaps step_maps(const GarmentLayout& layout, const zoo::StepInput& in, const 
   const at::Tensor cover = coverage(layout.splat);
   const at::Tensor layer = layout.layer.reshape({G, 1, 1, 1}).expand({G, 1, R, R});
   const at::Tensor global = at::cat({(f32(in.wind_strength[1]) / kWindScale).reshape({1}),
-                                     wind_direction(f32(in.wind_rotation[1])),
+                                     zoo::rotate_z(f32(in.wind_rotation[1])),
                                      norm.garment_velocity.scale(root_next - root),
                                      norm.garment_acceleration.scale(root_next - 2 * root + root_prev)});
   const at::Tensor global_maps = global.reshape({1, -1, 1, 1}).expand({G, global.size(0), R, R});

@@ -54,8 +54,4 @@ struct StepMaps {
 StepMaps step_maps(const GarmentLayout& layout, const zoo::StepInput& input, const zoo::Normalization& norm,
                    Base base);
 
-// Unit wind direction [3] from a rotation quaternion (w, x, y, z) [4]:
-// where the rotation takes +z. A zero quaternion gives +z.
-at::Tensor wind_direction(const at::Tensor& rotation);
-
 }  // namespace layers::mgnet
