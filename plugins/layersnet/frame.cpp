@@ -27,7 +27,7 @@ at::Tensor StepFrames::to_world(std::int64_t k, const at::Tensor& local) const {
 at::Tensor StepFrames::wind_to_local(const at::Tensor& wind_rotation) const {
   const at::Tensor q = wind_rotation.to(at::kFloat);
   if (!heading_.defined()) return q;
-  return zoo::quaternion_multiply(zoo::quaternion_conjugate(heading_[2]).unsqueeze(0).expand({q.size(0), 4}), q);
+  return zoo::quaternion_multiply(zoo::quaternion_conjugate(heading_[2]), q);
 }
 
 }  // namespace layers::layersnet

@@ -27,6 +27,8 @@ class StepFrames {
   at::Tensor to_world(std::int64_t k, const at::Tensor& local) const;
   // Wind rotations [N,4] (w,x,y,z) relative to frame t+1: h_2^-1 q.
   at::Tensor wind_to_local(const at::Tensor& wind_rotation) const;
+  // The root at t-1, t, t+1 [3,3] (float).
+  const at::Tensor& root() const { return root_; }
 
  private:
   at::Tensor root_;     // [3,3] float

@@ -13,7 +13,7 @@ at::Tensor scale_attributes(const at::Tensor& raw) {
 bool wind_present(const zoo::StepInput& in) { return (in.wind_strength > 0).any().item<bool>(); }
 
 at::Tensor wind_features(const zoo::StepInput& in, const zoo::Normalization& norm, const StepFrames& frames) {
-  const at::Tensor root = in.root.to(at::kFloat);
+  const at::Tensor& root = frames.root();
   const at::Tensor vel = frames.vectors_to_local(2, root.narrow(0, 1, 2) - root.narrow(0, 0, 2));  // [2,3]: t, t+1
   const at::Tensor acc = vel[1] - vel[0];
   return at::cat({norm.garment_velocity.scale(vel).reshape({-1}), norm.garment_acceleration.scale(acc),

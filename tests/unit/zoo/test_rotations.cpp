@@ -25,6 +25,10 @@ TEST(Rotations, MatricesProductsAndConjugatesAgree) {
   EXPECT_TRUE(at::allclose(zoo::rotation_matrices(zoo::quaternion_multiply(a, b))[0], at::matmul(ra, rb), 1e-12, 1e-12));
   EXPECT_TRUE(at::allclose(zoo::rotation_matrices(zoo::quaternion_conjugate(a))[0], ra.t(), 1e-12, 1e-12));
   EXPECT_TRUE(at::allclose(zoo::rotate_z(a)[0], ra.select(1, 2), 1e-12, 1e-12));
+  // Leading dimensions broadcast: one quaternion times a batch of two.
+  const at::Tensor ab = at::cat({a, b});
+  EXPECT_TRUE(at::allclose(zoo::quaternion_multiply(a[0], ab), zoo::quaternion_multiply(a.expand({2, 4}), ab), 1e-15, 1e-15));
+  EXPECT_EQ(zoo::rotation_matrices(ab.unsqueeze(0)).sizes(), (at::IntArrayRef{1, 2, 3, 3}));
   // Any length: normalised first.
   EXPECT_TRUE(at::allclose(zoo::rotation_matrices(3 * a)[0], ra, 1e-12, 1e-12));
   // 90 degrees about +y takes +z to +x.
