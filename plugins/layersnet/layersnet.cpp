@@ -123,8 +123,16 @@ zoo::StepOutput LayersNet::predict(const zoo::StepInput& in) {
       at::cat({state - vertex_mean(t, patch_state), at::where(near_valid, near, at::zeros_like(near))}, 1);
   const at::Tensor acceleration = norm.garment_acceleration.denormalize(decoder_->forward(features, patches, t));
 
-  // v(t+1) = v(t) + a, p(t+1) = p(t) + v(t+1) in the moving frame; back to world.
-  const at::Tensor next = frames.to_world(2, p_rel + v_rel + acceleration);
+  // v(t+1) = base + a, p(t+1) = p(t) + v(t+1) in the moving frame; back to
+  // world. The base is v(t) (inertial) or, with base "body", the nearest
+  // body vertex's displacement t -> t+1 where it lies within the radius.
+  at::Tensor base = v_rel;
+  if (params_.base == "body") {
+    const at::Tensor follow =
+        frames.to_local(2, body_next.index_select(0, near_ids)) - frames.to_local(1, body.index_select(0, near_ids));
+    base = at::where(near_valid, follow, v_rel);
+  }
+  const at::Tensor next = frames.to_world(2, p_rel + base + acceleration);
   zoo::StepOutput out;
   for (std::size_t k = 0; k + 1 < t.vertex_offset.size(); ++k)
     out.garments.push_back(next.narrow(0, t.vertex_offset[k], t.vertex_offset[k + 1] - t.vertex_offset[k]));

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include "layers/core/config.h"
 
@@ -18,6 +19,10 @@ struct Params {
   std::int64_t blocks = 4;       // processor blocks
   std::int64_t heads = 8;        // attention heads: half E^M, half E^W
   bool heading_frame = false;    // positions in the root's heading frame (else world axes)
+  // What the predicted acceleration is added to: "inertial" (the paper:
+  // p + v) or "body" (p + the displacement of the vertex's nearest body
+  // vertex from t to t+1 where one lies within body_radius, p + v elsewhere).
+  std::string base = "inertial";
 
   template <class V>
   void visit(V& v) {
@@ -30,6 +35,9 @@ struct Params {
     v("heads", heads, cfg::opt().range(2, 256).help("attention heads (even: half E^M, half E^W; divides width)"));
     v("heading_frame", heading_frame,
       cfg::opt().help("express each step in the body root's heading frame (yaw about +y) instead of world axes"));
+    v("base", base,
+      cfg::opt().choices({"inertial", "body"})
+          .help("integration base: p + v (inertial) or p + the nearest body vertex's displacement within body_radius (body)"));
   }
 };
 

@@ -193,6 +193,45 @@ TEST(LayersNet, HeadingFrameTurnsThePredictionWithTheBody) {
   }
 }
 
+TEST(LayersNet, BodyBaseFollowsTheNearestBodyVertexWithinTheRadius) {
+  const auto scene = ln::testing::make_scene({});
+  const zoo::StepInput in = scene.input(5);
+  // Same weights, two integration bases.
+  const std::string shape = "{width: 32, blocks: 2, heads: 4, body_radius: 0.05";
+  at::manual_seed(5);
+  auto inertial = make(shape + "}");
+  at::manual_seed(5);
+  auto body = make(shape + ", base: body}");
+  for (auto& m : {inertial, body}) {
+    m->set_normalization(ln::testing::scene_normalization(scene));
+    m->prepare(scene.statics);
+  }
+  const zoo::StepOutput a = inertial->step(in), b = body->step(in);
+
+  // Expected difference: (body displacement - garment velocity) in the
+  // root's moving frame where the nearest next-frame body vertex lies
+  // within the radius, nothing elsewhere.
+  std::int64_t near_count = 0, far_count = 0;
+  for (std::size_t k = 0; k < a.garments.size(); ++k) {
+    const at::Tensor x = in.garments[k].current, x_prev = in.garments[k].prev;
+    const auto [dist, nearest] = at::cdist(x, in.body_next).min(1);
+    const at::Tensor valid = (dist < 0.05).unsqueeze(1);
+    const at::Tensor follow = (in.body_next.index_select(0, nearest) - in.root[2]) -
+                              (in.body.index_select(0, nearest) - in.root[1]);
+    const at::Tensor velocity = (x - in.root[1]) - (x_prev - in.root[0]);
+    const at::Tensor expected = at::where(valid, follow - velocity, at::zeros_like(follow));
+    EXPECT_TRUE(at::allclose(b.garments[k] - a.garments[k], expected, 1e-5, 1e-6)) << "garment " << k;
+    near_count += valid.sum().item<std::int64_t>();
+    far_count += valid.logical_not().sum().item<std::int64_t>();
+    // The bases differ somewhere (the body does not move with the garment).
+    EXPECT_GT((follow - velocity).abs().max().item<double>(), 1e-4);
+  }
+  std::cout << "body base: " << near_count << " vertices follow the body, " << far_count << " keep their velocity\n";
+  EXPECT_GT(near_count, 0);
+  EXPECT_GT(far_count, 0);
+  EXPECT_THROW(make("{base: skin}"), layers::InputError);
+}
+
 TEST(LayersNet, AnyNumberOfGarments) {
   at::manual_seed(2);
   auto model = make("{width: 32, blocks: 1, heads: 2}");
