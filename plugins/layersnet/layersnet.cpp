@@ -5,10 +5,13 @@
 #include <algorithm>
 
 #include "body_contacts.h"
+#include "bone_binding.h"
 #include "decoder.h"
 #include "frame.h"
 #include "tokens.h"
 #include "topology.h"
+#include "layers/core/error.h"
+#include "layers/zoo/joint_motion.h"
 
 namespace layers::layersnet {
 namespace {
@@ -21,6 +24,7 @@ constexpr std::int64_t kNearBody = 10;  // body state, offset / radius, present
 
 struct LayersNet::Cached : Derived {
   SceneTopology topology;
+  BoneBinding bones;  // base "bones" only
 };
 
 LayersNet::LayersNet(const Params& params) : Model(kName), params_(params) {
@@ -48,6 +52,7 @@ std::map<std::string, double> LayersNet::step_counters() const {
 std::shared_ptr<const zoo::Model::Derived> LayersNet::derive(const zoo::SequenceStatic& data) {
   auto cached = std::make_shared<Cached>();
   cached->topology = build_topology(data, params_.patch_size);
+  if (params_.base == "bones") cached->bones = bind_to_bones(data);
   return cached;
 }
 
@@ -124,13 +129,21 @@ zoo::StepOutput LayersNet::predict(const zoo::StepInput& in) {
   const at::Tensor acceleration = norm.garment_acceleration.denormalize(decoder_->forward(features, patches, t));
 
   // v(t+1) = base + a, p(t+1) = p(t) + v(t+1) in the moving frame; back to
-  // world. The base is v(t) (inertial) or, with base "body", the nearest
-  // body vertex's displacement t -> t+1 where it lies within the radius.
+  // world. The base is v(t) (inertial) or, where a body vertex lies within
+  // the radius, the nearest body vertex's displacement t -> t+1 ("body")
+  // or the vertex carried by its rest-pose bones ("bones").
   at::Tensor base = v_rel;
   if (params_.base == "body") {
     const at::Tensor follow =
         frames.to_local(2, body_next.index_select(0, near_ids)) - frames.to_local(1, body.index_select(0, near_ids));
     base = at::where(near_valid, follow, v_rel);
+  } else if (params_.base == "bones") {
+    if (!in.joints.defined() || !in.joints_next.defined())
+      throw Error("layersnet: base 'bones' needs the joint transforms at t and t+1 (LAYERS-H5 body/joints)");
+    const BoneBinding& bones = derived<Cached>().bones;
+    const zoo::JointSteps steps = zoo::joint_steps(in.joints.to(at::kFloat), in.joints_next.to(at::kFloat));
+    const at::Tensor moved = zoo::move_with_joints(steps, x, bones.joint, bones.weight);
+    base = at::where(near_valid, frames.to_local(2, moved) - p_rel, v_rel);
   }
   const at::Tensor next = frames.to_world(2, p_rel + base + acceleration);
   zoo::StepOutput out;

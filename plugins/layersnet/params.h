@@ -20,8 +20,10 @@ struct Params {
   std::int64_t heads = 8;        // attention heads: half E^M, half E^W
   bool heading_frame = false;    // positions in the root's heading frame (else world axes)
   // What the predicted acceleration is added to: "inertial" (the paper:
-  // p + v) or "body" (p + the displacement of the vertex's nearest body
-  // vertex from t to t+1 where one lies within body_radius, p + v elsewhere).
+  // p + v), "body" (p + the displacement of the vertex's nearest body
+  // vertex from t to t+1 where one lies within body_radius, p + v
+  // elsewhere) or "bones" (likewise, but p moved by the skeleton bones the
+  // vertex is bound to in the rest pose; bone_binding.h).
   std::string base = "inertial";
 
   template <class V>
@@ -36,8 +38,8 @@ struct Params {
     v("heading_frame", heading_frame,
       cfg::opt().help("express each step in the body root's heading frame (yaw about +y) instead of world axes"));
     v("base", base,
-      cfg::opt().choices({"inertial", "body"})
-          .help("integration base: p + v (inertial) or p + the nearest body vertex's displacement within body_radius (body)"));
+      cfg::opt().choices({"inertial", "body", "bones"})
+          .help("integration base within body_radius of the body: p + v (inertial), the nearest body vertex's displacement (body), the motion of the vertex's rest-pose bones (bones)"));
   }
 };
 

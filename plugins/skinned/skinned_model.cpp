@@ -8,6 +8,7 @@
 #include "layers/core/config.h"
 #include "layers/core/error.h"
 #include "layers/geometry/nearest.h"
+#include "layers/zoo/joint_motion.h"
 #include "layers/zoo/model.h"
 #include "layers/zoo/model_config.h"
 
@@ -68,27 +69,11 @@ class SkinnedModel : public zoo::Model {
            std::to_string(nj));
     }
 
-    // Per joint: x -> M_j x + c_j moves a point from t to t+1, with
-    // M_j = R_j(t+1) R_j(t)^T and c_j = p_j(t+1) - M_j p_j(t). The 3x3
-    // products are written as broadcasts and sums: with batched matmul
-    // (one tiny BLAS call per matrix) a step took ~70 ms instead of ~1 ms
-    // on a busy 2-core CPU with 2 torch threads.
-    at::Tensor r0 = in.joints.slice(2, 0, 3), p0 = in.joints.select(2, 3);
-    at::Tensor r1 = in.joints_next.slice(2, 0, 3), p1 = in.joints_next.select(2, 3);
-    at::Tensor m = (r1.unsqueeze(2) * r0.unsqueeze(1)).sum(-1);
-    at::Tensor c = p1 - (m * p0.unsqueeze(1)).sum(-1);
-
+    const zoo::JointSteps steps = zoo::joint_steps(in.joints, in.joints_next);
     zoo::StepOutput out;
-    for (std::size_t k = 0; k < in.garments.size(); ++k) {
-      const at::Tensor& p = in.garments[k].current;
-      const std::int64_t nv = p.size(0);
-      const auto type = p.scalar_type();
-      at::Tensor joints = binding.joints[k].flatten();
-      at::Tensor w = binding.weights[k].to(type);
-      at::Tensor a = (w.view({nv, 4, 1, 1}) * m.to(type).index_select(0, joints).view({nv, 4, 3, 3})).sum(1);
-      at::Tensor b = (w.view({nv, 4, 1}) * c.to(type).index_select(0, joints).view({nv, 4, 3})).sum(1);
-      out.garments.push_back((a * p.unsqueeze(1)).sum(-1) + b);
-    }
+    for (std::size_t k = 0; k < in.garments.size(); ++k)
+      out.garments.push_back(
+          zoo::move_with_joints(steps, in.garments[k].current, binding.joints[k], binding.weights[k]));
     return out;
   }
 

@@ -1,6 +1,8 @@
 // The LayersNet model on synthetic layered scenes: shapes and counts of a
 // forward pass, any number of garments, body vertices far from the
-// garment change nothing, parameters and static data are checked, the
+// garment change nothing, the heading frame turns the prediction, the
+// body and bones integration bases add exactly their motion, parameters
+// and static data are checked, the
 // plugin registers it, and it overfits one window.
 #include <gtest/gtest.h>
 
@@ -13,6 +15,7 @@
 #include "layers/zoo/plugin_loader.h"
 #include "layers/zoo/registry.h"
 #include "layers/zoo/rotations.h"
+#include "bone_binding.h"
 #include "layersnet.h"
 #include "synthetic_scene.h"
 #include "topology.h"
@@ -230,6 +233,78 @@ TEST(LayersNet, BodyBaseFollowsTheNearestBodyVertexWithinTheRadius) {
   EXPECT_GT(near_count, 0);
   EXPECT_GT(far_count, 0);
   EXPECT_THROW(make("{base: skin}"), layers::InputError);
+}
+
+namespace {
+
+// [R|p] of a skeleton turned by `yaw` about +y and moved by `shift` from
+// its T-pose joint positions `rest` [J,3] (identity rotations): [J,3,4].
+at::Tensor posed_joints(const at::Tensor& rest, double yaw, const at::Tensor& shift) {
+  const at::Tensor r = zoo::rotation_matrices(yaw_quaternion(yaw))[0];
+  const std::int64_t n = rest.size(0);
+  return at::cat({r.expand({n, 3, 3}), (at::matmul(rest, r.t()) + shift).unsqueeze(2)}, 2);
+}
+
+}  // namespace
+
+TEST(LayersNet, BonesBaseCarriesTheGarmentWithItsRestPoseBones) {
+  auto scene = ln::testing::make_scene({}, "bones");
+  // A three-joint spine along the body's axis: bone 0 -> 1 runs through
+  // the garments, bone 1 -> 2 above them.
+  const at::Tensor rest = at::tensor({0.0f, -0.4f, 0.0f, 0.0f, 0.4f, 0.0f, 0.0f, 1.2f, 0.0f}).view({3, 3});
+  scene.statics.joint_parents = at::tensor({-1, 0, 1}, at::kLong);
+  scene.statics.tpose_joints = posed_joints(rest, 0.0, at::zeros({3}));
+  zoo::StepInput in = scene.input(5);
+  // The whole skeleton turns about +y by 0.1 rad and moves with the root.
+  in.joints = posed_joints(rest, 0.3, in.root[1]);
+  in.joints_next = posed_joints(rest, 0.4, in.root[2]);
+
+  const std::string shape = "{width: 32, blocks: 2, heads: 4, body_radius: 0.05";
+  at::manual_seed(6);
+  auto inertial = make(shape + "}");
+  at::manual_seed(6);
+  auto bones = make(shape + ", base: bones}");
+  for (auto& m : {inertial, bones}) {
+    m->set_normalization(ln::testing::scene_normalization(scene));
+    m->prepare(scene.statics);
+  }
+  const zoo::StepOutput a = inertial->step(in), b = bones->step(in);
+
+  // A rigid motion of the whole skeleton carries every bound vertex rigidly.
+  const at::Tensor turn = zoo::rotation_matrices(yaw_quaternion(0.1))[0];
+  std::int64_t near_count = 0, far_count = 0;
+  for (std::size_t k = 0; k < a.garments.size(); ++k) {
+    const at::Tensor x = in.garments[k].current, x_prev = in.garments[k].prev;
+    const at::Tensor valid = (std::get<0>(at::cdist(x, in.body_next).min(1)) < 0.05).unsqueeze(1);
+    const at::Tensor follow = at::matmul(x - in.root[1], turn.t()) - (x - in.root[1]);
+    const at::Tensor velocity = (x - in.root[1]) - (x_prev - in.root[0]);
+    const at::Tensor expected = at::where(valid, follow - velocity, at::zeros_like(follow));
+    EXPECT_TRUE(at::allclose(b.garments[k] - a.garments[k], expected, 1e-5, 1e-6)) << "garment " << k;
+    near_count += valid.sum().item<std::int64_t>();
+    far_count += valid.logical_not().sum().item<std::int64_t>();
+  }
+  EXPECT_GT(near_count, 0);
+  EXPECT_GT(far_count, 0);
+
+  // The binding: every garment vertex on bone 0 -> 1 (moved by joint 0).
+  const ln::BoneBinding binding = ln::bind_to_bones(scene.statics);
+  EXPECT_TRUE(binding.joint.select(1, 0).eq(0).all().item<bool>());
+  EXPECT_GT(binding.weight.select(1, 0).min().item<float>(), 0.99f);
+  EXPECT_TRUE(at::allclose(binding.weight.sum(1), at::ones({binding.weight.size(0)})));
+
+  // No skeleton: a clear error at prepare; no joints in the step: an error.
+  scene.statics.id = "no-skeleton";
+  scene.statics.tpose_joints = at::Tensor();
+  try {
+    bones->prepare(scene.statics);
+    FAIL() << "no error";
+  } catch (const layers::InputError& e) {
+    EXPECT_EQ(e.field(), "tpose_joints");
+  }
+  scene.statics.id = "bones-again";
+  scene.statics.tpose_joints = posed_joints(rest, 0.0, at::zeros({3}));
+  bones->prepare(scene.statics);
+  EXPECT_THROW(bones->step(scene.input(5)), layers::Error);
 }
 
 TEST(LayersNet, AnyNumberOfGarments) {
