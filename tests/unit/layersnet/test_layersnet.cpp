@@ -6,7 +6,9 @@
 // plugin registers it, and it overfits one window.
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <iostream>
+#include <utility>
 
 #include <torch/optim/adam.h>
 
@@ -196,46 +198,47 @@ TEST(LayersNet, HeadingFrameTurnsThePredictionWithTheBody) {
   }
 }
 
-TEST(LayersNet, BodyBaseFollowsTheNearestBodyVertexWithinTheRadius) {
-  const auto scene = ln::testing::make_scene({});
-  const zoo::StepInput in = scene.input(5);
-  // Same weights, two integration bases.
-  const std::string shape = "{width: 32, blocks: 2, heads: 4, body_radius: 0.05";
+namespace {
+
+constexpr double kBaseRadius = 0.05;  // body_radius of the base tests: some vertices in range, some not
+
+// Steps `in` with two models of the same weights, the inertial base and
+// `base`, and checks that they differ by exactly (follow(k) - garment
+// velocity) where the garment vertex has a next-frame body vertex within
+// the radius and not at all elsewhere (no heading frame: root-relative
+// world axes). follow(k, x) is the base's displacement of garment k's
+// vertices x from t to t+1 in that frame. Returns {in range, out of range}.
+std::pair<std::int64_t, std::int64_t> expect_base_adds(
+    const ln::testing::SyntheticScene& scene, const zoo::StepInput& in, const std::string& base,
+    const std::function<at::Tensor(std::size_t, const at::Tensor&)>& follow) {
+  const std::string shape = "{width: 32, blocks: 2, heads: 4, body_radius: " + std::to_string(kBaseRadius);
   at::manual_seed(5);
   auto inertial = make(shape + "}");
   at::manual_seed(5);
-  auto body = make(shape + ", base: body}");
-  for (auto& m : {inertial, body}) {
+  auto other = make(shape + ", base: " + base + "}");
+  for (auto& m : {inertial, other}) {
     m->set_normalization(ln::testing::scene_normalization(scene));
     m->prepare(scene.statics);
   }
-  const zoo::StepOutput a = inertial->step(in), b = body->step(in);
-
-  // Expected difference: (body displacement - garment velocity) in the
-  // root's moving frame where the nearest next-frame body vertex lies
-  // within the radius, nothing elsewhere.
+  const zoo::StepOutput a = inertial->step(in), b = other->step(in);
   std::int64_t near_count = 0, far_count = 0;
   for (std::size_t k = 0; k < a.garments.size(); ++k) {
     const at::Tensor x = in.garments[k].current, x_prev = in.garments[k].prev;
-    const auto [dist, nearest] = at::cdist(x, in.body_next).min(1);
-    const at::Tensor valid = (dist < 0.05).unsqueeze(1);
-    const at::Tensor follow = (in.body_next.index_select(0, nearest) - in.root[2]) -
-                              (in.body.index_select(0, nearest) - in.root[1]);
+    const at::Tensor valid = (std::get<0>(at::cdist(x, in.body_next).min(1)) < kBaseRadius).unsqueeze(1);
     const at::Tensor velocity = (x - in.root[1]) - (x_prev - in.root[0]);
-    const at::Tensor expected = at::where(valid, follow - velocity, at::zeros_like(follow));
-    EXPECT_TRUE(at::allclose(b.garments[k] - a.garments[k], expected, 1e-5, 1e-6)) << "garment " << k;
+    const at::Tensor moved = follow(k, x) - velocity;
+    // The bases differ somewhere (the body does not move with the garment).
+    EXPECT_GT(moved.abs().max().item<double>(), 1e-4) << base << " garment " << k;
+    const at::Tensor expected = at::where(valid, moved, at::zeros_like(moved));
+    EXPECT_TRUE(at::allclose(b.garments[k] - a.garments[k], expected, 1e-5, 1e-6)) << base << " garment " << k;
     near_count += valid.sum().item<std::int64_t>();
     far_count += valid.logical_not().sum().item<std::int64_t>();
-    // The bases differ somewhere (the body does not move with the garment).
-    EXPECT_GT((follow - velocity).abs().max().item<double>(), 1e-4);
   }
-  std::cout << "body base: " << near_count << " vertices follow the body, " << far_count << " keep their velocity\n";
+  std::cout << base << " base: " << near_count << " vertices in range, " << far_count << " keep their velocity\n";
   EXPECT_GT(near_count, 0);
   EXPECT_GT(far_count, 0);
-  EXPECT_THROW(make("{base: skin}"), layers::InputError);
+  return {near_count, far_count};
 }
-
-namespace {
 
 // [R|p] of a skeleton turned by `yaw` about +y and moved by `shift` from
 // its T-pose joint positions `rest` [J,3] (identity rotations): [J,3,4].
@@ -247,6 +250,17 @@ at::Tensor posed_joints(const at::Tensor& rest, double yaw, const at::Tensor& sh
 
 }  // namespace
 
+TEST(LayersNet, BodyBaseFollowsTheNearestBodyVertexWithinTheRadius) {
+  const auto scene = ln::testing::make_scene({});
+  const zoo::StepInput in = scene.input(5);
+  // The nearest next-frame body vertex's displacement, root-relative.
+  expect_base_adds(scene, in, "body", [&](std::size_t, const at::Tensor& x) {
+    const at::Tensor nearest = std::get<1>(at::cdist(x, in.body_next).min(1));
+    return (in.body_next.index_select(0, nearest) - in.root[2]) - (in.body.index_select(0, nearest) - in.root[1]);
+  });
+  EXPECT_THROW(make("{base: skin}"), layers::InputError);
+}
+
 TEST(LayersNet, BonesBaseCarriesTheGarmentWithItsRestPoseBones) {
   auto scene = ln::testing::make_scene({}, "bones");
   // A three-joint spine along the body's axis: bone 0 -> 1 runs through
@@ -255,36 +269,14 @@ TEST(LayersNet, BonesBaseCarriesTheGarmentWithItsRestPoseBones) {
   scene.statics.joint_parents = at::tensor({-1, 0, 1}, at::kLong);
   scene.statics.tpose_joints = posed_joints(rest, 0.0, at::zeros({3}));
   zoo::StepInput in = scene.input(5);
-  // The whole skeleton turns about +y by 0.1 rad and moves with the root.
+  // The whole skeleton turns about +y by 0.1 rad and moves with the root:
+  // every bound vertex is carried by that rigid motion.
   in.joints = posed_joints(rest, 0.3, in.root[1]);
   in.joints_next = posed_joints(rest, 0.4, in.root[2]);
-
-  const std::string shape = "{width: 32, blocks: 2, heads: 4, body_radius: 0.05";
-  at::manual_seed(6);
-  auto inertial = make(shape + "}");
-  at::manual_seed(6);
-  auto bones = make(shape + ", base: bones}");
-  for (auto& m : {inertial, bones}) {
-    m->set_normalization(ln::testing::scene_normalization(scene));
-    m->prepare(scene.statics);
-  }
-  const zoo::StepOutput a = inertial->step(in), b = bones->step(in);
-
-  // A rigid motion of the whole skeleton carries every bound vertex rigidly.
   const at::Tensor turn = zoo::rotation_matrices(yaw_quaternion(0.1))[0];
-  std::int64_t near_count = 0, far_count = 0;
-  for (std::size_t k = 0; k < a.garments.size(); ++k) {
-    const at::Tensor x = in.garments[k].current, x_prev = in.garments[k].prev;
-    const at::Tensor valid = (std::get<0>(at::cdist(x, in.body_next).min(1)) < 0.05).unsqueeze(1);
-    const at::Tensor follow = at::matmul(x - in.root[1], turn.t()) - (x - in.root[1]);
-    const at::Tensor velocity = (x - in.root[1]) - (x_prev - in.root[0]);
-    const at::Tensor expected = at::where(valid, follow - velocity, at::zeros_like(follow));
-    EXPECT_TRUE(at::allclose(b.garments[k] - a.garments[k], expected, 1e-5, 1e-6)) << "garment " << k;
-    near_count += valid.sum().item<std::int64_t>();
-    far_count += valid.logical_not().sum().item<std::int64_t>();
-  }
-  EXPECT_GT(near_count, 0);
-  EXPECT_GT(far_count, 0);
+  expect_base_adds(scene, in, "bones", [&](std::size_t, const at::Tensor& x) {
+    return at::matmul(x - in.root[1], turn.t()) - (x - in.root[1]);
+  });
 
   // The binding: every garment vertex on bone 0 -> 1 (moved by joint 0).
   const ln::BoneBinding binding = ln::bind_to_bones(scene.statics);
@@ -293,6 +285,7 @@ TEST(LayersNet, BonesBaseCarriesTheGarmentWithItsRestPoseBones) {
   EXPECT_TRUE(at::allclose(binding.weight.sum(1), at::ones({binding.weight.size(0)})));
 
   // No skeleton: a clear error at prepare; no joints in the step: an error.
+  auto bones = make("{width: 16, blocks: 1, heads: 2, base: bones}");
   scene.statics.id = "no-skeleton";
   scene.statics.tpose_joints = at::Tensor();
   try {
