@@ -1,6 +1,7 @@
 // Binding garment vertices to the skeleton's bones (see bone_binding.h).
 #include "bone_binding.h"
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -13,25 +14,17 @@ BoneBinding bind_to_bones(const zoo::SequenceStatic& s) {
   if (!s.tpose_joints.defined() || !s.joint_parents.defined())
     throw InputError(where, s.tpose_joints.defined() ? "joint_parents" : "tpose_joints",
                      "the skeleton's T-pose joints and parents (LayersNet base 'bones')", "none");
-  const at::Tensor parents = s.joint_parents.to(at::kCPU, at::kLong);
-  const at::Tensor position = s.tpose_joints.select(2, 3).to(at::kFloat);  // [J,3]
-  std::vector<std::int64_t> child, owner;
-  for (std::int64_t j = 0; j < parents.size(0); ++j) {
-    const std::int64_t p = parents[j].item<std::int64_t>();
-    if (p >= 0 && p < parents.size(0)) {
-      child.push_back(j);
-      owner.push_back(p);
-    }
-  }
-  if (child.empty())
-    throw InputError(where, "joint_parents", "at least one bone (a joint with a parent)", "none");
   std::vector<at::Tensor> rest;
   for (const zoo::GarmentStatic& g : s.garments) rest.push_back(g.rest.to(at::kFloat));
   const at::Tensor x = at::cat(rest);  // [V,3]
-  const at::Device dev = x.device();
-  const at::Tensor owners = at::tensor(owner, at::kLong).to(dev);
-  const at::Tensor a = position.index_select(0, owners.to(position.device())).to(dev);
-  const at::Tensor b = position.index_select(0, at::tensor(child, at::kLong).to(position.device())).to(dev);
+  // Bones: every joint with a parent, from the parent (which moves it) to the joint.
+  const at::Tensor parents = s.joint_parents.to(x.device(), at::kLong);
+  const at::Tensor child = at::nonzero((parents >= 0) & (parents < parents.size(0))).flatten();
+  if (child.numel() == 0)
+    throw InputError(where, "joint_parents", "at least one bone (a joint with a parent)", "none");
+  const at::Tensor owners = parents.index_select(0, child);
+  const at::Tensor position = s.tpose_joints.select(2, 3).to(x.device(), at::kFloat);  // [J,3]
+  const at::Tensor a = position.index_select(0, owners), b = position.index_select(0, child);
 
   // Distance of every vertex to every segment a -> b: [V,B].
   const at::Tensor ab = b - a;
@@ -40,7 +33,7 @@ BoneBinding bind_to_bones(const zoo::SequenceStatic& s) {
   const at::Tensor along = ((ax * ab.unsqueeze(0)).sum(2) / length2).clamp(0, 1);
   const at::Tensor distance = (ax - along.unsqueeze(2) * ab.unsqueeze(0)).norm(2, 2);
 
-  const std::int64_t k = std::min<std::int64_t>(2, static_cast<std::int64_t>(child.size()));
+  const std::int64_t k = std::min<std::int64_t>(2, child.numel());
   const auto [nearest, bone] = distance.topk(k, 1, /*largest=*/false);
   BoneBinding out;
   out.joint = owners.index_select(0, bone.flatten()).view_as(bone);

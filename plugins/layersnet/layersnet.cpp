@@ -27,7 +27,7 @@ struct LayersNet::Cached : Derived {
   BoneBinding bones;  // base "bones" only
 };
 
-LayersNet::LayersNet(const Params& params) : Model(kName), params_(params) {
+LayersNet::LayersNet(const Params& params) : Model(kName), params_(params), base_(base_from_name(params.base)) {
   const std::int64_t d = params.width;
   encode_state_ = register_module("encode_state", std::make_shared<Mlp>(kState + kKinds, d, d, 1));
   encode_attributes_ = register_module("encode_attributes", std::make_shared<Mlp>(kAttributes, d, d, 1));
@@ -52,7 +52,7 @@ std::map<std::string, double> LayersNet::step_counters() const {
 std::shared_ptr<const zoo::Model::Derived> LayersNet::derive(const zoo::SequenceStatic& data) {
   auto cached = std::make_shared<Cached>();
   cached->topology = build_topology(data, params_.patch_size);
-  if (params_.base == "bones") cached->bones = bind_to_bones(data);
+  if (base_ == Base::bones) cached->bones = bind_to_bones(data);
   return cached;
 }
 
@@ -76,10 +76,17 @@ zoo::StepOutput LayersNet::predict(const zoo::StepInput& in) {
   const at::Tensor p_rel = frames.to_local(1, x), v_rel = p_rel - frames.to_local(0, x_prev);
   const at::Tensor state = at::cat({norm.garment_position.normalize(p_rel), norm.garment_velocity.normalize(v_rel)}, 1);
   const at::Tensor body = in.body.to(at::kFloat), body_next = in.body_next.to(at::kFloat);
-  auto body_state = [&](const at::Tensor& ids) {
+  // Body vertices `ids` in the moving frames: position at t+1 and
+  // displacement t -> t+1, and their normalised state.
+  struct LocalBody {
+    at::Tensor next, displacement;
+  };
+  auto local_body = [&](const at::Tensor& ids) {
     const at::Tensor next = frames.to_local(2, body_next.index_select(0, ids));
-    const at::Tensor now = frames.to_local(1, body.index_select(0, ids));
-    return at::cat({norm.body_position.normalize(next), norm.body_velocity.normalize(next - now)}, 1);
+    return LocalBody{next, next - frames.to_local(1, body.index_select(0, ids))};
+  };
+  auto body_state = [&](const LocalBody& b) {
+    return at::cat({norm.body_position.normalize(b.next), norm.body_velocity.normalize(b.displacement)}, 1);
   };
 
   // Patches and the step's graph: world edges between centroids, body senders.
@@ -96,7 +103,7 @@ zoo::StepOutput LayersNet::predict(const zoo::StepInput& in) {
   at::Tensor patches = encode_state_->forward(at::cat({patch_state, t.patch_kind}, 1));
   const std::int64_t B = body_ids.numel();
   const at::Tensor body_kind = at::tensor({0.0f, 0.0f, 1.0f}, f32).expand({B, kKinds});
-  const at::Tensor body_tokens = encode_state_->forward(at::cat({body_state(body_ids), body_kind}, 1));
+  const at::Tensor body_tokens = encode_state_->forward(at::cat({body_state(local_body(body_ids)), body_kind}, 1));
   std::vector<at::Tensor> abstract = {gravity_};
   std::vector<at::Tensor> abstract_mask = {at::ones({P, 1}, f32.dtype(at::kBool))};
   if (wind_present(in)) {
@@ -123,7 +130,8 @@ zoo::StepOutput LayersNet::predict(const zoo::StepInput& in) {
   const at::Tensor near_ids = contacts.nearest.to(dev), near_valid = contacts.nearest_valid.to(dev).unsqueeze(1);
   const at::Tensor offset =
       frames.vectors_to_local(2, body_next.index_select(0, near_ids) - x) / std::max(radius, 1e-12f);
-  const at::Tensor near = at::cat({body_state(near_ids), offset, at::ones({V, 1}, f32)}, 1);
+  const LocalBody nearest = local_body(near_ids);
+  const at::Tensor near = at::cat({body_state(nearest), offset, at::ones({V, 1}, f32)}, 1);
   const at::Tensor features =
       at::cat({state - vertex_mean(t, patch_state), at::where(near_valid, near, at::zeros_like(near))}, 1);
   const at::Tensor acceleration = norm.garment_acceleration.denormalize(decoder_->forward(features, patches, t));
@@ -133,11 +141,9 @@ zoo::StepOutput LayersNet::predict(const zoo::StepInput& in) {
   // the radius, the nearest body vertex's displacement t -> t+1 ("body")
   // or the vertex carried by its rest-pose bones ("bones").
   at::Tensor base = v_rel;
-  if (params_.base == "body") {
-    const at::Tensor follow =
-        frames.to_local(2, body_next.index_select(0, near_ids)) - frames.to_local(1, body.index_select(0, near_ids));
-    base = at::where(near_valid, follow, v_rel);
-  } else if (params_.base == "bones") {
+  if (base_ == Base::body) {
+    base = at::where(near_valid, nearest.displacement, v_rel);
+  } else if (base_ == Base::bones) {
     if (!in.joints.defined() || !in.joints_next.defined())
       throw Error("layersnet: base 'bones' needs the joint transforms at t and t+1 (LAYERS-H5 body/joints)");
     const BoneBinding& bones = derived<Cached>().bones;

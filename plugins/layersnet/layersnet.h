@@ -49,6 +49,7 @@ class LayersNet : public zoo::Model {
  private:
   struct Cached;
   Params params_;
+  Base base_;
   StepCounts counts_;
   std::shared_ptr<Mlp> encode_state_, encode_attributes_, encode_wind_;
   std::shared_ptr<Decoder> decoder_;

@@ -5,6 +5,13 @@
 
 namespace layers::layersnet {
 
+Base base_from_name(const std::string& name) {
+  if (name == "body") return Base::body;
+  if (name == "bones") return Base::bones;
+  if (name == "inertial") return Base::inertial;
+  throw InputError("layersnet params", "base", "inertial, body or bones", name);
+}
+
 Params read_params(const cfg::Node& node) {
   Params p = node.kind == cfg::Node::Kind::Null ? Params{} : cfg::read<Params>(node);
   const cfg::Node* heads = node.find("heads");

@@ -43,6 +43,10 @@ struct Params {
   }
 };
 
+// The integration base, parsed once (the names of Params::base).
+enum class Base { inertial, body, bones };
+Base base_from_name(const std::string& name);
+
 // Reads and checks the parameters (null: all defaults). Throws InputError
 // naming the key (heads odd or not dividing width).
 Params read_params(const cfg::Node& node);
