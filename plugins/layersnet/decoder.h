@@ -1,6 +1,7 @@
 // plugins/layersnet/decoder.h -- LayersNet's patch decoder: an MLP over
-// each vertex's [own features, mean embedding of its patches] -> 3
-// (normalised acceleration), width -> width -> 3 with ReLUs.
+// each vertex's [own features, mean embedding of its patches] -> outputs
+// (3: the normalised acceleration; a 4th: the base's blend logit),
+// width -> width -> outputs with ReLUs.
 //
 // The first layer is linear in the concatenation, so its patch-embedding
 // block is applied to the P patch tokens and then averaged to the
@@ -19,8 +20,8 @@ namespace layers::layersnet {
 
 class Decoder : public torch::nn::Module {
  public:
-  Decoder(std::int64_t vertex_features, std::int64_t width);
-  // vertex_features [V,f], patches [P,width] -> [V,3].
+  Decoder(std::int64_t vertex_features, std::int64_t width, std::int64_t outputs = 3);
+  // vertex_features [V,f], patches [P,width] -> [V,outputs].
   at::Tensor forward(const at::Tensor& vertex_features, const at::Tensor& patches, const SceneTopology& t);
 
  private:

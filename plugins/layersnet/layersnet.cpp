@@ -27,12 +27,13 @@ struct LayersNet::Cached : Derived {
   BoneBinding bones;  // base "bones" only
 };
 
-LayersNet::LayersNet(const Params& params) : Model(kName), params_(params), base_(base_from_name(params.base)) {
+LayersNet::LayersNet(const Params& params)
+    : Model(kName), params_(params), base_(base_from_name(params.base)), learned_blend_(params.blend == "learned") {
   const std::int64_t d = params.width;
   encode_state_ = register_module("encode_state", std::make_shared<Mlp>(kState + kKinds, d, d, 1));
   encode_attributes_ = register_module("encode_attributes", std::make_shared<Mlp>(kAttributes, d, d, 1));
   encode_wind_ = register_module("encode_wind", std::make_shared<Mlp>(kWindFeatures, d, d, 1));
-  decoder_ = register_module("decoder", std::make_shared<Decoder>(kState + kNearBody, d));
+  decoder_ = register_module("decoder", std::make_shared<Decoder>(kState + kNearBody, d, learned_blend_ ? 4 : 3));
   gravity_ = register_parameter("gravity", at::randn({1, d}) * 0.1);
   for (std::int64_t b = 0; b < params.blocks; ++b)
     blocks_.push_back(register_module("block" + std::to_string(b), std::make_shared<TieBlock>(d, params.heads)));
@@ -134,22 +135,30 @@ zoo::StepOutput LayersNet::predict(const zoo::StepInput& in) {
   const at::Tensor near = at::cat({body_state(nearest), offset, at::ones({V, 1}, f32)}, 1);
   const at::Tensor features =
       at::cat({state - vertex_mean(t, patch_state), at::where(near_valid, near, at::zeros_like(near))}, 1);
-  const at::Tensor acceleration = norm.garment_acceleration.denormalize(decoder_->forward(features, patches, t));
+  const at::Tensor decoded = decoder_->forward(features, patches, t);
+  const at::Tensor acceleration = norm.garment_acceleration.denormalize(decoded.narrow(1, 0, 3));
 
   // v(t+1) = base + a, p(t+1) = p(t) + v(t+1) in the moving frame; back to
-  // world. The base is v(t) (inertial) or, where a body vertex lies within
-  // the radius, the nearest body vertex's displacement t -> t+1 ("body")
-  // or the vertex carried by its rest-pose bones ("bones").
+  // world. The base is v(t) (inertial) or, where it applies, the followed
+  // motion: the nearest body vertex's displacement t -> t+1 ("body", where
+  // one lies within the radius) or the vertex carried by its rest-pose
+  // bones ("bones": within the radius, or everywhere with a learned
+  // blend); a learned blend takes v + g (follow - v) there instead.
   at::Tensor base = v_rel;
-  if (base_ == Base::body) {
-    base = at::where(near_valid, nearest.displacement, v_rel);
-  } else if (base_ == Base::bones) {
-    if (!in.joints.defined() || !in.joints_next.defined())
-      throw Error("layersnet: base 'bones' needs the joint transforms at t and t+1 (LAYERS-H5 body/joints)");
-    const BoneBinding& bones = derived<Cached>().bones;
-    const zoo::JointSteps steps = zoo::joint_steps(in.joints.to(at::kFloat), in.joints_next.to(at::kFloat));
-    const at::Tensor moved = zoo::move_with_joints(steps, x, bones.joint, bones.weight);
-    base = at::where(near_valid, frames.to_local(2, moved) - p_rel, v_rel);
+  if (base_ != Base::inertial) {
+    at::Tensor follow, applies = near_valid;
+    if (base_ == Base::body) {
+      follow = nearest.displacement;
+    } else {
+      if (!in.joints.defined() || !in.joints_next.defined())
+        throw Error("layersnet: base 'bones' needs the joint transforms at t and t+1 (LAYERS-H5 body/joints)");
+      const BoneBinding& bones = derived<Cached>().bones;
+      const zoo::JointSteps steps = zoo::joint_steps(in.joints.to(at::kFloat), in.joints_next.to(at::kFloat));
+      follow = frames.to_local(2, zoo::move_with_joints(steps, x, bones.joint, bones.weight)) - p_rel;
+      if (learned_blend_) applies = at::ones_like(near_valid);
+    }
+    if (learned_blend_) follow = v_rel + at::sigmoid(decoded.narrow(1, 3, 1)) * (follow - v_rel);
+    base = at::where(applies, follow, v_rel);
   }
   const at::Tensor next = frames.to_world(2, p_rel + base + acceleration);
   zoo::StepOutput out;

@@ -50,6 +50,7 @@ class LayersNet : public zoo::Model {
   struct Cached;
   Params params_;
   Base base_;
+  bool learned_blend_;
   StepCounts counts_;
   std::shared_ptr<Mlp> encode_state_, encode_attributes_, encode_wind_;
   std::shared_ptr<Decoder> decoder_;

@@ -20,6 +20,11 @@ Params read_params(const cfg::Node& node) {
     throw InputError(where, "heads", "an even number (half the heads use E^M, half E^W)", std::to_string(p.heads));
   if (p.width % p.heads != 0)
     throw InputError(where, "heads", "a divisor of width (" + std::to_string(p.width) + ")", std::to_string(p.heads));
+  if (p.blend == "learned" && p.base == "inertial") {
+    const cfg::Node* blend = node.find("blend");
+    throw InputError(blend ? blend->where() : node.where(), "blend",
+                     "radius with base inertial (a learned blend needs base body or bones)", p.blend);
+  }
   return p;
 }
 

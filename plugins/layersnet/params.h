@@ -25,6 +25,12 @@ struct Params {
   // elsewhere) or "bones" (likewise, but p moved by the skeleton bones the
   // vertex is bound to in the rest pose; bone_binding.h).
   std::string base = "inertial";
+  // Where and how much the body or bones base replaces p + v: "radius"
+  // (fully, within body_radius of the body) or "learned" (a per-vertex
+  // gate g in (0,1) the decoder predicts beside the acceleration:
+  // v + g (follow - v); for "bones" everywhere, for "body" within
+  // body_radius, where a nearest body vertex exists).
+  std::string blend = "radius";
 
   template <class V>
   void visit(V& v) {
@@ -40,6 +46,9 @@ struct Params {
     v("base", base,
       cfg::opt().choices({"inertial", "body", "bones"})
           .help("integration base within body_radius of the body: p + v (inertial), the nearest body vertex's displacement (body), the motion of the vertex's rest-pose bones (bones)"));
+    v("blend", blend,
+      cfg::opt().choices({"radius", "learned"})
+          .help("body/bones base: replaces p + v within body_radius (radius) or blended with it by a learned per-vertex gate (learned)"));
   }
 };
 
@@ -48,7 +57,8 @@ enum class Base { inertial, body, bones };
 Base base_from_name(const std::string& name);
 
 // Reads and checks the parameters (null: all defaults). Throws InputError
-// naming the key (heads odd or not dividing width).
+// naming the key (heads odd or not dividing width; blend learned with the
+// inertial base, which has nothing to blend).
 Params read_params(const cfg::Node& node);
 
 }  // namespace layers::layersnet

@@ -1,7 +1,8 @@
 // The LayersNet model on synthetic layered scenes: shapes and counts of a
 // forward pass, any number of garments, body vertices far from the
 // garment change nothing, the heading frame turns the prediction, the
-// body and bones integration bases add exactly their motion, parameters
+// body and bones integration bases add exactly their motion, a learned
+// blend mixes inertia and bones by its gate, parameters
 // and static data are checked, the
 // plugin registers it, and it overfits one window.
 #include <gtest/gtest.h>
@@ -248,6 +249,31 @@ at::Tensor posed_joints(const at::Tensor& rest, double yaw, const at::Tensor& sh
   return at::cat({r.expand({n, 3, 3}), (at::matmul(rest, r.t()) + shift).unsqueeze(2)}, 2);
 }
 
+// A three-joint spine along the synthetic body's axis (bone 0 -> 1 runs
+// through the garments, bone 1 -> 2 above them) as the scene's skeleton;
+// returns its T-pose joint positions [3,3].
+at::Tensor add_spine(ln::testing::SyntheticScene& scene) {
+  const at::Tensor rest = at::tensor({0.0f, -0.4f, 0.0f, 0.0f, 0.4f, 0.0f, 0.0f, 1.2f, 0.0f}).view({3, 3});
+  scene.statics.joint_parents = at::tensor({-1, 0, 1}, at::kLong);
+  scene.statics.tpose_joints = posed_joints(rest, 0.0, at::zeros({3}));
+  return rest;
+}
+
+// Step 5 of the scene with the whole spine turning about +y by 0.1 rad
+// and moving with the root: every bound vertex is carried rigidly.
+zoo::StepInput turning_spine_step(const ln::testing::SyntheticScene& scene, const at::Tensor& rest) {
+  zoo::StepInput in = scene.input(5);
+  in.joints = posed_joints(rest, 0.3, in.root[1]);
+  in.joints_next = posed_joints(rest, 0.4, in.root[2]);
+  return in;
+}
+
+// That rigid turn's root-relative displacement of points x from t to t+1.
+at::Tensor spine_turn(const zoo::StepInput& in, const at::Tensor& x) {
+  const at::Tensor turn = zoo::rotation_matrices(yaw_quaternion(0.1))[0];
+  return at::matmul(x - in.root[1], turn.t()) - (x - in.root[1]);
+}
+
 }  // namespace
 
 TEST(LayersNet, BodyBaseFollowsTheNearestBodyVertexWithinTheRadius) {
@@ -263,20 +289,9 @@ TEST(LayersNet, BodyBaseFollowsTheNearestBodyVertexWithinTheRadius) {
 
 TEST(LayersNet, BonesBaseCarriesTheGarmentWithItsRestPoseBones) {
   auto scene = ln::testing::make_scene({}, "bones");
-  // A three-joint spine along the body's axis: bone 0 -> 1 runs through
-  // the garments, bone 1 -> 2 above them.
-  const at::Tensor rest = at::tensor({0.0f, -0.4f, 0.0f, 0.0f, 0.4f, 0.0f, 0.0f, 1.2f, 0.0f}).view({3, 3});
-  scene.statics.joint_parents = at::tensor({-1, 0, 1}, at::kLong);
-  scene.statics.tpose_joints = posed_joints(rest, 0.0, at::zeros({3}));
-  zoo::StepInput in = scene.input(5);
-  // The whole skeleton turns about +y by 0.1 rad and moves with the root:
-  // every bound vertex is carried by that rigid motion.
-  in.joints = posed_joints(rest, 0.3, in.root[1]);
-  in.joints_next = posed_joints(rest, 0.4, in.root[2]);
-  const at::Tensor turn = zoo::rotation_matrices(yaw_quaternion(0.1))[0];
-  expect_base_adds(scene, in, "bones", [&](std::size_t, const at::Tensor& x) {
-    return at::matmul(x - in.root[1], turn.t()) - (x - in.root[1]);
-  });
+  const at::Tensor rest = add_spine(scene);
+  const zoo::StepInput in = turning_spine_step(scene, rest);
+  expect_base_adds(scene, in, "bones", [&](std::size_t, const at::Tensor& x) { return spine_turn(in, x); });
 
   // The binding: every garment vertex on bone 0 -> 1 (moved by joint 0).
   const ln::BoneBinding binding = ln::bind_to_bones(scene.statics);
@@ -298,6 +313,50 @@ TEST(LayersNet, BonesBaseCarriesTheGarmentWithItsRestPoseBones) {
   scene.statics.tpose_joints = posed_joints(rest, 0.0, at::zeros({3}));
   bones->prepare(scene.statics);
   EXPECT_THROW(bones->step(scene.input(5)), layers::Error);
+}
+
+TEST(LayersNet, LearnedBlendMixesInertiaAndBonesByTheDecodersGate) {
+  auto scene = ln::testing::make_scene({}, "blend");
+  const at::Tensor rest = add_spine(scene);
+  const zoo::StepInput in = turning_spine_step(scene, rest);
+  const std::string shape = "{width: 32, blocks: 2, heads: 4";
+  auto inertial = make(shape + "}");
+  auto learned = make(shape + ", base: bones, blend: learned}");
+  // The same weights; the decoder's 4th output (the gate's logit) set to a
+  // constant L by a zero weight row.
+  {
+    at::NoGradGuard no_grad;
+    auto to = learned->named_parameters();
+    for (const auto& from : inertial->named_parameters())
+      to[from.key()].narrow(0, 0, from.value().size(0)).copy_(from.value());
+    to["decoder.out.weight"][3].zero_();
+  }
+  auto with_logit = [&](double logit) {
+    {
+      at::NoGradGuard no_grad;
+      learned->named_parameters()["decoder.out.bias"][3].fill_(logit);
+    }
+    return learned->step(in);
+  };
+  for (auto& m : {inertial, learned}) {
+    m->set_normalization(ln::testing::scene_normalization(scene));
+    m->prepare(scene.statics);
+  }
+  const zoo::StepOutput paper = inertial->step(in);
+  const zoo::StepOutput closed = with_logit(-40), open = with_logit(40), half = with_logit(0);
+  for (std::size_t k = 0; k < paper.garments.size(); ++k) {
+    const at::Tensor x = in.garments[k].current;
+    const at::Tensor velocity = (x - in.root[1]) - (in.garments[k].prev - in.root[0]);
+    // Gate 0: the paper's inertial step; gate 1: the bones' motion for
+    // every vertex, near the body or not; gate 1/2: halfway.
+    EXPECT_TRUE(at::allclose(closed.garments[k], paper.garments[k], 1e-5, 1e-6)) << k;
+    EXPECT_TRUE(at::allclose(open.garments[k] - closed.garments[k], spine_turn(in, x) - velocity, 1e-5, 1e-6)) << k;
+    EXPECT_TRUE(at::allclose(half.garments[k], (open.garments[k] + closed.garments[k]) / 2, 1e-5, 1e-6)) << k;
+    EXPECT_GT((open.garments[k] - closed.garments[k]).abs().max().item<double>(), 1e-4) << k;
+  }
+  // Nothing to blend with the inertial base.
+  EXPECT_THROW(make("{blend: learned}"), layers::InputError);
+  EXPECT_THROW(make("{base: body, blend: sometimes}"), layers::InputError);
 }
 
 TEST(LayersNet, AnyNumberOfGarments) {
