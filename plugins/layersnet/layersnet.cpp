@@ -146,7 +146,7 @@ zoo::StepOutput LayersNet::predict(const zoo::StepInput& in) {
   // blend); a learned blend takes v + g (follow - v) there instead.
   at::Tensor base = v_rel;
   if (base_ != Base::inertial) {
-    at::Tensor follow, applies = near_valid;
+    at::Tensor follow;
     if (base_ == Base::body) {
       follow = nearest.displacement;
     } else {
@@ -155,10 +155,11 @@ zoo::StepOutput LayersNet::predict(const zoo::StepInput& in) {
       const BoneBinding& bones = derived<Cached>().bones;
       const zoo::JointSteps steps = zoo::joint_steps(in.joints.to(at::kFloat), in.joints_next.to(at::kFloat));
       follow = frames.to_local(2, zoo::move_with_joints(steps, x, bones.joint, bones.weight)) - p_rel;
-      if (learned_blend_) applies = at::ones_like(near_valid);
     }
     if (learned_blend_) follow = v_rel + at::sigmoid(decoded.narrow(1, 3, 1)) * (follow - v_rel);
-    base = at::where(applies, follow, v_rel);
+    // The bones' motion is defined everywhere; a learned blend uses it so.
+    const bool everywhere = learned_blend_ && base_ == Base::bones;
+    base = everywhere ? follow : at::where(near_valid, follow, v_rel);
   }
   const at::Tensor next = frames.to_world(2, p_rel + base + acceleration);
   zoo::StepOutput out;
