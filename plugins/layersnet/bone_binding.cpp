@@ -1,5 +1,5 @@
-// Binding garment vertices to the skeleton's bones (see bone_binding.h).
-#include "bone_binding.h"
+// Binding garment vertices to the skeleton's bones (see joint_binding.h).
+#include "joint_binding.h"
 
 #include <algorithm>
 #include <string>
@@ -9,7 +9,7 @@
 
 namespace layers::layersnet {
 
-BoneBinding bind_to_bones(const zoo::SequenceStatic& s) {
+JointBinding bind_to_bones(const zoo::SequenceStatic& s) {
   const std::string where = "sequence '" + s.id + "'";
   if (!s.tpose_joints.defined() || !s.joint_parents.defined())
     throw InputError(where, s.tpose_joints.defined() ? "joint_parents" : "tpose_joints",
@@ -35,7 +35,7 @@ BoneBinding bind_to_bones(const zoo::SequenceStatic& s) {
 
   const std::int64_t k = std::min<std::int64_t>(2, child.numel());
   const auto [nearest, bone] = distance.topk(k, 1, /*largest=*/false);
-  BoneBinding out;
+  JointBinding out;
   out.joint = owners.index_select(0, bone.flatten()).view_as(bone);
   out.weight = at::softmax(-(nearest - nearest.select(1, 0).unsqueeze(1)) / kBoneBlend, 1);
   return out;

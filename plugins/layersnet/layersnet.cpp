@@ -3,11 +3,12 @@
 #include "layersnet.h"
 
 #include <algorithm>
+#include <mutex>
 
 #include "body_contacts.h"
-#include "bone_binding.h"
 #include "decoder.h"
 #include "frame.h"
+#include "joint_binding.h"
 #include "tokens.h"
 #include "topology.h"
 #include "layers/core/error.h"
@@ -24,7 +25,10 @@ constexpr std::int64_t kNearBody = 10;  // body state, offset / radius, present
 
 struct LayersNet::Cached : Derived {
   SceneTopology topology;
-  BoneBinding bones;  // base "bones" only
+  // Bases "bones" (bound at derive) and "skin" (bound on the sequence's
+  // first step: it needs a body frame), hence mutable.
+  mutable JointBinding joints;
+  mutable std::once_flag skin_bound;
 };
 
 LayersNet::LayersNet(const Params& params)
@@ -53,7 +57,8 @@ std::map<std::string, double> LayersNet::step_counters() const {
 std::shared_ptr<const zoo::Model::Derived> LayersNet::derive(const zoo::SequenceStatic& data) {
   auto cached = std::make_shared<Cached>();
   cached->topology = build_topology(data, params_.patch_size);
-  if (base_ == Base::bones) cached->bones = bind_to_bones(data);
+  if (base_ == Base::bones) cached->joints = bind_to_bones(data);
+  if (base_ == Base::skin) check_skin_data(data);
   return cached;
 }
 
@@ -141,9 +146,9 @@ zoo::StepOutput LayersNet::predict(const zoo::StepInput& in) {
   // v(t+1) = base + a, p(t+1) = p(t) + v(t+1) in the moving frame; back to
   // world. The base is v(t) (inertial) or, where it applies, the followed
   // motion: the nearest body vertex's displacement t -> t+1 ("body", where
-  // one lies within the radius) or the vertex carried by its rest-pose
-  // bones ("bones": within the radius, or everywhere with a learned
-  // blend); a learned blend takes v + g (follow - v) there instead.
+  // one lies within the radius) or the vertex carried by the joints it is
+  // bound to ("bones", "skin": within the radius, or everywhere with a
+  // learned blend); a learned blend takes v + g (follow - v) there instead.
   at::Tensor base = v_rel;
   if (base_ != Base::inertial) {
     at::Tensor follow;
@@ -151,14 +156,16 @@ zoo::StepOutput LayersNet::predict(const zoo::StepInput& in) {
       follow = nearest.displacement;
     } else {
       if (!in.joints.defined() || !in.joints_next.defined())
-        throw Error("layersnet: base 'bones' needs the joint transforms at t and t+1 (LAYERS-H5 body/joints)");
-      const BoneBinding& bones = derived<Cached>().bones;
+        throw Error("layersnet: bases 'bones' and 'skin' need the joint transforms at t and t+1 (LAYERS-H5 body/joints)");
+      const Cached& cached = derived<Cached>();
+      if (base_ == Base::skin)
+        std::call_once(cached.skin_bound, [&] { cached.joints = bind_to_skin(sequence(), in.body, in.joints); });
       const zoo::JointSteps steps = zoo::joint_steps(in.joints.to(at::kFloat), in.joints_next.to(at::kFloat));
-      follow = frames.to_local(2, zoo::move_with_joints(steps, x, bones.joint, bones.weight)) - p_rel;
+      follow = frames.to_local(2, zoo::move_with_joints(steps, x, cached.joints.joint, cached.joints.weight)) - p_rel;
     }
     if (learned_blend_) follow = v_rel + at::sigmoid(decoded.narrow(1, 3, 1)) * (follow - v_rel);
-    // The bones' motion is defined everywhere; a learned blend uses it so.
-    const bool everywhere = learned_blend_ && base_ == Base::bones;
+    // The joints' motion is defined everywhere; a learned blend uses it so.
+    const bool everywhere = learned_blend_ && base_ != Base::body;
     base = everywhere ? follow : at::where(near_valid, follow, v_rel);
   }
   const at::Tensor next = frames.to_world(2, p_rel + base + acceleration);

@@ -8,8 +8,9 @@ namespace layers::layersnet {
 Base base_from_name(const std::string& name) {
   if (name == "body") return Base::body;
   if (name == "bones") return Base::bones;
+  if (name == "skin") return Base::skin;
   if (name == "inertial") return Base::inertial;
-  throw InputError("layersnet params", "base", "inertial, body or bones", name);
+  throw InputError("layersnet params", "base", "inertial, body, bones or skin", name);
 }
 
 Params read_params(const cfg::Node& node) {
@@ -23,7 +24,7 @@ Params read_params(const cfg::Node& node) {
   if (p.blend == "learned" && p.base == "inertial") {
     const cfg::Node* blend = node.find("blend");
     throw InputError(blend ? blend->where() : node.where(), "blend",
-                     "radius with base inertial (a learned blend needs base body or bones)", p.blend);
+                     "radius with base inertial (a learned blend needs base body, bones or skin)", p.blend);
   }
   return p;
 }

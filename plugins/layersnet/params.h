@@ -22,14 +22,16 @@ struct Params {
   // What the predicted acceleration is added to: "inertial" (the paper:
   // p + v), "body" (p + the displacement of the vertex's nearest body
   // vertex from t to t+1 where one lies within body_radius, p + v
-  // elsewhere) or "bones" (likewise, but p moved by the skeleton bones the
-  // vertex is bound to in the rest pose; bone_binding.h).
+  // elsewhere), "bones" (likewise, but p moved by the skeleton bones the
+  // vertex is bound to in the rest pose) or "skin" (p moved by the skinning
+  // of the body vertex nearest its rest position in the T-pose; both in
+  // joint_binding.h).
   std::string base = "inertial";
   // Where and how much the body or bones base replaces p + v: "radius"
   // (fully, within body_radius of the body) or "learned" (a per-vertex
   // gate g in (0,1) the decoder predicts beside the acceleration:
-  // v + g (follow - v); for "bones" everywhere, for "body" within
-  // body_radius, where a nearest body vertex exists).
+  // v + g (follow - v); for "bones" and "skin" everywhere, for "body"
+  // within body_radius, where a nearest body vertex exists).
   std::string blend = "radius";
 
   template <class V>
@@ -44,16 +46,16 @@ struct Params {
     v("heading_frame", heading_frame,
       cfg::opt().help("express each step in the body root's heading frame (yaw about +y) instead of world axes"));
     v("base", base,
-      cfg::opt().choices({"inertial", "body", "bones"})
-          .help("integration base within body_radius of the body: p + v (inertial), the nearest body vertex's displacement (body), the motion of the vertex's rest-pose bones (bones)"));
+      cfg::opt().choices({"inertial", "body", "bones", "skin"})
+          .help("integration base within body_radius of the body: p + v (inertial), the nearest body vertex's displacement (body), the motion of the vertex's rest-pose bones (bones) or of its T-pose nearest body vertex's skinning (skin)"));
     v("blend", blend,
       cfg::opt().choices({"radius", "learned"})
-          .help("body/bones base: replaces p + v within body_radius (radius) or blended with it by a learned per-vertex gate (learned)"));
+          .help("body/bones/skin base: replaces p + v within body_radius (radius) or blended with it by a learned per-vertex gate (learned)"));
   }
 };
 
 // The integration base, parsed once (the names of Params::base).
-enum class Base { inertial, body, bones };
+enum class Base { inertial, body, bones, skin };
 Base base_from_name(const std::string& name);
 
 // Reads and checks the parameters (null: all defaults). Throws InputError

@@ -14,10 +14,11 @@
 
 #include "layers/core/config_node.h"
 #include "layers/core/error.h"
+#include "layers/zoo/joint_motion.h"
 #include "layers/zoo/plugin_loader.h"
 #include "layers/zoo/registry.h"
 #include "layers/zoo/rotations.h"
-#include "bone_binding.h"
+#include "joint_binding.h"
 #include "layersnet.h"
 #include "synthetic_scene.h"
 #include "topology.h"
@@ -286,7 +287,7 @@ TEST(LayersNet, BodyBaseFollowsTheNearestBodyVertexWithinTheRadius) {
     const at::Tensor nearest = std::get<1>(at::cdist(x, in.body_next).min(1));
     return (in.body_next.index_select(0, nearest) - in.root[2]) - (in.body.index_select(0, nearest) - in.root[1]);
   });
-  EXPECT_THROW(make("{base: skin}"), layers::InputError);
+  EXPECT_THROW(make("{base: wind}"), layers::InputError);
 }
 
 TEST(LayersNet, BonesBaseCarriesTheGarmentWithItsRestPoseBones) {
@@ -296,7 +297,7 @@ TEST(LayersNet, BonesBaseCarriesTheGarmentWithItsRestPoseBones) {
   expect_base_adds(scene, in, "bones", [&](std::size_t, const at::Tensor& x) { return spine_turn(in, x); });
 
   // The binding: every garment vertex on bone 0 -> 1 (moved by joint 0).
-  const ln::BoneBinding binding = ln::bind_to_bones(scene.statics);
+  const ln::JointBinding binding = ln::bind_to_bones(scene.statics);
   EXPECT_TRUE(binding.joint.select(1, 0).eq(0).all().item<bool>());
   EXPECT_GT(binding.weight.select(1, 0).min().item<float>(), 0.99f);
   EXPECT_TRUE(at::allclose(binding.weight.sum(1), at::ones({binding.weight.size(0)})));
@@ -315,6 +316,61 @@ TEST(LayersNet, BonesBaseCarriesTheGarmentWithItsRestPoseBones) {
   scene.statics.tpose_joints = posed_joints(rest, 0.0, at::zeros({3}));
   bones->prepare(scene.statics);
   EXPECT_THROW(bones->step(scene.input(5)), layers::Error);
+}
+
+TEST(LayersNet, SkinBaseCarriesTheGarmentWithItsNearestBodyVertexsSkinning) {
+  auto scene = ln::testing::make_scene({}, "skin");
+  const at::Tensor rest = add_spine(scene);
+  // Skinning of the body's rest cylinder (its T-pose): joint 0 at the
+  // bottom, joint 1 at the top, blended linearly in between.
+  const at::Tensor body_tpose = scene.body[0] - scene.root[0];
+  const at::Tensor up = ((body_tpose.select(1, 1) + 0.4f) / 0.8f).clamp(0, 1);
+  const at::Tensor none = at::zeros_like(up);
+  scene.statics.skin_index = at::tensor({0, 1, 2, 2}, at::kLong).repeat({body_tpose.size(0), 1});
+  scene.statics.skin_weight = at::stack({1 - up, up, none, none}, 1);
+  // A bending pose (joint 1 turns further than joint 0, so the rotations
+  // blend), and the body skinned into it at t and t+1.
+  const auto bent = [&](double yaw0, double yaw1, const at::Tensor& shift) {
+    at::Tensor j = posed_joints(rest, yaw0, shift);
+    j[1].copy_(posed_joints(rest, yaw1, shift)[1]);
+    return j;
+  };
+  const auto skinned = [&](const at::Tensor& joints) {
+    return zoo::move_with_joints(zoo::joint_steps(scene.statics.tpose_joints, joints), body_tpose,
+                                 scene.statics.skin_index, scene.statics.skin_weight);
+  };
+  zoo::StepInput in = scene.input(5);
+  in.joints = bent(0.3, 0.6, in.root[1]);
+  in.joints_next = bent(0.4, 0.8, in.root[2]);
+  in.body = skinned(in.joints);
+  in.body_next = skinned(in.joints_next);
+
+  // Expected: each garment vertex takes the weights of the T-pose body
+  // vertex nearest its rest position and moves with them from t to t+1.
+  std::vector<at::Tensor> joint, weight;
+  for (const zoo::GarmentStatic& g : scene.statics.garments) {
+    const at::Tensor nearest = std::get<1>(at::cdist(g.rest, body_tpose).min(1));
+    joint.push_back(scene.statics.skin_index.index_select(0, nearest));
+    weight.push_back(scene.statics.skin_weight.index_select(0, nearest));
+  }
+  const ln::JointBinding binding = ln::bind_to_skin(scene.statics, in.body, in.joints);
+  EXPECT_TRUE(at::allclose(binding.weight, at::cat(weight), 1e-5, 1e-6));
+  EXPECT_GT(at::cat(weight).select(1, 1).std().item<double>(), 0.1);  // the weights vary along the garment
+  const zoo::JointSteps steps = zoo::joint_steps(in.joints, in.joints_next);
+  expect_base_adds(scene, in, "skin", [&](std::size_t k, const at::Tensor& x) {
+    return (zoo::move_with_joints(steps, x, joint[k], weight[k]) - in.root[2]) - (x - in.root[1]);
+  });
+
+  // No skinning data: a clear error when the sequence is prepared.
+  auto skin = make("{width: 16, blocks: 1, heads: 2, base: skin}");
+  scene.statics.id = "no-skin";
+  scene.statics.skin_weight = at::Tensor();
+  try {
+    skin->prepare(scene.statics);
+    FAIL() << "no error";
+  } catch (const layers::InputError& e) {
+    EXPECT_EQ(e.field(), "skin_weight");
+  }
 }
 
 TEST(LayersNet, LearnedBlendMixesInertiaAndBonesByTheDecodersGate) {

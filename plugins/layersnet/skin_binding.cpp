@@ -1,0 +1,82 @@
+// Binding garment vertices to the body's skinning (see joint_binding.h).
+#include <string>
+#include <vector>
+
+#include "joint_binding.h"
+#include "layers/core/error.h"
+#include "layers/geometry/nearest.h"
+#include "layers/zoo/joint_motion.h"
+
+namespace layers::layersnet {
+namespace {
+
+std::string where(const zoo::SequenceStatic& s) { return "sequence '" + s.id + "'"; }
+
+// A float32 CPU [N,3] tensor as geometry points (copied).
+geometry::Points points(const at::Tensor& x) {
+  const at::Tensor c = x.contiguous();
+  return Eigen::Map<const geometry::Points>(c.data_ptr<float>(), c.size(0), 3);
+}
+
+}  // namespace
+
+void check_skin_data(const zoo::SequenceStatic& s) {
+  const std::string what = " (LayersNet base 'skin')";
+  if (!s.skin_index.defined())
+    throw InputError(where(s), "skin_index", "the body's skinning joints [Vb,4]" + what, "none");
+  if (!s.skin_weight.defined())
+    throw InputError(where(s), "skin_weight", "the body's skinning weights [Vb,4]" + what, "none");
+  if (!s.tpose_joints.defined())
+    throw InputError(where(s), "tpose_joints", "the T-pose the garments were made in [J,3,4]" + what, "none");
+}
+
+JointBinding bind_to_skin(const zoo::SequenceStatic& s, const at::Tensor& body_t, const at::Tensor& joints_t) {
+  check_skin_data(s);
+  at::NoGradGuard no_grad;
+  const at::Tensor body = body_t.detach().to(at::kCPU, at::kFloat);
+  const at::Tensor index = s.skin_index.to(at::kCPU, at::kLong);
+  at::Tensor weight = s.skin_weight.to(at::kCPU, at::kFloat);
+  const std::int64_t vb = body.size(0), nj = joints_t.size(0), k = index.size(1);
+  if (index.size(0) != vb)
+    throw InputError(where(s), "skin_index", std::to_string(vb) + " rows (the body's vertices)",
+                     std::to_string(index.size(0)));
+  if (s.tpose_joints.size(0) != nj)
+    throw InputError(where(s), "tpose_joints", std::to_string(nj) + " joints (as body/joints)",
+                     std::to_string(s.tpose_joints.size(0)));
+  if (vb == 0) throw InputError(where(s), "body", "at least one body vertex to bind to", "none");
+  const std::int64_t lo = index.min().item<std::int64_t>(), hi = index.max().item<std::int64_t>();
+  if (lo < 0 || hi >= nj)
+    throw InputError(where(s), "skin_index", "joint indices in [0, " + std::to_string(nj) + ")",
+                     std::to_string(lo < 0 ? lo : hi));
+  const at::Tensor sums = weight.sum(1, /*keepdim=*/true);
+  const double smallest = sums.min().item<double>();
+  if (!(smallest > 0))
+    throw InputError(where(s), "skin_weight", "a positive weight sum for every body vertex",
+                     "a sum of " + std::to_string(smallest));
+  weight = weight / sums;
+
+  // Each body vertex's blended map T-pose -> t, x -> A x + b, inverted.
+  const zoo::JointSteps steps =
+      zoo::joint_steps(s.tpose_joints.to(at::kCPU, at::kFloat), joints_t.detach().to(at::kCPU, at::kFloat));
+  const at::Tensor w = weight.view({vb, k, 1});
+  const at::Tensor a = (w.unsqueeze(3) * steps.m.index_select(0, index.flatten()).view({vb, k, 3, 3})).sum(1);
+  const at::Tensor b = (w * steps.c.index_select(0, index.flatten()).view({vb, k, 3})).sum(1);
+  const double det = at::linalg_det(a).abs().min().item<double>();
+  if (!(det > 1e-6))
+    throw InputError(where(s), "skin_weight", "blended joint maps that can be inverted (|det| > 1e-6)",
+                     "|det| " + std::to_string(det));
+  const at::Tensor tpose_body = at::linalg_solve(a, (body - b).unsqueeze(2)).squeeze(2);
+
+  // The nearest T-pose body vertex of each garment vertex's rest position.
+  std::vector<at::Tensor> rest;
+  for (const zoo::GarmentStatic& g : s.garments) rest.push_back(g.rest.to(at::kCPU, at::kFloat));
+  const geometry::PointIndex tree(points(tpose_body));
+  Eigen::VectorXi nearest = tree.nearest_all(points(at::cat(rest)));
+  const at::Tensor ids = at::from_blob(nearest.data(), {nearest.size()}, at::kInt).to(at::kLong);
+  JointBinding out;
+  out.joint = index.index_select(0, ids).to(body_t.device());
+  out.weight = weight.index_select(0, ids).to(body_t.device());
+  return out;
+}
+
+}  // namespace layers::layersnet
