@@ -277,6 +277,16 @@ at::Tensor spine_turn(const zoo::StepInput& in, const at::Tensor& x) {
   return at::matmul(x - in.root[1], turn.t()) - (x - in.root[1]);
 }
 
+// prepare() rejects `statics` with an InputError naming `field`.
+void expect_prepare_error(zoo::Model& model, const zoo::SequenceStatic& statics, const std::string& field) {
+  try {
+    model.prepare(statics);
+    FAIL() << "no error";
+  } catch (const layers::InputError& e) {
+    EXPECT_EQ(e.field(), field);
+  }
+}
+
 }  // namespace
 
 TEST(LayersNet, BodyBaseFollowsTheNearestBodyVertexWithinTheRadius) {
@@ -306,12 +316,7 @@ TEST(LayersNet, BonesBaseCarriesTheGarmentWithItsRestPoseBones) {
   auto bones = make("{width: 16, blocks: 1, heads: 2, base: bones}");
   scene.statics.id = "no-skeleton";
   scene.statics.tpose_joints = at::Tensor();
-  try {
-    bones->prepare(scene.statics);
-    FAIL() << "no error";
-  } catch (const layers::InputError& e) {
-    EXPECT_EQ(e.field(), "tpose_joints");
-  }
+  expect_prepare_error(*bones, scene.statics, "tpose_joints");
   scene.statics.id = "bones-again";
   scene.statics.tpose_joints = posed_joints(rest, 0.0, at::zeros({3}));
   bones->prepare(scene.statics);
@@ -365,12 +370,7 @@ TEST(LayersNet, SkinBaseCarriesTheGarmentWithItsNearestBodyVertexsSkinning) {
   auto skin = make("{width: 16, blocks: 1, heads: 2, base: skin}");
   scene.statics.id = "no-skin";
   scene.statics.skin_weight = at::Tensor();
-  try {
-    skin->prepare(scene.statics);
-    FAIL() << "no error";
-  } catch (const layers::InputError& e) {
-    EXPECT_EQ(e.field(), "skin_weight");
-  }
+  expect_prepare_error(*skin, scene.statics, "skin_weight");
 }
 
 TEST(LayersNet, LearnedBlendMixesInertiaAndBonesByTheDecodersGate) {
