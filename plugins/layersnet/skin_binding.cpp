@@ -36,7 +36,7 @@ JointBinding bind_to_skin(const zoo::SequenceStatic& s, const at::Tensor& body_t
   const at::Tensor body = body_t.detach().to(at::kCPU, at::kFloat);
   const at::Tensor index = s.skin_index.to(at::kCPU, at::kLong);
   at::Tensor weight = s.skin_weight.to(at::kCPU, at::kFloat);
-  const std::int64_t vb = body.size(0), nj = joints_t.size(0), k = index.size(1);
+  const std::int64_t vb = body.size(0), nj = joints_t.size(0);
   if (index.size(0) != vb)
     throw InputError(where(s), "skin_index", std::to_string(vb) + " rows (the body's vertices)",
                      std::to_string(index.size(0)));
@@ -56,16 +56,14 @@ JointBinding bind_to_skin(const zoo::SequenceStatic& s, const at::Tensor& body_t
   weight = weight / sums;
 
   // Each body vertex's blended map T-pose -> t, x -> A x + b, inverted.
-  const zoo::JointSteps steps =
-      zoo::joint_steps(s.tpose_joints.to(at::kCPU, at::kFloat), joints_t.detach().to(at::kCPU, at::kFloat));
-  const at::Tensor w = weight.view({vb, k, 1});
-  const at::Tensor a = (w.unsqueeze(3) * steps.m.index_select(0, index.flatten()).view({vb, k, 3, 3})).sum(1);
-  const at::Tensor b = (w * steps.c.index_select(0, index.flatten()).view({vb, k, 3})).sum(1);
-  const double det = at::linalg_det(a).abs().min().item<double>();
+  const zoo::JointSteps blended = zoo::blend_joint_steps(
+      zoo::joint_steps(s.tpose_joints.to(at::kCPU, at::kFloat), joints_t.detach().to(at::kCPU, at::kFloat)), index,
+      weight, at::kFloat);
+  const double det = at::linalg_det(blended.m).abs().min().item<double>();
   if (!(det > 1e-6))
     throw InputError(where(s), "skin_weight", "blended joint maps that can be inverted (|det| > 1e-6)",
                      "|det| " + std::to_string(det));
-  const at::Tensor tpose_body = at::linalg_solve(a, (body - b).unsqueeze(2)).squeeze(2);
+  const at::Tensor tpose_body = at::linalg_solve(blended.m, (body - blended.c).unsqueeze(2)).squeeze(2);
 
   // The nearest T-pose body vertex of each garment vertex's rest position.
   std::vector<at::Tensor> rest;

@@ -13,15 +13,19 @@ JointSteps joint_steps(const at::Tensor& joints, const at::Tensor& joints_next) 
   return {m, p1 - (m * p0.unsqueeze(1)).sum(-1)};
 }
 
-at::Tensor move_with_joints(const JointSteps& steps, const at::Tensor& points, const at::Tensor& joint,
-                            const at::Tensor& weight) {
-  const std::int64_t nv = points.size(0), k = joint.size(1);
-  const auto type = points.scalar_type();
+JointSteps blend_joint_steps(const JointSteps& steps, const at::Tensor& joint, const at::Tensor& weight,
+                             at::ScalarType type) {
+  const std::int64_t nv = joint.size(0), k = joint.size(1);
   const at::Tensor flat = joint.flatten();
   const at::Tensor w = weight.to(type);
-  const at::Tensor a = (w.view({nv, k, 1, 1}) * steps.m.to(type).index_select(0, flat).view({nv, k, 3, 3})).sum(1);
-  const at::Tensor b = (w.view({nv, k, 1}) * steps.c.to(type).index_select(0, flat).view({nv, k, 3})).sum(1);
-  return (a * points.unsqueeze(1)).sum(-1) + b;
+  return {(w.view({nv, k, 1, 1}) * steps.m.to(type).index_select(0, flat).view({nv, k, 3, 3})).sum(1),
+          (w.view({nv, k, 1}) * steps.c.to(type).index_select(0, flat).view({nv, k, 3})).sum(1)};
+}
+
+at::Tensor move_with_joints(const JointSteps& steps, const at::Tensor& points, const at::Tensor& joint,
+                            const at::Tensor& weight) {
+  const JointSteps blended = blend_joint_steps(steps, joint, weight, points.scalar_type());
+  return (blended.m * points.unsqueeze(1)).sum(-1) + blended.c;
 }
 
 }  // namespace layers::zoo

@@ -17,6 +17,11 @@ struct JointSteps {
 };
 JointSteps joint_steps(const at::Tensor& joints, const at::Tensor& joints_next);
 
+// Per point, the blend of its joints' maps: weight [V,K] times the maps of
+// joint [V,K] (int64), summed: {M [V,3,3], c [V,3]}, in `type`.
+JointSteps blend_joint_steps(const JointSteps& steps, const at::Tensor& joint, const at::Tensor& weight,
+                             at::ScalarType type);
+
 // Points [V,3] moved by the blend of their joints: joint [V,K] (int64) and
 // weight [V,K] (summing to 1): sum_k w_k (M_jk x + c_jk), in the points'
 // dtype.
