@@ -1,6 +1,11 @@
 # Helpers shared by every layers target: warnings, the layers::<name> alias,
-# and the plugin convention (a shared library in bin/plugins named
-# liblayers_plugin_<name>.so that links layers::zoo).
+# the plugin convention (a shared library in bin/plugins named
+# liblayers_plugin_<name>.so that links layers::zoo), and the install
+# layout of layers/core/install_paths.h:
+#   <prefix>/bin/layers, <prefix>/lib/liblayers_<name>.so,
+#   <prefix>/lib/layers/plugins/, <prefix>/share/layers/{assets,configs}
+# (`cmake --install build --prefix P`; every RPATH is relative, so the
+# prefix can move).
 
 function(layers_warnings target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wno-unused-parameter)
@@ -19,20 +24,30 @@ function(layers_library name)
   target_include_directories(layers_${name} PUBLIC
     $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>)
   target_link_libraries(layers_${name} PUBLIC ${ARG_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
+  set_target_properties(layers_${name} PROPERTIES INSTALL_RPATH "$ORIGIN")
+  install(TARGETS layers_${name} LIBRARY DESTINATION lib)
   layers_warnings(layers_${name})
 endfunction()
 
 # layers_plugin(<name> SOURCES ... [OUTPUT_DIR dir] [DEPS ...])
+# A plugin built into the default folder is installed; one built elsewhere
+# (the test plugins) is not.
 function(layers_plugin name)
   cmake_parse_arguments(ARG "" "OUTPUT_DIR" "SOURCES;DEPS" ${ARGN})
+  set(installed OFF)
   if(NOT ARG_OUTPUT_DIR)
     set(ARG_OUTPUT_DIR ${LAYERS_PLUGIN_OUTPUT_DIRECTORY})
+    set(installed ON)
   endif()
   add_library(layers_plugin_${name} MODULE ${ARG_SOURCES})
   target_link_libraries(layers_plugin_${name} PRIVATE layers::zoo ${ARG_DEPS})
   set_target_properties(layers_plugin_${name} PROPERTIES
     LIBRARY_OUTPUT_DIRECTORY ${ARG_OUTPUT_DIR}
     PREFIX "lib"
-    BUILD_RPATH "${CMAKE_BINARY_DIR}/lib")
+    BUILD_RPATH "${CMAKE_BINARY_DIR}/lib"
+    INSTALL_RPATH "$ORIGIN/../..")
+  if(installed)
+    install(TARGETS layers_plugin_${name} LIBRARY DESTINATION lib/layers/plugins)
+  endif()
   layers_warnings(layers_plugin_${name})
 endfunction()

@@ -39,6 +39,13 @@ bool dataset_complete(const std::string& folder, const generate::GeneratorConfig
 }
 
 bool make_dataset(const train::StudyDataset& d) {
+  if (d.config.empty()) {  // a finished dataset, used as it is
+    for (const char* f : {"dataset.yaml", "splits.yaml"})
+      if (!fs::is_regular_file(fs::path(d.folder) / f))
+        throw InputError(d.folder, "dataset.folder", "a finished dataset (no dataset.config to generate one)",
+                         std::string("no ") + f);
+    return false;
+  }
   cfg::Node tree = cfg::load_file(d.config);
   for (const auto& s : d.set) cfg::apply_set(tree, s);
   const auto config = cfg::read<generate::GeneratorConfig>(tree);

@@ -1,6 +1,6 @@
 // plugins/deepsd/params.h -- the parameters of the DeePSD model (the
 // `model.params` section of an experiment config), with the defaults of the
-// public DeePSD code (PAPER_NOTES.md "DeePSD"). Torch-free.
+// public DeePSD code (docs/deepsd.md). Torch-free.
 #pragma once
 
 #include <cstdint>

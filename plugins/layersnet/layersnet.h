@@ -1,5 +1,5 @@
-// plugins/layersnet/layersnet.h -- the LayersNet model (PAPER_NOTES.md
-// "LayersNet", docs/layersnet.md): garments as UV patches, body vertices
+// plugins/layersnet/layersnet.h -- the LayersNet model (the paper and its
+// public code, docs/layersnet.md): garments as UV patches, body vertices
 // near the garment and abstract tokens (gravity, wind, attributes) as
 // senders, a TIE-attention processor with mesh-edge and world-edge heads,
 // a patch decoder back to vertices predicting accelerations.

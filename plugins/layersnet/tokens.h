@@ -13,7 +13,8 @@
 namespace layers::layersnet {
 
 // mass, tension, compression, shear, bending, friction, self_friction
-// (layers/zoo/model.h order) and their sampling ranges (DESIGN.md 2).
+// (layers/zoo/model.h order) and their sampling ranges (the paper's; the
+// generator's defaults, docs/format.md "Garment attributes").
 inline constexpr std::int64_t kAttributes = 7;
 inline constexpr double kAttributeLow[kAttributes] = {0.2, 15, 15, 15, 15, 40, 40};
 inline constexpr double kAttributeHigh[kAttributes] = {0.8, 100, 100, 100, 200, 80, 80};

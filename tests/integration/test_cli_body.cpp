@@ -27,7 +27,7 @@ TEST(CliBody, ProceduralWalkToShardValidatesAndExports) {
 
 TEST(CliBody, BvhClipToDatasetFolder) {
   test::TempDir dir;
-  auto r = run_command(test::layers_bin() + " body --motion 131_02_start_walk_stop.bvh --frames 20 --out " +
+  auto r = run_command(test::layers_bin() + " body --motion cmu/131_02_start_walk_stop.bvh --frames 20 --out " +
                        dir.file("ds"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("self-intersection:"), std::string::npos) << r.output;

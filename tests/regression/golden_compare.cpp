@@ -98,7 +98,7 @@ std::string golden_json(const Golden& golden) {
   for (const auto& [name, value] : golden.metrics) metrics[name] = std::isfinite(value) ? json(value) : json(nullptr);
   json doc = {{"run", golden.run},
               {"model", golden.model},
-              {"note", "golden metrics of tests/regression/study.yaml; update on purpose with "
+              {"note", "golden metrics of the CI regression (tests/regression); update on purpose with "
                        "LAYERS_UPDATE_GOLDENS=1 (docs/studies.md)"},
               {"metrics", metrics}};
   return doc.dump(2) + "\n";

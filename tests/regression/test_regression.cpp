@@ -1,8 +1,11 @@
-// The CI regression test (docs/studies.md): `layers run
-// tests/regression/study.yaml` in a temporary folder -- a dataset smaller
-// than `tiny`, a very short deterministic train -> eval of every model
-// whose plugin is built -- then each run's eval-test/metrics.json against
-// goldens/<run>.json within tolerances.yaml.
+// The CI regression test of the models (docs/studies.md): `layers run
+// tests/regression/study.yaml` in a temporary folder on a copy of the
+// committed fixture dataset (tests/regression/fixture.tar.xz, 7 MB), a very
+// short deterministic train -> eval of every model whose plugin is built,
+// then each run's eval-test/metrics.json against goldens/<run>.json within
+// tolerances.yaml. The data are fixed, so the goldens depend only on the
+// model and engine code; the generator has its own regression
+// (test_generator_regression.cpp). The sha256 of the data used is printed.
 //
 //   LAYERS_UPDATE_GOLDENS=1   rewrite the goldens of the built models (on purpose)
 //   LAYERS_REGRESSION_DIR=d   work in d and keep it (a second run reuses every step)
@@ -29,6 +32,7 @@
 #include "layers/train/study.h"
 #include "layers/zoo/plugin_loader.h"
 #include "layers/zoo/registry.h"
+#include "regression_paths.h"
 #include "run_command.h"
 #include "temp_dir.h"
 
@@ -37,13 +41,10 @@ using namespace layers;
 
 namespace {
 
-std::string regression_dir() { return test::source_dir() + "/tests/regression"; }
+using regression::golden_file;
+using regression::regression_dir;
 std::string study_file() { return regression_dir() + "/study.yaml"; }
-std::string golden_file(const std::string& run) { return regression_dir() + "/goldens/" + run + ".json"; }
-bool updating() {
-  const char* v = std::getenv("LAYERS_UPDATE_GOLDENS");
-  return v && *v && std::string(v) != "0";
-}
+bool updating() { return regression::updating_goldens(); }
 std::string layers_command(const std::string& args) {
   return "LAYERS_PLUGIN_PATH=" + test::plugin_dir() + " " + test::layers_bin() + " --log-level warn " + args;
 }
@@ -52,6 +53,7 @@ std::string layers_command(const std::string& args) {
 struct Regression {
   std::unique_ptr<test::TempDir> temp;
   std::string work;                       // output and data live here
+  std::string data;                       // the unpacked fixture dataset
   std::map<std::string, std::string> model_of;  // run -> model name
   std::set<std::string> built;            // runs whose model is registered
   test::CommandResult result;
@@ -78,6 +80,11 @@ struct Regression {
         r.temp = std::make_unique<test::TempDir>("layers-regression");
         r.work = r.temp->path();
       }
+      // The committed fixture, unpacked here: nothing in the source tree is written.
+      r.data = regression::unpack_fixture(r.work);
+      if (r.data.empty()) throw Error("cannot unpack " + regression::fixture_archive());
+      for (const char* f : {"shard-00000.h5", "splits.yaml"})
+        std::printf("regression data: %s sha256 %s\n", f, regression::sha256_of(r.data + "/" + f).c_str());
       zoo::Registry registry;
       const fs::path bin_plugins = fs::path(test::layers_bin()).parent_path() / "plugins";
       zoo::load_all(registry, {test::plugin_dir(), bin_plugins.string()});
@@ -94,7 +101,7 @@ struct Regression {
       if (r.built.empty()) throw Error("no model of the regression study is built");
       Timer timer;
       r.result = test::run_command(layers_command("run " + study_file() + " --set output=" + r.runs() +
-                                                  " --set dataset.folder=" + r.work + "/data" + only));
+                                                  " --set dataset.folder=" + r.data + only));
       r.seconds = timer.seconds();
       // The study's own lines (steps, metrics), without progress lines.
       std::size_t start = 0;
@@ -157,7 +164,7 @@ TEST_P(RegressionRun, MatchesGoldenMetrics) {
       << "  LAYERS_UPDATE_GOLDENS=1 ctest -R regression   (or LAYERS_UPDATE_GOLDENS=1 build/bin/test_regression)\n"
       << "and commit " << golden_file(run);
   const regression::Golden golden = regression::read_golden(golden_file(run));
-  const auto tolerances = regression::read_tolerances(regression_dir() + "/tolerances.yaml");
+  const auto tolerances = regression::read_tolerances(regression::tolerances_file());
   for (const std::string& message : regression::compare(golden, now, tolerances)) ADD_FAILURE() << message;
 }
 
@@ -171,7 +178,7 @@ TEST(RegressionStudy, SecondRunReusesEveryStep) {
   std::string only;
   for (const std::string& run : r.built) only += " --only '" + run + "'";
   const auto again = test::run_command(layers_command("run " + study_file() + " --set output=" + r.runs() +
-                                                      " --set dataset.folder=" + r.work + "/data" + only));
+                                                      " --set dataset.folder=" + r.data + only));
   ASSERT_EQ(again.exit_code, 0) << again.output;
   EXPECT_NE(again.output.find("0 steps ran"), std::string::npos) << again.output;
   EXPECT_EQ(again.output.find(": running"), std::string::npos) << again.output;
@@ -205,7 +212,7 @@ TEST(RegressionStudy, DegradedModelFailsTheComparison) {
   const auto messages =
       regression::compare(regression::read_golden(golden_file(run)),
                           regression::metrics_from_json(read_text_file(metrics), metrics),
-                          regression::read_tolerances(regression_dir() + "/tolerances.yaml"));
+                          regression::read_tolerances(regression::tolerances_file()));
   ASSERT_FALSE(messages.empty()) << "a model trained for one step matched the golden of '" << run << "'";
   bool named = false;
   for (const std::string& m : messages) {

@@ -271,9 +271,34 @@ TEST_F(StudyTest, BadStudyFilesNameFileAndKey) {
   EXPECT_NE(message("dataset: {config: nope.yaml, folder: d}\nexperiments: [{name: a, file: exp.yaml}]\n")
                 .find("dataset.config"),
             std::string::npos);
+  EXPECT_NE(message("dataset: {folder: d, set: [frames=3]}\nexperiments: [{name: a, file: exp.yaml}]\n")
+                .find("dataset.set"),
+            std::string::npos);
   EXPECT_NE(message(head + "experiments: [{name: a, file: exp.yaml}]\ncolour: red\n").find("colour"),
             std::string::npos);
   EXPECT_NE(message(head + "experiments: []\n").find("experiments"), std::string::npos);
+}
+
+// Without dataset.config the folder is a finished dataset: it is handed to
+// the dataset action with no config (which must not generate) and the
+// runs go on from it.
+TEST_F(StudyTest, FinishedDatasetWithoutConfig) {
+  for (const char* f : {"dataset.yaml", "splits.yaml", "stats.h5", "shard-00000.h5"}) touch(dir.file("fixed/") + f);
+  const std::string y = dir.write("fixed.yaml", "output: " + dir.file("out") + "\ndataset: {folder: " + dir.file("fixed") +
+                                                    "}\nsteps: [train, eval]\nexperiments: [{name: a, file: exp.yaml}]\n");
+  const train::StudyConfig loaded = train::load_study(y);
+  EXPECT_TRUE(loaded.dataset.config.empty());
+  study = y;
+  train::StudyActions a = actions();
+  a.dataset = [this](const train::StudyDataset& d) {
+    calls["dataset"]++;
+    EXPECT_TRUE(d.config.empty());
+    return false;
+  };
+  const train::StudyResult r = train::run_study(study, {}, a, {});
+  EXPECT_EQ(status(r, "dataset"), StepStatus::Current);
+  EXPECT_EQ(status(r, "a train"), StepStatus::Ran);
+  EXPECT_EQ(status(r, "a eval-test"), StepStatus::Ran);
 }
 
 TEST(StudyFingerprint, StampsAndHashes) {

@@ -112,7 +112,10 @@ std::unique_ptr<MotionSource> make_motion(const MotionSpec& spec, const Body& bo
     motion = make_procedural(sample_procedural(m.substr(11), std::max(1, n), spec.seed), body);
   } else if (m.rfind("bvh:", 0) == 0 || ends_with(m, ".bvh") || ends_with(m, ".BVH")) {
     const std::string path = find_bvh(m.rfind("bvh:", 0) == 0 ? m.substr(4) : m, spec.asset_root);
-    motion = retarget(resample(read_bvh(path), kFramesPerSecond), body);
+    // Recorded relative to the asset root, so a dataset does not name the
+    // folder it was made in; a user's own clip elsewhere keeps its path.
+    const auto track = retarget(resample(read_bvh(path), kFramesPerSecond), body);
+    motion = std::make_unique<PoseTrack>(track->poses(), "bvh:" + asset_relative_name(path, spec.asset_root));
     if (body_frames > motion->num_frames())
       throw InputError(path, "frames", "at most " + std::to_string(motion->num_frames() + spec.transition_frames) +
                                            " frames (the clip at 30 fps plus the transition)",

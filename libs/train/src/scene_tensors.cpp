@@ -8,7 +8,8 @@
 namespace layers::train {
 namespace {
 
-// The order of zoo::GarmentStatic::attributes (PAPER_NOTES.md).
+// The order of zoo::GarmentStatic::attributes (docs/format.md "Garment
+// attributes").
 constexpr std::array<const char*, 7> kAttributeOrder = {"mass",    "tension",  "compression",  "shear",
                                                         "bending", "friction", "self_friction"};
 

@@ -501,10 +501,16 @@ StudyConfig load_study(const std::string& path, const std::vector<std::string>& 
   study.source = path;
   if (study.name.empty()) study.name = fs::path(path).stem().string();
   if (study.output.empty()) study.output = "runs/" + study.name;
-  study.dataset.config = beside(path, study.dataset.config);
-  if (!fs::is_regular_file(study.dataset.config))
-    throw InputError(path, "dataset.config", "a generator config file (relative to the study file)",
-                     "'" + study.dataset.config + "' (no such file)");
+  if (study.dataset.config.empty()) {
+    if (!study.dataset.set.empty())
+      throw InputError(path, "dataset.set", "no generator overrides without dataset.config",
+                       std::to_string(study.dataset.set.size()) + " override(s)");
+  } else {
+    study.dataset.config = beside(path, study.dataset.config);
+    if (!fs::is_regular_file(study.dataset.config))
+      throw InputError(path, "dataset.config", "a generator config file (relative to the study file)",
+                       "'" + study.dataset.config + "' (no such file)");
+  }
   for (std::string& r : study.requires_) {
     r = beside(path, r);
     if (!fs::is_regular_file(r))

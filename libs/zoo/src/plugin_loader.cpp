@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "layers/core/error.h"
+#include "layers/core/install_paths.h"
 #include "layers/zoo/plugin.h"
 
 namespace fs = std::filesystem;
@@ -69,22 +70,18 @@ std::vector<std::string> split_path_list(const char* value) {
   return out;
 }
 
-fs::path executable_dir() {
-  std::error_code ec;
-  fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  return ec ? fs::path() : exe.parent_path();
-}
-
 // Candidate directories in search order, each with whether it came from
 // LAYERS_PLUGIN_PATH (those must exist).
 std::vector<std::pair<std::string, bool>> candidate_dirs() {
   std::vector<std::pair<std::string, bool>> out;
   for (const auto& dir : split_path_list(std::getenv("LAYERS_PLUGIN_PATH"))) out.emplace_back(dir, true);
-  fs::path exe_dir = executable_dir();
+  const std::string exe_dir = executable_dir();
   if (!exe_dir.empty()) {
-    out.emplace_back((exe_dir / "plugins").string(), false);
-    out.emplace_back(exe_dir.string(), false);
+    out.emplace_back((fs::path(exe_dir) / "plugins").string(), false);
+    out.emplace_back(exe_dir, false);
   }
+  const std::string installed = installed_dir(kInstalledPluginDir);
+  if (!installed.empty()) out.emplace_back(installed, false);
   return out;
 }
 

@@ -69,7 +69,7 @@ std::shared_ptr<Model> Registry::create(const std::string& name, const cfg::Node
 std::string Registry::summary() const {
   if (entries_.empty())
     return "no models registered; check LAYERS_PLUGIN_PATH (plugins are liblayers_plugin_<name>.so files, "
-           "searched in LAYERS_PLUGIN_PATH, then in plugins/ next to the layers binary, then beside it)";
+           "searched in LAYERS_PLUGIN_PATH, then in plugins/ next to the layers binary, then beside it, then in <prefix>/lib/layers/plugins)";
   std::string text = "registered models: ";
   const char* sep = "";
   for (const auto& [n, e] : entries_) {

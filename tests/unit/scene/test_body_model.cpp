@@ -8,6 +8,7 @@
 #include "layers/core/error.h"
 #include "layers/geometry/normals.h"
 #include "scene_fixture.h"
+#include "test_paths.h"
 
 namespace layers::scene {
 namespace {
@@ -136,8 +137,15 @@ TEST(BodyModel, AssetRootComesFromTheEnvironmentOrTheBuild) {
   EXPECT_EQ(default_asset_root(), "/somewhere/assets");
   EXPECT_EQ(body_asset_dir(""), "/somewhere/assets/body/mpfb2");
   EXPECT_EQ(resolve_asset_root("/explicit"), "/explicit");
+  // Motion names are recorded relative to the root's motions/ folder;
+  // a file outside it keeps its absolute path.
+  EXPECT_EQ(asset_relative_name("/somewhere/assets/motions/cmu/a.bvh", ""), "cmu/a.bvh");
+  EXPECT_EQ(asset_relative_name("/somewhere/assets/motions/../other/a.bvh", ""), "/somewhere/assets/other/a.bvh");
+  EXPECT_EQ(asset_relative_name("/elsewhere/b.bvh", "/explicit"), "/elsewhere/b.bvh");
   ::unsetenv("LAYERS_ASSETS");
-  EXPECT_NE(default_asset_root().find("shared/assets"), std::string::npos);
+  // Not installed (the test binary has no ../share/layers/assets): the
+  // repository's own assets/ folder, never anything outside the clone.
+  EXPECT_EQ(default_asset_root(), layers::test::source_dir() + "/assets");
   if (saved) ::setenv("LAYERS_ASSETS", before.c_str(), 1);
 }
 

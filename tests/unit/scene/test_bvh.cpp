@@ -140,7 +140,7 @@ TEST(Bvh, ResamplesWithSlerpAndLerp) {
 }
 
 TEST(Bvh, ReadsTheShippedClips) {
-  for (const char* name : {"131_01_start_walk_stop.bvh", "131_02_start_walk_stop.bvh"}) {
+  for (const char* name : {"cmu/131_01_start_walk_stop.bvh", "cmu/131_02_start_walk_stop.bvh"}) {
     const BvhClip c = read_bvh(test::clip_path(name));
     EXPECT_EQ(c.num_joints(), 31) << name;
     EXPECT_NEAR(c.fps(), 120.0, 0.01) << name;
@@ -148,7 +148,7 @@ TEST(Bvh, ReadsTheShippedClips) {
     EXPECT_NEAR(r.num_frames(), c.num_frames() / 4.0, 1.0) << name;
     EXPECT_GE(c.index("LeftWrist"), 0);
   }
-  EXPECT_EQ(read_bvh(test::clip_path("131_01_start_walk_stop.bvh")).num_frames(), 995);
+  EXPECT_EQ(read_bvh(test::clip_path("cmu/131_01_start_walk_stop.bvh")).num_frames(), 995);
 }
 
 TEST(Bvh, MissingFileIsAnInputError) { EXPECT_THROW(read_bvh("/nonexistent/clip.bvh"), InputError); }

@@ -14,7 +14,7 @@
 namespace layers::scene {
 namespace {
 
-const char* kClips[] = {"131_01_start_walk_stop.bvh", "131_02_start_walk_stop.bvh"};
+const char* kClips[] = {"cmu/131_01_start_walk_stop.bvh", "cmu/131_02_start_walk_stop.bvh"};
 
 struct Retargeted {
   BvhClip clip;
@@ -112,11 +112,12 @@ TEST(Retarget, FeetStayOnTheGroundInStance) {
 TEST(Retarget, MotionSpecsFindTheShippedClips) {
   const Body& b = test::body();
   MotionSpec spec;
-  spec.motion = "131_02_start_walk_stop.bvh";
+  spec.motion = "cmu/131_02_start_walk_stop.bvh";
   spec.frames = 60;
   spec.transition_frames = 10;
   const auto m = make_motion(spec, b);
   EXPECT_EQ(m->num_frames(), 60);
+  EXPECT_EQ(m->describe(), "bvh:cmu/131_02_start_walk_stop.bvh");  // relative to the asset root
   // Frame 0 is the T-pose where the clip starts; the clip's first pose follows.
   const JointTransforms t0 = forward_kinematics(b.skeleton, m->pose(0));
   const auto soles = sole_heights(b, t0);

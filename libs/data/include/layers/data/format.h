@@ -1,7 +1,7 @@
 // layers/data/format.h -- the LAYERS-H5 format, version 1, as data.
 //
 // Constants of the root attributes and the schema of every array a
-// sequence holds (DESIGN.md section 2). The writer, the reader's index and
+// sequence holds (docs/format.md). The writer, the reader's index and
 // the validator all check files against these tables, so the format is
 // written down once. Dimension symbols in shapes:
 //   T  frames            Vb body vertices    Fb body faces   J joints
@@ -60,7 +60,8 @@ const std::vector<ArraySpec>& garment_arrays();  // faces, rest, uv, uv_faces, p
 // Looks an array up by path in the three tables; throws layers::Error if unknown.
 const ArraySpec& array_spec(const std::string& path);
 
-// Garment types of DESIGN.md section 2 and the layer each belongs to.
+// Garment types (docs/format.md "Garment types and layers") and the layer
+// each belongs to.
 const std::vector<std::string>& garment_types();
 bool is_garment_type(const std::string& type);
 // 1 for outer types (jacket, jacket_hood), 0 for inner ones.

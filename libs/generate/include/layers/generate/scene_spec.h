@@ -43,9 +43,9 @@ SceneSpec sample_scene(const GeneratorConfig& config, int index);
 // round(test * n) are test, the next round(val * n) val, the rest train.
 std::vector<std::string> assign_splits(const GeneratorConfig& config);
 
-// The paper's subsets (PAPER_NOTES.md, Table 2): a jumpsuit (tight) or a
-// dress (loose) under a jacket, with all wind <= 50 (T, L) or all > 250
-// (T+W, L+W).
+// The paper's subsets (its Table 2; docs/format.md "splits.yaml"): a
+// jumpsuit (tight) or a dress (loose) under a jacket, with all wind <= 50
+// (T, L) or all > 250 (T+W, L+W).
 std::vector<std::string> subset_tags(const std::vector<GarmentSpec>& garments, const std::vector<sim::WindSpan>& wind);
 
 // The subsets of held-out scenes (config.splits.unseen_*), and whether a

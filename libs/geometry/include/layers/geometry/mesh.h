@@ -4,7 +4,7 @@
 // the TriMesh type (row-major float vertices, int faces), face and vertex
 // normals, unique edges and vertex adjacency, a kd-tree over a point set for
 // nearest / k-nearest / radius queries, and the nearest-vertex penetration
-// test of DESIGN.md section 5. Units are whatever the caller uses (metres
+// test of docs/metrics.md. Units are whatever the caller uses (metres
 // everywhere in layers). It depends on layers::core and Eigen only.
 #pragma once
 

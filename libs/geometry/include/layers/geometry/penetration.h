@@ -1,6 +1,6 @@
 // layers/geometry/penetration.h -- which points lie behind a surface.
 //
-// The test of DESIGN.md section 5 (and of the paper's public code): for a
+// The test of docs/metrics.md (and of the paper's public code): for a
 // point x, take the nearest surface vertex h and its unit vertex normal n;
 // x is behind the surface when (x - h) . n < 0. It is cheap (one kd-tree
 // query) and exact enough away from thin features; it is what the H- and

@@ -43,7 +43,7 @@ struct BodyMotionConfig {
     v("transition_frames", transition_frames, cfg::opt().min(0).help("frames blending in from the T-pose"));
     v("intersection_tolerance_mm", intersection_tolerance_mm, cfg::opt().range(0.5, 50).help("allowed self-intersection depth"));
     v("on_intersection", on_intersection, cfg::opt().choices({"longest_run", "drop", "keep"}));
-    v("assets", assets, cfg::opt().help("asset root (default: $LAYERS_ASSETS or <source>/../shared/assets)"));
+    v("assets", assets, cfg::opt().help("asset root (default: $LAYERS_ASSETS, then <prefix>/share/layers/assets, then <source>/assets)"));
   }
 };
 

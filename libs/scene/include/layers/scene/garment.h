@@ -1,7 +1,7 @@
 // layers/scene/garment.h -- garment templates: sewing-pattern garments fitted
 // to a shaped body in its T-pose.
 //
-// Types (DESIGN.md section 3): outer layer `jacket`, `jacket_hood`; inner
+// Types (docs/format.md): outer layer `jacket`, `jacket_hood`; inner
 // layer `dress`, `dress_belt`, `jumpsuit`, `tshirt`, `pants`, `skirt`. Each
 // garment is a set of flat panels (bodice, sleeves, skirt, legs, belt,
 // hood) whose coordinates in metres are the UVs, one chart per panel,
@@ -12,7 +12,7 @@
 // fitted over the garments under it (their vertices join the envelope it
 // is measured on) with a clearance. After sewing, vertices are pushed out
 // of the body (and of the garments under them) by the nearest-vertex test
-// of DESIGN.md section 5, so a rest pose has zero H- and L-penetration.
+// (docs/metrics.md), so a rest pose has zero H- and L-penetration.
 // For the layer test only outer vertices within `layer_reach` of the inner
 // layer count: far from it the nearest inner vertex is often on an open
 // edge whose normal says little (a jacket sleeve over a bare forearm finds

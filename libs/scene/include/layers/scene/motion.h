@@ -50,7 +50,7 @@ std::unique_ptr<MotionSource> with_t_pose_transition(std::unique_ptr<MotionSourc
 struct MotionSpec {
   // "procedural:<kind>" (see procedural_kinds()), "bvh:<path>" or a path
   // ending in .bvh. A relative BVH path that does not exist is also looked
-  // up in the asset folder's motions/cmu.
+  // up in the asset folder's motions/ (the shipped clips are cmu/<clip>.bvh).
   std::string motion = "procedural:walk";
   int frames = 0;                  // 0: the clip's length (BVH) or 150 (procedural)
   std::uint64_t seed = 0;          // randomises procedural speed / amplitude

@@ -10,7 +10,8 @@
 namespace layers::sim {
 
 // Thresholds a simulated sequence must stay under to be written
-// (DESIGN.md section 5 definitions; rates are fractions, not percent).
+// (docs/metrics.md "Generator validation measures"; rates are fractions,
+// not percent).
 struct ValidationConfig {
   double max_h_penetration = 0.005;  // mean over frames of the H-penetration rate
   double max_l_penetration = 0.005;  // mean over frames of the L-penetration rate

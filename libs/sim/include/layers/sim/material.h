@@ -14,7 +14,8 @@
 
 namespace layers::sim {
 
-// The paper's attributes (Blender semantics, see PAPER_NOTES.md). Defaults
+// The paper's attributes (Blender semantics, docs/sim.md section 3 and
+// docs/format.md "Garment attributes"). Defaults
 // are the middle of the paper's ranges.
 struct GarmentAttributes {
   double mass = 0.5;

@@ -1,5 +1,5 @@
 // layers/sim/measures.h -- validation measures of a simulated frame and of
-// a whole sequence (DESIGN.md section 5 definitions).
+// a whole sequence (docs/metrics.md "Generator validation measures").
 //
 //  - H-penetration: share of garment vertices behind the body surface (for
 //    the nearest body vertex h with area-weighted normal n: (x - h) . n < 0).

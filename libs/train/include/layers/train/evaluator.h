@@ -1,5 +1,5 @@
 // layers/train/evaluator.h -- `layers eval`: rollouts of a trained model on
-// a split with the metrics of DESIGN.md section 5, per sequence, per
+// a split with the metrics of docs/metrics.md, per sequence, per
 // garment type and overall (torch-free API).
 //
 // Writes into the output folder (default <run.output>/eval-<split>):

@@ -1,4 +1,4 @@
-// layers/train/rollout.h -- autoregressive rollouts (DESIGN.md section 5):
+// layers/train/rollout.h -- autoregressive rollouts (docs/metrics.md):
 // start from ground truth, feed predictions back, body and wind stay ground
 // truth; per-frame metrics (Euclidean error, H- and L-collision, also of
 // the ground truth for reference) and divergence detection: a non-finite

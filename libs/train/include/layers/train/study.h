@@ -15,6 +15,9 @@
 //     - {name: layersnet, file: ../experiments/layersnet_tiny.yaml, set: [train.epochs=2]}
 //     - {name: deepsd_stab, file: ..., checkpoint: runs/compare_small/deepsd}
 //
+// dataset.config may be omitted: dataset.folder is then a finished dataset,
+// used as it is and never generated.
+//
 // File references (requires, dataset.config, experiments[].file) are
 // relative to the study file, like `include:`; folders (output,
 // dataset.folder, checkpoint) are relative to the working directory, like
@@ -44,14 +47,15 @@
 namespace layers::train {
 
 struct StudyDataset {
-  std::string config;             // generator config (configs/data/*.yaml), relative to the study file
+  std::string config;             // generator config (configs/data/*.yaml), relative to the study file;
+                                  // "" = folder is a finished dataset used as it is (never generated)
   std::string folder;             // dataset folder, relative to the working directory
   std::vector<std::string> set;   // generator overrides, key.path=value
   int threads = 2;                // scenes simulated in parallel
 
   template <class V>
   void visit(V& v) {
-    v("config", config, cfg::opt().required().help("generator config, relative to the study file"));
+    v("config", config, cfg::opt().help("generator config, relative to the study file (omit to use a finished dataset as it is)"));
     v("folder", folder, cfg::opt().required().help("dataset folder (generated when missing or incomplete)"));
     v("set", set, cfg::opt().help("generator overrides key.path=value"));
     v("threads", threads, cfg::opt().range(1, 256).help("scenes generated in parallel"));

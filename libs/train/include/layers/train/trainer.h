@@ -3,7 +3,7 @@
 //
 // Per optimiser step: a batch of windows; for each window the model first
 // rolls min(epoch, curriculum_max) steps forward without gradient from the
-// ground truth (the rollout curriculum of PAPER_NOTES.md; epoch counted
+// ground truth (the paper's rollout curriculum, docs/training.md; epoch counted
 // from 0), then predicts t+1 (and t+2 from its own t+1 with two_step), and
 // the weighted shared losses (frame_loss.h) plus the model's auxiliary
 // losses are averaged over the batch. Adam, learning rate halved every

@@ -1,5 +1,5 @@
 // layers/zoo/losses.h -- the training losses shared by every model
-// (DESIGN.md section 4, PAPER_NOTES.md "Losses"). Each returns a
+// (the paper's loss terms; docs/training.md "Training step"). Each returns a
 // differentiable scalar tensor on the inputs' device and in their floating
 // type; nearest neighbours are found with the k-d tree of layers::geometry
 // on detached CPU copies and the indices moved back to the inputs' device,
@@ -23,7 +23,8 @@ at::Tensor position_mse(const at::Tensor& pred, const at::Tensor& truth);
 // shared by both meshes. A degenerate (zero-area) face has normal 0.
 at::Tensor normal_loss(const at::Tensor& pred, const at::Tensor& truth, const at::Tensor& faces);
 
-// Body collision (PAPER_NOTES.md): for each garment vertex x with nearest
+// Body collision (the paper's collision term; the nearest-vertex test of
+// docs/metrics.md with a margin): for each garment vertex x with nearest
 // body vertex h and body vertex normal n (vertex_normals below), d =
 // (x - h).n; the loss is the mean of (eps - d)^2 over the vertices with
 // d < eps, and 0 (with a zero gradient) when there are none or the body is

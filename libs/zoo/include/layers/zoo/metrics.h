@@ -1,5 +1,5 @@
-// layers/zoo/metrics.h -- the paper's evaluation metrics (DESIGN.md
-// section 5), per frame, plus mean +- std aggregation over sequences.
+// layers/zoo/metrics.h -- the paper's evaluation metrics (docs/metrics.md),
+// per frame, plus mean +- std aggregation over sequences.
 // Positions are metres; errors are reported in real-world millimetres
 // (the paper's "mm" are at 10x scale, i.e. 10x these numbers). Torch-free.
 #pragma once

@@ -5,7 +5,7 @@
 // it needs from it (patches, graphs, descriptors), and then predicts frame
 // t+1 of every garment from the state at t and t-1 and the body and wind at
 // t and t+1 (step). Positions are metres in world space, y up, one frame
-// per step (DESIGN.md section 2). The trainer adds loss terms on top of
+// per step (docs/format.md). The trainer adds loss terms on top of
 // step(); models may run on CPU or CUDA (prepare() moves the static data to
 // the model's device).
 #pragma once

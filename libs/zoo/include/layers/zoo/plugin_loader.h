@@ -6,7 +6,8 @@
 // so LAYERS_PLUGIN_PATH can override an installed plugin):
 //   1. every directory of LAYERS_PLUGIN_PATH (colon-separated), in order;
 //   2. plugins/ next to the running binary (/proc/self/exe);
-//   3. the directory of the running binary itself.
+//   3. the directory of the running binary itself;
+//   4. lib/layers/plugins of an installed prefix (<binary>/../lib/layers/plugins).
 // Within a directory files load in name order. Loaded plugins stay loaded
 // for the life of the process (their factories and models live in them).
 // Torch-free.
