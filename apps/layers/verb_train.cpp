@@ -1,32 +1,89 @@
 // `layers train <experiment.yaml>`: train the experiment's model (see
-// libs/train/include/layers/train/trainer.h).
+// libs/train/include/layers/train/trainer.h). A run folder that already
+// holds a run is continued only with --resume, or moved aside (never
+// deleted) with --force; the model is checked before the folder is touched.
+#include <algorithm>
 #include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <string>
+#include <vector>
 
 #include "config_loading.h"
 #include "layers/core/atomic_file.h"
+#include "layers/core/error.h"
 #include "layers/train/trainer.h"
+#include "layers/zoo/model_config.h"
 #include "plugins.h"
 #include "verbs.h"
 
-#include <filesystem>
-
 namespace layers::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+// What in `dir` shows a run was made there: checkpoints, evaluations, a
+// benchmark. Empty for a new or empty folder.
+std::vector<std::string> run_results_in(const fs::path& dir) {
+  std::vector<std::string> found;
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) return found;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name == "checkpoint-last.pt" || name == "checkpoint-best.pt" || name == "bench.json" ||
+        name.rfind("eval-", 0) == 0)
+      found.push_back(name);
+  }
+  std::sort(found.begin(), found.end());
+  return found;
+}
+
+// A free name beside `dir`: <dir>.replaced-<UTC time>[-N].
+fs::path aside_name(const fs::path& dir) {
+  char stamp[32];
+  const std::time_t now = std::time(nullptr);
+  std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::gmtime(&now));
+  const std::string base = dir.lexically_normal().string();
+  const std::string trimmed = (!base.empty() && base.back() == '/') ? base.substr(0, base.size() - 1) : base;
+  fs::path candidate = trimmed + ".replaced-" + stamp;
+  for (int n = 2; fs::exists(candidate); ++n) candidate = trimmed + ".replaced-" + stamp + "-" + std::to_string(n);
+  return candidate;
+}
+
+}  // namespace
 
 VerbRun register_train(CLI::App& app, const Global&) {
   auto* cmd = app.add_subcommand("train", "Train the model of an experiment config (configs/experiments/*.yaml)");
   struct Args {
     ConfigArgs config;
-    bool resume = false, quiet = false;
+    bool resume = false, force = false, quiet = false;
   };
   auto a = std::make_shared<Args>();
   add_config_options(*cmd, a->config, /*required=*/true);
-  cmd->add_flag("--resume", a->resume, "continue from <run.output>/checkpoint-last.pt if it exists");
+  auto* resume = cmd->add_flag("--resume", a->resume, "continue from <run.output>/checkpoint-last.pt if it exists");
+  cmd->add_flag("--force", a->force,
+                "start afresh in a run.output that holds a run: the old folder is moved aside to "
+                "<run.output>.replaced-<time>, never deleted")
+      ->excludes(resume);
   cmd->add_flag("--quiet", a->quiet, "no progress line");
   return [a]() {
     LoadedConfig loaded = load_config(a->config);
-    std::filesystem::create_directories(loaded.typed.run.output);
-    write_text_atomic((std::filesystem::path(loaded.typed.run.output) / "experiment.yaml").string(),
-                      cfg::to_yaml(loaded.resolved));
+    // Everything that can be checked before the run folder is touched: a
+    // failing command leaves it as it was.
+    zoo::create_model(load_plugins().registry, loaded.typed.model);
+    const fs::path out = loaded.typed.run.output;
+    const std::vector<std::string> held = run_results_in(out);
+    if (!held.empty() && !a->resume && !a->force)
+      throw InputError(out.string(), "run.output",
+                       "a new or empty run folder (--resume continues the run there, --force moves it aside)",
+                       "a folder holding a run (" + held.front() + (held.size() > 1 ? ", ..." : "") + ")");
+    if (!held.empty() && a->force) {
+      const fs::path aside = aside_name(out);
+      fs::rename(out, aside);
+      std::printf("moved the old run %s aside to %s\n", out.string().c_str(), aside.string().c_str());
+    }
+    fs::create_directories(out);
+    write_text_atomic((out / "experiment.yaml").string(), cfg::to_yaml(loaded.resolved));
     train::TrainOptions options;
     options.resume = a->resume;
     options.progress = !a->quiet;

@@ -23,6 +23,7 @@ TEST(CliModels, ListsTestPluginLoadedThroughDlopen) {
   EXPECT_NE(r.output.find("built for zoo API v999, this layers expects v1"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("no entry point"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("registered twice"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("expected a function symbol, got a data object"), std::string::npos) << r.output;
   auto strict = run_command(with_test_plugins("models --strict"));
   EXPECT_EQ(strict.exit_code, 1) << strict.output;
 }

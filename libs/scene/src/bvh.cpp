@@ -2,6 +2,8 @@
 #include "layers/scene/bvh.h"
 
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <cstdlib>
 #include <fstream>
 #include <istream>
@@ -164,6 +166,13 @@ int BvhClip::index(const std::string& name) const {
   return -1;
 }
 
+// A number as written by %g (1e+30, 0.008333), for messages.
+static std::string shortest(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
 BvhClip parse_bvh(std::istream& in, const std::string& name) {
   BvhClip clip;
   clip.source = name;
@@ -177,12 +186,15 @@ BvhClip parse_bvh(std::istream& in, const std::string& name) {
   if (word == "ROOT") t.fail("MOTION (files with several roots are not supported)", "a second ROOT");
   if (word != "MOTION") t.fail("MOTION", word.empty() ? "end of file" : "'" + word + "'");
   t.expect("Frames:");
-  double frames = t.number("a frame count");
-  if (frames < 0 || frames != std::floor(frames)) t.fail("a non-negative integer frame count", std::to_string(frames));
+  const double frames = t.number("a frame count");
+  if (!(frames >= 0 && frames <= kMaxBvhFrames) || frames != std::floor(frames))
+    t.fail("a whole frame count from 0 to " + std::to_string(kMaxBvhFrames), shortest(frames));
   t.expect("Frame");
   t.expect("Time:");
   clip.frame_time = t.number("a frame time in seconds");
-  if (!(clip.frame_time > 0)) t.fail("a positive frame time", std::to_string(clip.frame_time));
+  if (!(clip.frame_time > kMinBvhFrameTime && clip.frame_time <= kMaxBvhFrameTime))
+    t.fail("a frame time in (" + shortest(kMinBvhFrameTime) + ", " + shortest(kMaxBvhFrameTime) + "] seconds",
+           shortest(clip.frame_time));
   std::string leftover = t.rest_of_line();
   if (!leftover.empty()) t.fail("the end of the Frame Time line", "'" + leftover + "'");
 
@@ -224,6 +236,8 @@ BvhClip parse_bvh(std::istream& in, const std::string& name) {
 }
 
 BvhClip read_bvh(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path, "", "a BVH file", "a directory");
   std::ifstream in(path);
   if (!in) throw InputError::message(path, "", "cannot open BVH file");
   return parse_bvh(in, path);

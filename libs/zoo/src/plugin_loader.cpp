@@ -2,6 +2,8 @@
 #include "layers/zoo/plugin_loader.h"
 
 #include <dlfcn.h>
+#include <elf.h>
+#include <link.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -100,13 +102,25 @@ std::vector<std::string> existing_unique(const std::vector<std::string>& dirs) {
 std::vector<fs::path> plugin_files_in(const std::string& dir) {
   std::vector<fs::path> out;
   std::error_code ec;
-  for (const auto& item : fs::directory_iterator(dir, ec)) {
-    std::error_code type_ec;
-    if (is_plugin_file_name(item.path().filename().string()) && item.is_regular_file(type_ec))
-      out.push_back(item.path());
-  }
+  // Every entry named like a plugin, whatever it is: load_file refuses
+  // (and so reports) a directory or a dangling link instead of skipping it.
+  for (const auto& item : fs::directory_iterator(dir, ec))
+    if (is_plugin_file_name(item.path().filename().string())) out.push_back(item.path());
   std::sort(out.begin(), out.end());
   return out;
+}
+
+// The ELF type of the symbol at `address`: "function", "data object",
+// "an unknown symbol type N", or "no symbol table entry".
+std::string elf_symbol_kind(void* address) {
+  Dl_info info{};
+  void* entry = nullptr;
+  if (!dladdr1(address, &info, &entry, RTLD_DL_SYMENT) || !entry) return "no symbol table entry";
+  const auto* sym = static_cast<const ElfW(Sym)*>(entry);
+  const int type = ELF64_ST_TYPE(sym->st_info);
+  if (type == STT_FUNC || type == STT_GNU_IFUNC) return "function";
+  if (type == STT_OBJECT || type == STT_TLS || type == STT_COMMON) return "a data object";
+  return "an unknown symbol type " + std::to_string(type);
 }
 
 [[noreturn]] void refuse(const std::string& path, const std::string& text) {
@@ -158,7 +172,12 @@ std::vector<std::string> plugin_search_path() {
 
 LoadedPlugin load_file(Registry& registry, const std::string& file) {
   std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) refuse(file, "no such plugin file");
+  if (!fs::is_regular_file(file, ec)) {
+    if (fs::is_symlink(fs::symlink_status(file, ec)) && !fs::exists(file, ec))
+      refuse(file, "expected a plugin file, got a dangling symbolic link");
+    if (fs::is_directory(file, ec)) refuse(file, "expected a plugin file, got a directory");
+    refuse(file, fs::exists(file, ec) ? "expected a plugin file, got a special file" : "no such plugin file");
+  }
   const std::string path = canonical_or_absolute(file);
   if (auto already = RegistryLoading::models_of(registry, path); !already.empty()) return {path, already};
 
@@ -169,12 +188,20 @@ LoadedPlugin load_file(Registry& registry, const std::string& file) {
     refuse(path, std::string("cannot load plugin: ") + (why ? why : "dlopen failed"));
   }
   dlerror();
-  auto entry = reinterpret_cast<PluginEntry>(dlsym(handle, kPluginEntryPoint));
-  if (!entry) {
+  void* symbol = dlsym(handle, kPluginEntryPoint);
+  if (!symbol) {
     dlclose(handle);
     refuse(path, std::string("not a layers plugin: no entry point '") + kPluginEntryPoint +
                      "' (define it with LAYERS_PLUGIN from layers/zoo/plugin.h)");
   }
+  // Calling a data symbol would jump into data: check the ELF symbol type.
+  const std::string kind = elf_symbol_kind(symbol);
+  if (kind != "function") {
+    dlclose(handle);
+    refuse(path, std::string("not a layers plugin: entry point '") + kPluginEntryPoint +
+                     "' expected a function symbol, got " + kind);
+  }
+  auto entry = reinterpret_cast<PluginEntry>(symbol);
   try {
     std::vector<std::string> models = register_plugin(registry, path, entry);
     // Deliberately never closed: factories and model code live in it.

@@ -7,6 +7,7 @@
 #include "layers/core/error.h"
 #include "layers/scene/bvh.h"
 #include "scene_fixture.h"
+#include "temp_dir.h"
 
 namespace layers::scene {
 namespace {
@@ -127,6 +128,29 @@ TEST(Bvh, NonNumericValuesNameTheLine) {
 TEST(Bvh, FrameCountMismatchNamesTheLine) {
   expect_error_at_line(edited("Frames: 3", "Frames: 4"), 30, "4 frames");
   expect_error_at_line(edited("Frames: 3", "Frames: 2"), 30, "no more data");
+}
+
+// Declared sizes are bounded before anything is allocated for them, and
+// the message gives the value as written, not an overflowed conversion.
+TEST(Bvh, FrameCountAndFrameTimeAreBounded) {
+  expect_error_at_line(edited("Frames: 3", "Frames: 1e30"), 26, "a whole frame count from 0 to 1000000, got 1e+30");
+  expect_error_at_line(edited("Frames: 3", "Frames: 1000001"), 26, "got 1e+06");
+  expect_error_at_line(edited("Frames: 3", "Frames: 2.5"), 26, "got 2.5");
+  expect_error_at_line(edited("Frame Time: 0.1", "Frame Time: 100000"), 27,
+                       "a frame time in (0.0001, 1] seconds, got 100000");
+  expect_error_at_line(edited("Frame Time: 0.1", "Frame Time: 1e300"), 27, "got 1e+300");
+  expect_error_at_line(edited("Frame Time: 0.1", "Frame Time: 0"), 27, "got 0");
+  EXPECT_NO_THROW(parse(edited("Frame Time: 0.1", "Frame Time: 1")));
+}
+
+TEST(Bvh, DirectoryIsNotABvhFile) {
+  layers::test::TempDir dir;
+  try {
+    read_bvh(dir.path());
+    FAIL() << "a directory was read as a BVH file";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), dir.path() + ": expected a BVH file, got a directory");
+  }
 }
 
 TEST(Bvh, ResamplesWithSlerpAndLerp) {

@@ -79,6 +79,28 @@ TEST(PluginLoader, MissingEntryPointNamesFileAndSymbol) {
                                      "(define it with LAYERS_PLUGIN from layers/zoo/plugin.h)");
 }
 
+TEST(PluginLoader, DataEntryPointIsRefusedByItsSymbolType) {
+  zoo::Registry r;
+  std::string path = canonical(plugin_file("test_data_entry"));
+  EXPECT_EQ(load_error(r, path), path +
+                                     ": not a layers plugin: entry point 'layers_plugin_register' expected a "
+                                     "function symbol, got a data object");
+  EXPECT_TRUE(r.names().empty());
+}
+
+TEST(PluginLoader, DirectoriesAndDanglingLinksNamedLikePluginsAreReported) {
+  layers::test::TempDir dir("layers-zoo");
+  fs::create_directories(dir.file("liblayers_plugin_folder.so"));
+  fs::create_symlink(dir.file("nowhere.so"), dir.file("liblayers_plugin_dangling.so"));
+  zoo::Registry r;
+  zoo::LoadReport report = zoo::load_all(r, {dir.path()});
+  ASSERT_EQ(report.problems.size(), 2u);
+  EXPECT_EQ(report.problems[0].message,
+            dir.file("liblayers_plugin_dangling.so") + ": expected a plugin file, got a dangling symbolic link");
+  EXPECT_EQ(report.problems[1].message,
+            dir.file("liblayers_plugin_folder.so") + ": expected a plugin file, got a directory");
+}
+
 TEST(PluginLoader, UnloadableFileGivesDlerror) {
   layers::test::TempDir dir("layers-zoo");
   std::string path = dir.write("liblayers_plugin_garbage.so", std::string(256, 'x'));
@@ -109,12 +131,13 @@ TEST(PluginLoader, LoadAllReportsEveryProblem) {
   ASSERT_EQ(report.searched, std::vector<std::string>{canonical(layers::test::plugin_dir())});
   ASSERT_EQ(report.loaded.size(), 1u);
   EXPECT_EQ(report.loaded[0].models, std::vector<std::string>{"test_constant_velocity"});
-  // Files load in name order: duplicate (after the good one), no_entry, wrong_api.
-  ASSERT_EQ(report.problems.size(), 3u);
-  EXPECT_EQ(report.problems[0].path, canonical(plugin_file("test_duplicate")));
-  EXPECT_NE(report.problems[0].message.find("registered twice"), std::string::npos);
-  EXPECT_NE(report.problems[1].message.find("no entry point"), std::string::npos);
-  EXPECT_NE(report.problems[2].message.find("built for zoo API v999"), std::string::npos);
+  // Files load in name order: data_entry, duplicate (after the good one), no_entry, wrong_api.
+  ASSERT_EQ(report.problems.size(), 4u);
+  EXPECT_NE(report.problems[0].message.find("expected a function symbol"), std::string::npos);
+  EXPECT_EQ(report.problems[1].path, canonical(plugin_file("test_duplicate")));
+  EXPECT_NE(report.problems[1].message.find("registered twice"), std::string::npos);
+  EXPECT_NE(report.problems[2].message.find("no entry point"), std::string::npos);
+  EXPECT_NE(report.problems[3].message.find("built for zoo API v999"), std::string::npos);
   EXPECT_EQ(r.names(), std::vector<std::string>{"test_constant_velocity"});
 }
 

@@ -44,6 +44,15 @@ struct BvhClip {
   int index(const std::string& name) const;  // -1 when absent
 };
 
+// Bounds of what a BVH file may declare (InputError beyond them): at most
+// kMaxBvhFrames frames, a frame time in (kMinBvhFrameTime, kMaxBvhFrameTime]
+// seconds. With them, memory stays proportional to the file: every
+// declared frame is a line of the file, and resampling to 30 fps makes at
+// most 30 frames of each.
+inline constexpr int kMaxBvhFrames = 1000000;
+inline constexpr double kMinBvhFrameTime = 1e-4;
+inline constexpr double kMaxBvhFrameTime = 1.0;
+
 BvhClip read_bvh(const std::string& path);
 BvhClip parse_bvh(std::istream& in, const std::string& name);
 

@@ -10,6 +10,12 @@
 //   4. lib/layers/plugins of an installed prefix (<binary>/../lib/layers/plugins).
 // Within a directory files load in name order. Loaded plugins stay loaded
 // for the life of the process (their factories and models live in them).
+// Before its entry point is called, the entry symbol must be an ELF
+// function; an entry named like a plugin that is a directory, a dangling
+// link or not loadable is reported as a problem (an error under
+// `layers models --strict`). Loading is in-process: a plugin's own static
+// constructors run inside dlopen, so one that aborts or crashes takes the
+// process with it -- no check can run before them.
 // Torch-free.
 #pragma once
 

@@ -1,0 +1,81 @@
+// `layers train` never loses a run: a folder that holds one is refused
+// without --resume or --force, --force moves it aside (never deletes it),
+// and a command that fails (unknown model) leaves the folder as it was.
+// Trains the test plugin's one-parameter model on the regression fixture.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "regression_paths.h"
+#include "run_command.h"
+#include "temp_dir.h"
+
+namespace fs = std::filesystem;
+using namespace layers;
+using test::run_command;
+
+namespace {
+
+std::string bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+test::CommandResult train(const std::string& experiment, const std::string& extra = "") {
+  return run_command("LAYERS_PLUGIN_PATH=" + test::plugin_dir() + " " + test::layers_bin() + " train " + experiment +
+                     " --quiet " + extra);
+}
+
+}  // namespace
+
+TEST(CliTrain, ExistingRunIsNeverOverwrittenOrLost) {
+  test::TempDir dir("layers-cli-train");
+  const std::string data = regression::unpack_fixture(dir.path());
+  ASSERT_FALSE(data.empty());
+  const std::string run = dir.file("run");
+  const std::string experiment = dir.write(
+      "exp.yaml", "model: {name: test_constant_velocity, params: {damping: 0.6}}\n"
+                  "data: {dataset: " + data + "}\n"
+                  "train: {epochs: 1, batch_size: 2, windows_per_epoch: 4, val_horizon: 2, val_sequences: 1}\n"
+                  "run: {output: " + run + ", threads: 1, seed: 0}\n");
+  auto first = train(experiment);
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  const std::string checkpoint = bytes(run + "/checkpoint-last.pt");
+  const std::string resolved = bytes(run + "/experiment.yaml");
+  ASSERT_FALSE(checkpoint.empty());
+
+  // Again without --resume: refused with one line, nothing touched.
+  auto again = train(experiment, "--set train.lr=0.5");
+  EXPECT_EQ(again.exit_code, 1) << again.output;
+  EXPECT_NE(again.output.find(run + ": run.output: expected a new or empty run folder (--resume continues the run "
+                                    "there, --force moves it aside), got a folder holding a run (checkpoint-best.pt, ...)"),
+            std::string::npos)
+      << again.output;
+  EXPECT_EQ(bytes(run + "/checkpoint-last.pt"), checkpoint);
+  EXPECT_EQ(bytes(run + "/experiment.yaml"), resolved);
+
+  // A failing train (unknown model) does not rewrite experiment.yaml.
+  auto unknown = train(experiment, "--set model.name=no_such_model --resume");
+  EXPECT_EQ(unknown.exit_code, 1) << unknown.output;
+  EXPECT_NE(unknown.output.find("unknown model 'no_such_model'"), std::string::npos) << unknown.output;
+  EXPECT_EQ(bytes(run + "/experiment.yaml"), resolved);
+
+  // --resume and --force together are a usage error.
+  EXPECT_EQ(train(experiment, "--resume --force").exit_code, 2);
+
+  // --force starts afresh and keeps the old run beside it, byte for byte.
+  auto forced = train(experiment, "--force");
+  ASSERT_EQ(forced.exit_code, 0) << forced.output;
+  std::string aside;
+  for (const auto& e : fs::directory_iterator(dir.path()))
+    if (e.path().filename().string().rfind("run.replaced-", 0) == 0) aside = e.path().string();
+  ASSERT_FALSE(aside.empty()) << forced.output;
+  EXPECT_NE(forced.output.find("moved the old run " + run + " aside to " + aside), std::string::npos) << forced.output;
+  EXPECT_EQ(bytes(aside + "/checkpoint-last.pt"), checkpoint);
+  EXPECT_EQ(bytes(aside + "/experiment.yaml"), resolved);
+  EXPECT_TRUE(fs::exists(run + "/checkpoint-last.pt"));
+}
