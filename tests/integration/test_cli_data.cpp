@@ -4,7 +4,9 @@
 
 #include <filesystem>
 
+#include "layers/data/dataset.h"
 #include "layers/data/dataset_writer.h"
+#include "layers/data/stats.h"
 #include "layers/data/pc2.h"
 #include "run_command.h"
 #include "synthetic_sequence.h"
@@ -26,6 +28,7 @@ void write_dataset(const std::string& folder) {
   writer.set_split("train", {"a", "b"});
   writer.set_split("test", {"c"});
   writer.finish();
+  data::write_stats(folder + "/stats.h5", data::compute_stats(data::Dataset::open(folder)));  // as the generator does
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // The streaming reader: index, shard handle pool, statics LRU cache and
 // hyperslab window reads (see dataset.h).
 #include "layers/data/dataset.h"
+#include "layers/data/value_bounds.h"
 
 #include <spdlog/spdlog.h>
 
@@ -98,6 +99,7 @@ struct Dataset::Impl {
 
   void frames(const SequenceInfo& info, std::int64_t first, std::int64_t count, Window& window) {
     layers::data::read_frames(info.shard, group(info), info, first, count, window);
+    check_frame_values(window, first, count, info, info.shard);
   }
 
   void cache(const std::string& id, std::shared_ptr<const SequenceStatic> data) {

@@ -267,6 +267,21 @@ H5::DataSet open_checked(const Where& where, const H5::Group& loc, const std::st
   });
 }
 
+// A dataset's read failed: with a Fletcher32 filter the chunk is damaged
+// (or unreadable), which says more than HDF5's "H5Dread failed".
+[[noreturn]] static void rethrow_read(const H5::Exception& e, const H5::DataSet& ds) {
+  const H5::DSetCreatPropList plist = ds.getCreatePlist();
+  unsigned flags = 0, config = 0;
+  std::size_t n = 0;
+  char name[32];
+  const bool checksummed =
+      H5Pget_filter_by_id2(plist.getId(), H5Z_FILTER_FLETCHER32, &flags, &n, nullptr, sizeof name, name, &config) >= 0;
+  if (checksummed)
+    throw H5::DataSetIException("", "a chunk fails its Fletcher32 checksum or cannot be decoded: the file is damaged (" +
+                                        error_text(e) + ")");
+  throw;
+}
+
 template <class T>
 void read_rows_into(const H5::DataSet& ds, const Dims& dims, hsize_t first, hsize_t count, T* out) {
   if (count == 0) return;
@@ -279,7 +294,11 @@ void read_rows_into(const H5::DataSet& ds, const Dims& dims, hsize_t first, hsiz
   H5::DataSpace file_space = ds.getSpace();
   file_space.selectHyperslab(H5S_SELECT_SET, extent.data(), start.data());
   H5::DataSpace mem_space(static_cast<int>(extent.size()), extent.data());
-  ds.read(out, Native<T>::mem(), mem_space, file_space);
+  try {
+    ds.read(out, Native<T>::mem(), mem_space, file_space);
+  } catch (const H5::Exception& e) {
+    rethrow_read(e, ds);
+  }
 }
 
 template <class T>
@@ -290,7 +309,13 @@ std::vector<T> read_all(const Where& where, const H5::Group& loc, const std::str
     std::size_t n = 1;
     for (hsize_t d : expected) n *= d;
     std::vector<T> out(n);
-    if (n > 0) ds.read(out.data(), Native<T>::mem());
+    if (n > 0) {
+      try {
+        ds.read(out.data(), Native<T>::mem());
+      } catch (const H5::Exception& e) {
+        rethrow_read(e, ds);
+      }
+    }
     return out;
   });
 }
@@ -339,10 +364,14 @@ void write(H5::Group& loc, const std::string& name, const std::vector<T>& data, 
   H5Pset_obj_track_times(plist.getId(), false);  // same data, same bytes
   bool any_zero = false;
   for (hsize_t d : dims) any_zero |= d == 0;
-  if (chunk_by_frame && !dims.empty() && !any_zero) {
+  if (!dims.empty() && !any_zero) {
+    // Every non-empty numeric dataset is chunked (a frame per chunk, or the
+    // whole array as one) so that it can carry a Fletcher32 checksum per
+    // chunk: a read of a damaged chunk fails instead of returning garbage.
     Dims chunk = dims;
-    chunk[0] = 1;
+    if (chunk_by_frame) chunk[0] = 1;
     plist.setChunk(static_cast<int>(chunk.size()), chunk.data());
+    plist.setFletcher32();
   }
   H5::DataSet ds = loc.createDataSet(name, Native<T>::file(), space, plist);
   if (!data.empty()) ds.write(data.data(), Native<T>::mem());

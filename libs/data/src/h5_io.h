@@ -114,7 +114,8 @@ std::vector<std::string> read_strings(const Where& where, const H5::Group& loc, 
                                       const Dims& expected);
 std::vector<std::string> read_strings(const H5::DataSet& ds);
 
-// Writes a dataset; chunk_by_frame chunks as [1, dims[1:]...].
+// Writes a dataset with a Fletcher32 checksum on each chunk; chunk_by_frame
+// chunks as [1, dims[1:]...], otherwise the whole array is one chunk.
 template <class T>
 void write(H5::Group& loc, const std::string& name, const std::vector<T>& data, const Dims& dims,
            bool chunk_by_frame = false);

@@ -13,8 +13,10 @@
 #include "dataset_files.h"
 #include "h5_io.h"
 #include "layers/core/error.h"
+#include "layers/data/dataset.h"
 #include "layers/data/format.h"
 #include "layers/data/manifest.h"
+#include "layers/data/splits.h"
 #include "layers/data/stats.h"
 #include "sequence_rules.h"
 #include "shard_layout.h"
@@ -245,6 +247,15 @@ void validate_splits(const std::string& path, const std::map<std::string, std::s
   if (!source.splits.has("train")) sink.report(Problem{path, "train", "missing split (statistics come from train)"});
 }
 
+bool train_split_nonempty(const std::string& splits_path) {
+  try {
+    const Splits splits = read_splits(splits_path);
+    return splits.has("train") && !splits.get("train").empty();
+  } catch (const InputError&) {
+    return false;  // reported by validate_splits
+  }
+}
+
 void validate_folder(const std::string& folder, ProblemSink& sink) {
   const std::string manifest_path = (fs::path(folder) / kManifestFile).string();
   std::optional<DatasetManifest> manifest;
@@ -285,6 +296,28 @@ void validate_folder(const std::string& folder, ProblemSink& sink) {
     } catch (const InputError& e) {
       sink.report(problem_from(e));
     }
+  } else if (train_split_nonempty(splits_path)) {
+    sink.report(Problem{stats_path, "",
+                        "missing (train, eval and bench need the train split's statistics; `layers generate` "
+                        "writes them when the dataset is complete)"});
+  }
+}
+
+// Every frame through the reader, which checks the physical bounds of
+// value_bounds.h (finite, within 10 m of the body root, ...). Run only on a
+// structurally valid dataset, so that one damage is not reported twice.
+void check_frame_bounds(const std::string& path, ProblemSink& sink) {
+  try {
+    const Dataset dataset = Dataset::open(path);
+    for (const std::string& id : dataset.ids()) {
+      try {
+        dataset.read_sequence(id);
+      } catch (const InputError& e) {
+        sink.report(problem_from(e));
+      }
+    }
+  } catch (const InputError& e) {
+    sink.report(problem_from(e));
   }
 }
 
@@ -296,9 +329,11 @@ std::vector<Problem> validate_dataset(const std::string& path) {
   std::error_code ec;
   if (fs::is_directory(path, ec)) {
     validate_folder(path, sink);
+    if (problems.empty()) check_frame_bounds(path, sink);
   } else if (fs::exists(path, ec)) {
     std::map<std::string, std::string> seen;
     validate_shard(path, sink, seen);
+    if (problems.empty()) check_frame_bounds(path, sink);
   } else {
     sink.report(Problem{path, "", "does not exist"});
   }

@@ -5,10 +5,18 @@
 #include <torch/serialize/input-archive.h>
 #include <torch/serialize/output-archive.h>
 
+#include <c10/util/Exception.h>
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
 
 #include "layers/core/atomic_file.h"
+#include "layers/core/checksum.h"
 #include "layers/core/error.h"
 #include "layers/zoo/model.h"
 
@@ -20,6 +28,48 @@ std::string norm_key(const char* quantity) {
   std::string key = quantity;
   std::replace(key.begin(), key.end(), '/', '_');
   return key;
+}
+
+// The file: a header line "layers-checkpoint 1 fnv1a64 <16 hex> <n>\n",
+// then the n bytes of the torch archive the hash covers. A file that
+// starts with a zip signature is a torch archive written before checksums
+// (read as it is, with a warning).
+constexpr const char* kMagic = "layers-checkpoint 1 fnv1a64 ";
+
+std::string first_line(const std::string& text) { return text.substr(0, text.find('\n')); }
+
+// The message of a LibTorch error without its backtrace, on one line.
+std::string torch_message(const std::exception& e) {
+  if (const auto* c10 = dynamic_cast<const c10::Error*>(&e)) return first_line(c10->what_without_backtrace());
+  return first_line(e.what());
+}
+
+// The verified torch archive bytes of a checkpoint file.
+std::string checked_payload(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "checkpoint", "a readable file", "cannot open it");
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (bytes.rfind("PK\x03\x04", 0) == 0) {
+    spdlog::warn("{}: checkpoint without a checksum (written before checksums); read unchecked", path);
+    return bytes;
+  }
+  const std::string magic = kMagic;
+  const std::size_t eol = bytes.find('\n');
+  if (bytes.rfind(magic, 0) != 0 || eol == std::string::npos || eol > 128)
+    throw InputError(path, "checkpoint", "a layers checkpoint (header '" + magic + "...')",
+                     bytes.empty() ? "an empty file" : "another file");
+  char hex[17] = {};
+  unsigned long long size = 0;
+  if (std::sscanf(bytes.c_str() + magic.size(), "%16[0-9a-f] %llu", hex, &size) != 2)
+    throw InputError(path, "checkpoint", "'" + magic + "<16 hex digits> <size>'", "'" + bytes.substr(0, eol) + "'");
+  const std::string payload = bytes.substr(eol + 1);
+  if (payload.size() != size)
+    throw InputError(path, "checkpoint", std::to_string(size) + " bytes after the header",
+                     std::to_string(payload.size()) + " (truncated or damaged)");
+  const std::string actual = content_hash(payload);
+  if (actual != hex)
+    throw InputError(path, "checksum", std::string("fnv1a64 ") + hex, actual + " (the file is damaged)");
+  return payload;
 }
 
 at::Tensor read_tensor(torch::serialize::InputArchive& in, const std::string& key, const std::string& path) {
@@ -54,18 +104,27 @@ void save_checkpoint(const std::string& path, zoo::Model& model, const torch::op
   std::filesystem::create_directories(std::filesystem::path(path).parent_path().empty()
                                           ? std::filesystem::path(".")
                                           : std::filesystem::path(path).parent_path());
+  std::ostringstream archive;
+  out.save_to(archive);
+  const std::string payload = archive.str();
   AtomicPath target(path);
-  out.save_to(target.temp());
+  {
+    std::ofstream file(target.temp(), std::ios::binary);
+    file << kMagic << content_hash(payload) << ' ' << payload.size() << '\n' << payload;
+    file.flush();
+    if (!file) throw Error(target.temp() + ": cannot write the checkpoint");
+  }
   target.commit();
 }
 
 CheckpointState load_checkpoint(const std::string& path, zoo::Model& model, torch::optim::Optimizer* optimizer) {
   if (!std::filesystem::exists(path)) throw InputError(path, "checkpoint", "an existing file", "no such file");
   torch::serialize::InputArchive in;
+  std::istringstream payload(checked_payload(path));
   try {
-    in.load_from(path);
+    in.load_from(payload);
   } catch (const std::exception& e) {
-    throw InputError(path, "checkpoint", "a layers checkpoint (torch archive)", std::string("unreadable: ") + e.what());
+    throw InputError(path, "checkpoint", "a layers checkpoint (torch archive)", "unreadable: " + torch_message(e));
   }
   CheckpointState state;
   const at::Tensor name = read_tensor(in, "model_name", path);
@@ -82,7 +141,7 @@ CheckpointState load_checkpoint(const std::string& path, zoo::Model& model, torc
     model.load(model_archive);
   } catch (const std::exception& e) {
     throw InputError(path, "model", "parameters matching the configured model '" + model.name() + "'",
-                     std::string("a mismatch: ") + e.what());
+                     "a mismatch: " + torch_message(e));
   }
   if (!in.try_read("normalization", norm_archive))
     throw InputError(path, "normalization", "the training statistics", "nothing");

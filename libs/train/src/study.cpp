@@ -14,6 +14,7 @@
 #include <set>
 
 #include "layers/core/atomic_file.h"
+#include "layers/core/checksum.h"
 #include "layers/core/error.h"
 #include "layers/core/progress.h"
 #include "layers/core/text_file.h"
@@ -460,16 +461,7 @@ class StudyRunner {
 
 // ---- public functions -----------------------------------------------------
 
-std::string fingerprint_text(const std::string& text) {
-  std::uint64_t h = 1469598103934665603ull;  // FNV-1a 64
-  for (unsigned char c : text) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-  return buf;
-}
+std::string fingerprint_text(const std::string& text) { return content_hash(text); }
 
 std::string file_stamp(const std::string& path) {
   std::error_code ec;

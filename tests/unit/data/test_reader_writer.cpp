@@ -295,5 +295,29 @@ TEST(DataWriter, ResumeKeepsFinishedShards) {
   EXPECT_EQ(ds.manifest().n_frames, 36);
 }
 
+// Every numeric dataset carries a Fletcher32 checksum per chunk: bytes
+// flipped inside the body positions (to values that are still finite
+// floats) make the read fail with the file and the object named, instead of
+// returning garbage.
+TEST(DataChecksums, FlippedBytesInAShardAreRefused) {
+  TempDir dir;
+  auto seq = make_sequence("s", 3);
+  for (float& v : seq.body.positions) v = 0.625f;  // a pattern to find in the file
+  write_shard(dir.file("one.h5"), {seq});
+  std::string bytes = testing::read_text(dir.file("one.h5"));
+  const float pattern[4] = {0.625f, 0.625f, 0.625f, 0.625f};
+  const std::size_t at = bytes.find(std::string(reinterpret_cast<const char*>(pattern), sizeof pattern));
+  ASSERT_NE(at, std::string::npos);
+  for (std::size_t i = at; i < at + 16; i += 4) bytes[i + 3] = 0x7e;  // 0.625 -> about 1.3e38
+  testing::write_text(dir.file("one.h5"), bytes);
+  const Dataset ds = Dataset::open(dir.file("one.h5"));
+  const std::string message = layers::test::error_of([&] { ds.read_sequence("s"); });
+  EXPECT_NE(message.find(dir.file("one.h5")), std::string::npos) << message;
+  EXPECT_NE(message.find("body/positions"), std::string::npos) << message;
+  EXPECT_NE(message.find("checksum"), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
+
 }  // namespace
 }  // namespace layers::data

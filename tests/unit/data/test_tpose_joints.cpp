@@ -12,6 +12,7 @@
 #include "layers/core/error.h"
 #include "layers/data/dataset.h"
 #include "layers/data/dataset_writer.h"
+#include "layers/data/stats.h"
 #include "layers/data/sequence.h"
 #include "layers/data/validate.h"
 #include "synthetic_sequence.h"
@@ -45,6 +46,7 @@ void write_pair(const std::string& folder) {
   writer.add(make_sequence("without", 2));
   writer.set_split("train", {"with", "without"});
   writer.finish();
+  write_stats(folder + "/stats.h5", compute_stats(Dataset::open(folder)));  // as the generator does
 }
 
 std::string all_text(const std::vector<Problem>& problems) {

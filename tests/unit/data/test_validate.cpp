@@ -9,7 +9,9 @@
 #include "layers/core/error.h"
 #include "layers/data/dataset.h"
 #include "layers/data/dataset_writer.h"
+#include "layers/data/stats.h"
 #include "layers/data/validate.h"
+#include "error_of.h"
 #include "synthetic_sequence.h"
 
 namespace layers::data {
@@ -28,6 +30,7 @@ void write_good(const std::string& folder) {
   writer.set_split("val", {});
   writer.set_split("test", {"b"});
   writer.finish();
+  write_stats(folder + "/stats.h5", compute_stats(Dataset::open(folder)));  // as the generator does
 }
 
 std::string all_text(const std::vector<Problem>& problems) {
@@ -199,6 +202,39 @@ TEST_F(DataValidate, ReportsEveryProblemNotJustTheFirst) {
   EXPECT_TRUE(has_problem(problems, "unknown sequence id 'ghost'"));
   EXPECT_EQ(problems.size(), 4u) << all_text(problems);
 }
+
+// Ground truth out of physical bounds is an input error of the data,
+// naming file, sequence, array, frame and vertex -- in the reader (so
+// train and eval never blame a model for it) and in `layers validate`.
+TEST(DataBounds, AbsurdOrNonFiniteFramesAreInputErrors) {
+  // The validator's own scan reports non-finite values first, in its words.
+  auto expect_refused = [](SequenceData seq, const std::string& needle, const std::string& validator_needle = "") {
+    TempDir dir;
+    const std::string folder = dir.file("ds");
+    DatasetWriterOptions options;
+    DatasetWriter writer(folder, options);
+    writer.add(seq);
+    writer.set_split("train", {});
+    writer.set_split("test", {seq.id});
+    writer.finish();
+    const Dataset ds = Dataset::open(folder);
+    const std::string message = layers::test::error_of([&] { ds.read_frames(seq.id, 0, seq.n_frames); });
+    EXPECT_NE(message.find(needle), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    EXPECT_TRUE(has_problem(validate_dataset(folder), validator_needle.empty() ? needle : validator_needle));
+  };
+  SequenceData nan = make_sequence("n", 1);
+  const std::size_t per_frame = nan.garments[0].positions.size() / static_cast<std::size_t>(nan.n_frames);
+  nan.garments[0].positions[3 * per_frame + 3 * 17 + 1] = std::numeric_limits<float>::quiet_NaN();
+  expect_refused(nan, "/seq/n/garments/0/positions: expected finite values, got nan at frame 3, vertex 17",
+                 "/seq/n/garments/0/positions: expected finite values, got 1 non-finite (first NaN at [3,17,1])");
+
+  SequenceData far = make_sequence("f", 2);
+  far.body.positions[3 * 5] = 2.5e38f;  // frame 0, vertex 5
+  expect_refused(far, "/seq/f/body/positions: expected positions within 10 m of the body root, got 2.5e+38 m away "
+                      "at frame 0, vertex 5");
+}
+
 
 }  // namespace
 }  // namespace layers::data

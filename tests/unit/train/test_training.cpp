@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include "layers/core/error.h"
 #include "layers/train/checkpoint.h"
@@ -118,6 +119,52 @@ TEST_F(Fixture, CheckpointRestoresParametersAndNormalisation) {
   std::ofstream(dir.path() + "/junk.pt") << "not a checkpoint";
   EXPECT_THROW(load_checkpoint(dir.path() + "/junk.pt", *b.model, nullptr), InputError);
   EXPECT_THROW(load_checkpoint(dir.path() + "/missing.pt", *b.model, nullptr), InputError);
+}
+
+// A checkpoint carries a checksum of its archive: 200 flipped bytes, a
+// truncated file or a damaged header are refused on load with one line
+// naming the file; a bare torch archive (before checksums) still loads.
+TEST_F(Fixture, DamagedCheckpointIsRefusedWithOneLine) {
+  ExperimentConfig c = config("ckpt3");
+  Session a = open_session(c, registry);
+  const std::string good = dir.path() + "/good.pt";
+  save_checkpoint(good, *a.model, nullptr, {1, 2, 3.0, "tiny"});
+  std::ifstream in(good, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(bytes.rfind("layers-checkpoint 1 fnv1a64 ", 0), 0u);
+  auto write = [&](const std::string& name, const std::string& content) {
+    std::ofstream(dir.path() + "/" + name, std::ios::binary) << content;
+    return dir.path() + "/" + name;
+  };
+  auto message = [&](const std::string& file) {
+    try {
+      load_checkpoint(file, *a.model, nullptr);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("loaded");
+  };
+  std::string flipped = bytes;
+  for (std::size_t i = 0; i < 200; ++i) flipped[bytes.size() / 2 + i] ^= 0x5a;
+  const std::string f = write("flipped.pt", flipped);
+  EXPECT_EQ(message(f).rfind(f + ": checksum: expected fnv1a64 ", 0), 0u) << message(f);
+  EXPECT_NE(message(f).find("(the file is damaged)"), std::string::npos);
+  EXPECT_EQ(message(f).find('\n'), std::string::npos) << message(f);
+  const std::string t = write("truncated.pt", bytes.substr(0, bytes.size() - 100));
+  EXPECT_NE(message(t).find("(truncated or damaged)"), std::string::npos) << message(t);
+  const std::string h = write("header.pt", "layers-checkpoint 1 fnv1a64 zz\n" + bytes.substr(bytes.find('\n') + 1));
+  EXPECT_NE(message(h).find("expected 'layers-checkpoint 1 fnv1a64 <16 hex digits> <size>'"), std::string::npos)
+      << message(h);
+  // The archive alone, as written before checksums: loads unchecked.
+  const std::string legacy = write("legacy.pt", bytes.substr(bytes.find('\n') + 1));
+  EXPECT_EQ(message(legacy), "loaded");
+  // A damaged bare archive: LibTorch's error on one line, no backtrace.
+  std::string broken = bytes.substr(bytes.find('\n') + 1);
+  broken.resize(broken.size() / 2);
+  const std::string b = write("broken-legacy.pt", broken);
+  EXPECT_EQ(message(b).rfind(b + ": checkpoint: expected a layers checkpoint (torch archive), got unreadable: ", 0), 0u)
+      << message(b);
+  EXPECT_EQ(message(b).find('\n'), std::string::npos) << message(b);
 }
 
 TEST_F(Fixture, DivergenceIsRecordedNotThrown) {

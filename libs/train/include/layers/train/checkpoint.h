@@ -2,7 +2,9 @@
 // model's parameters and buffers, its normalisation statistics, the
 // optimiser state and the training position (epoch, step, best validation
 // error). Written to a temporary name and renamed, so a crash never leaves
-// a broken checkpoint behind.
+// a broken checkpoint behind. The file is a header line
+// "layers-checkpoint 1 fnv1a64 <hash> <size>" and the torch archive the
+// hash covers; loading verifies it (docs/training.md, "Checkpoints").
 #pragma once
 
 #include <cstdint>
@@ -29,7 +31,9 @@ struct CheckpointState {
 void save_checkpoint(const std::string& path, zoo::Model& model, const torch::optim::Optimizer* optimizer,
                      const CheckpointState& state);
 // Restores into `model` (and `optimizer` when given). InputError naming the
-// file for a missing or unreadable checkpoint or one made for another model.
+// file, on one line, for a missing, damaged (checksum), unreadable
+// checkpoint or one made for another model. A bare torch archive (written
+// before checksums) is read unchecked, with a warning.
 CheckpointState load_checkpoint(const std::string& path, zoo::Model& model, torch::optim::Optimizer* optimizer);
 
 }  // namespace layers::train
