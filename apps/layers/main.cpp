@@ -25,7 +25,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app::Global global;
   app.add_option("--log-level", global.log_level, "trace, debug, info, warn, error, critical or off")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));
 
   std::map<CLI::App*, app::VerbRun> verbs;
   auto add = [&](app::VerbRun (*reg)(CLI::App&, const app::Global&)) {

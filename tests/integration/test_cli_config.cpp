@@ -22,7 +22,7 @@ TEST(CliGlobal, HelpAndUsageExitCodes) {
 
 TEST(CliConfig, PrintsResolvedConfigWithIncludesAndSets) {
   TempDir dir;
-  dir.write("base.yaml", "run: {seed: 5, threads: 1}\n");
+  dir.write("base.yaml", "run: {seed: 5, threads: 1}\nmodel: {name: static}\n");
   std::string exp = dir.write("exp.yaml", "include: base.yaml\nrun: {threads: 2}\n");
   std::string out = dir.file("resolved.yaml");
   auto r = run_command(layers_bin() + " config " + exp + " --set run.seed=9 --out " + out);
@@ -32,6 +32,32 @@ TEST(CliConfig, PrintsResolvedConfigWithIncludesAndSets) {
   EXPECT_NE(r.output.find("device: cpu"), std::string::npos) << r.output;  // default filled in
   auto again = run_command(layers_bin() + " config " + out);
   EXPECT_EQ(again.exit_code, 0) << again.output;
+}
+
+// `layers config` knows every kind of config file; an experiment must name
+// its model; flag values are checked, the empty one too.
+TEST(CliConfig, ChecksGeneratorConfigsStudiesAndEmptyExperiments) {
+  TempDir dir;
+  const std::string src = layers::test::source_dir();
+  auto gen = run_command(layers_bin() + " config " + src + "/configs/data/tiny.yaml --set sequences=4");
+  EXPECT_EQ(gen.exit_code, 0) << gen.output;
+  EXPECT_NE(gen.output.find("sequences: 4"), std::string::npos) << gen.output;
+  auto bad_gen = run_command(layers_bin() + " config " + src + "/configs/data/tiny.yaml --set sim.substeps=-3");
+  EXPECT_EQ(bad_gen.exit_code, 1) << bad_gen.output;
+  EXPECT_NE(bad_gen.output.find("sim.substeps"), std::string::npos) << bad_gen.output;
+  auto study = run_command(layers_bin() + " config " + src + "/configs/studies/compare_tiny.yaml");
+  EXPECT_EQ(study.exit_code, 0) << study.output;
+  EXPECT_NE(study.output.find("experiments:"), std::string::npos) << study.output;
+  const std::string empty = dir.write("empty.yaml", "\n");
+  auto e = run_command(layers_bin() + " config " + empty);
+  EXPECT_EQ(e.exit_code, 1) << e.output;
+  EXPECT_NE(e.output.find(empty + ": model: expected an experiment with a model section"), std::string::npos)
+      << e.output;
+  auto unset = run_command(layers_bin() + " config " + src + "/configs/experiments/layersnet_tiny.yaml --set train.epochs=");
+  EXPECT_EQ(unset.exit_code, 1) << unset.output;
+  EXPECT_NE(unset.output.find("train.epochs: expected a value after '='"), std::string::npos) << unset.output;
+  auto level = run_command(layers_bin() + " --log-level bogus models");
+  EXPECT_EQ(level.exit_code, 2) << level.output;
 }
 
 TEST(CliConfig, BadConfigExitsOneWithPreciseMessage) {

@@ -2,9 +2,11 @@
 // configuration tree (see config_node.h).
 #include "layers/core/config_node.h"
 
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -57,7 +59,29 @@ std::string Node::kind_name() const {
 
 namespace {
 
-Node convert(const YAML::Node& y, const std::string& name) {
+// Bounds of a config: aliases make copies (a few hundred bytes can expand
+// to billions of values), so values and depth are counted as they convert.
+constexpr std::size_t kMaxConfigBytes = 16u << 20;
+constexpr std::int64_t kMaxConfigValues = 1000000;
+constexpr int kMaxConfigDepth = 64;
+
+struct Budget {
+  std::int64_t values = 0;
+  int depth = 0;
+};
+
+Node convert(const YAML::Node& y, const std::string& name, Budget& budget) {
+  if (++budget.values > kMaxConfigValues)
+    throw InputError(name, "", "a config of at most " + std::to_string(kMaxConfigValues) + " values",
+                     "more (YAML aliases expand into copies)");
+  if (budget.depth >= kMaxConfigDepth)
+    throw InputError(name + ":" + std::to_string(y.Mark().line + 1), "",
+                     "values nested at most " + std::to_string(kMaxConfigDepth) + " levels deep", "deeper nesting");
+  struct Deeper {
+    Budget& b;
+    explicit Deeper(Budget& b) : b(b) { ++b.depth; }
+    ~Deeper() { --b.depth; }
+  } deeper(budget);
   Node out;
   out.file = name;
   out.line = y.Mark().line >= 0 ? y.Mark().line + 1 : 0;
@@ -72,7 +96,7 @@ Node convert(const YAML::Node& y, const std::string& name) {
       break;
     case YAML::NodeType::Sequence:
       out.kind = Node::Kind::Seq;
-      for (const auto& item : y) out.seq.push_back(convert(item, name));
+      for (const auto& item : y) out.seq.push_back(convert(item, name, budget));
       break;
     case YAML::NodeType::Map:
       out.kind = Node::Kind::Map;
@@ -81,7 +105,7 @@ Node convert(const YAML::Node& y, const std::string& name) {
         if (out.find(key))
           throw InputError::message(name + ":" + std::to_string(kv.first.Mark().line + 1), key,
                                     "duplicate key");
-        out.map.emplace_back(key, convert(kv.second, name));
+        out.map.emplace_back(key, convert(kv.second, name, budget));
       }
       break;
   }
@@ -161,8 +185,15 @@ void emit(YAML::Emitter& out, const Node& node) {
 }  // namespace
 
 Node parse(const std::string& text, const std::string& name) {
+  if (text.size() > kMaxConfigBytes)
+    throw InputError(name, "", "a config of at most " + std::to_string(kMaxConfigBytes >> 20) + " MiB",
+                     std::to_string(text.size()) + " bytes");
   try {
-    return convert(YAML::Load(text), name);
+    Budget budget;
+    return convert(YAML::Load(text), name, budget);
+  } catch (const YAML::DeepRecursion& e) {
+    throw InputError(name + ":" + std::to_string(e.mark.line + 1), "", "YAML nested less deeply",
+                     "nesting beyond the parser's limit");
   } catch (const YAML::Exception& e) {
     std::string where = name;
     if (e.mark.line >= 0)
@@ -195,7 +226,10 @@ void apply_set(Node& root, const std::string& assignment) {
   if (eq == std::string::npos || eq == 0)
     throw InputError("--set", "'" + assignment + "'", "key.path=value", "no '=' or empty key");
   std::string path = assignment.substr(0, eq);
-  Node value = parse(assignment.substr(eq + 1), "--set");
+  const std::string text = assignment.substr(eq + 1);
+  if (text.find_first_not_of(" \t") == std::string::npos)
+    throw InputError("--set", assignment.substr(0, eq), "a value after '=' (write null for none)", "nothing");
+  Node value = parse(text, "--set");
   // Values set from the command line point at the command line.
   std::vector<Node*> todo{&value};
   while (!todo.empty()) {

@@ -198,4 +198,27 @@ TEST(Config, SetOverridesFromCommandLine) {
   expect_error([&] { cfg::apply_set(tree, "model.lr"); }, {"--set", "key.path=value"});
   expect_error([&] { cfg::apply_set(tree, "model.name.x=1"); }, {"--set", "a mapping"});
   expect_error([&] { cfg::apply_set(tree, "model..x=1"); }, {"--set", "empty key"});
+  // An empty value is refused, never read as "use the default".
+  expect_error([&] { cfg::apply_set(tree, "train.epochs="); },
+               {"--set: train.epochs: expected a value after '=' (write null for none), got nothing"});
+}
+
+// A few hundred bytes of YAML aliases would expand into billions of values,
+// and deep nesting exhausts the parser: both are bounded with one line.
+TEST(Config, AliasBombAndDeepNestingAreBounded) {
+  std::string bomb = "a: &a [x, x, x, x, x, x, x, x, x, x]\n";
+  for (char c = 'b'; c <= 'j'; ++c)
+    bomb += std::string(1, c) + ": &" + c + " [*" + char(c - 1) + ", *" + char(c - 1) + ", *" + char(c - 1) + ", *" +
+            char(c - 1) + ", *" + char(c - 1) + ", *" + char(c - 1) + ", *" + char(c - 1) + ", *" + char(c - 1) +
+            ", *" + char(c - 1) + ", *" + char(c - 1) + "]\n";
+  ASSERT_LT(bomb.size(), 1000u);
+  expect_error([&] { cfg::parse(bomb, "bomb.yaml"); },
+               {"bomb.yaml: expected a config of at most 1000000 values, got more (YAML aliases expand into copies)"});
+  std::string deep = "a: ";
+  for (int i = 0; i < 100; ++i) deep += "[";
+  for (int i = 0; i < 100; ++i) deep += "]";
+  expect_error([&] { cfg::parse(deep, "deep.yaml"); }, {"deep.yaml:1", "nested at most 64 levels deep, got deeper nesting"});
+  std::string deeper = "a: ";
+  for (int i = 0; i < 5000; ++i) deeper += "[";
+  expect_error([&] { cfg::parse(deeper, "deeper.yaml"); }, {"deeper.yaml:1", "got nesting beyond the parser's limit"});
 }
