@@ -3,7 +3,9 @@
 // (0 ok, 1 failure or bad input, 2 bad usage).
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cstdlib>
+#include <iterator>
 #include <iostream>
 #include <map>
 
@@ -25,8 +27,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app::Global global;
   app.add_option("--log-level", global.log_level, "trace, debug, info, warn, error, critical or off")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));
+      ->capture_default_str();
 
   std::map<CLI::App*, app::VerbRun> verbs;
   auto add = [&](app::VerbRun (*reg)(CLI::App&, const app::Global&)) {
@@ -65,6 +66,11 @@ int main(int argc, char** argv) {
   }
 
   try {
+    // Checked after parsing, so that --help still wins over a bad value.
+    static const char* const kLevels[] = {"trace", "debug", "info", "warn", "error", "critical", "off"};
+    if (std::find(std::begin(kLevels), std::end(kLevels), global.log_level) == std::end(kLevels))
+      throw UsageError("--log-level: expected one of trace, debug, info, warn, error, critical, off, got '" +
+                       global.log_level + "'");
     set_log_level(global.log_level);
     for (auto* sub : app.get_subcommands()) return verbs.at(sub)();
   } catch (const UsageError& e) {

@@ -69,6 +69,12 @@ VerbRun register_body(CLI::App& app, const Global&) {
   cmd->add_option("--export", a->export_format, "also export the body as obj or pc2");
   cmd->add_option("--export-dir", a->export_dir, "folder for --export (default <out>_export)");
   return [a]() {
+    // The flags checked in their own names (the motion's checks name config keys).
+    if (a->frames < 0) throw UsageError("--frames: expected 0 (the whole clip) or more, got " + std::to_string(a->frames));
+    if (a->transition < 0) throw UsageError("--transition: expected 0 or more, got " + std::to_string(a->transition));
+    if (a->frames > 0 && a->transition >= a->frames)
+      throw UsageError("--transition: expected fewer frames than --frames (" + std::to_string(a->frames) + "), got " +
+                       std::to_string(a->transition));
     cfg::Node section;
     section.kind = cfg::Node::Kind::Map;
     section.file = "layers body";

@@ -79,3 +79,21 @@ TEST(CliTrain, ExistingRunIsNeverOverwrittenOrLost) {
   EXPECT_EQ(bytes(aside + "/experiment.yaml"), resolved);
   EXPECT_TRUE(fs::exists(run + "/checkpoint-last.pt"));
 }
+
+// Flag values and config keys are checked before anything runs.
+TEST(CliTrain, BadHorizonAndMissingDatasetAreNamed) {
+  test::TempDir dir("layers-cli-eval");
+  const std::string experiment =
+      dir.write("exp.yaml", "model: {name: test_constant_velocity}\ndata: {dataset: " + dir.file("nothing") +
+                                "}\nrun: {output: " + dir.file("run") + "}\n");
+  auto horizon = run_command("LAYERS_PLUGIN_PATH=" + test::plugin_dir() + " " + test::layers_bin() + " eval " +
+                             experiment + " --horizon -1000000");
+  EXPECT_EQ(horizon.exit_code, 2) << horizon.output;
+  EXPECT_NE(horizon.output.find("--horizon"), std::string::npos) << horizon.output;
+  auto missing = train(experiment);
+  EXPECT_EQ(missing.exit_code, 1) << missing.output;
+  EXPECT_NE(missing.output.find(experiment + ": data.dataset: expected a dataset folder (made by `layers generate`) "
+                                              "or shard file, got '" + dir.file("nothing") + "' (no such folder or file)"),
+            std::string::npos)
+      << missing.output;
+}

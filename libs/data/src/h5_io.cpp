@@ -1,6 +1,7 @@
 // Typed HDF5 helpers, the HDF5 mutex and error translation (see h5_io.h).
 #include "h5_io.h"
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <sstream>
@@ -50,10 +51,26 @@ std::vector<std::string> read_string_values(const H5::StrType& file_type, hssize
   return out;
 }
 
-H5::StrType vlen_utf8() {
-  H5::StrType type(H5::PredType::C_S1, H5T_VARIABLE);
+// Strings are written fixed-length (null-padded UTF-8, as long as the
+// longest value): they then live in the object header (attributes) or in a
+// checksummed chunk (datasets), never in HDF5's global heap, which has no
+// checksum -- a damaged heap entry crashed libhdf5 1.10.8 in our fuzzing.
+// Readers accept variable-length strings too (files written before).
+H5::StrType fixed_utf8(const std::vector<std::string>& values) {
+  std::size_t longest = 1;
+  for (const auto& v : values) longest = std::max(longest, v.size());
+  H5::StrType type(H5::PredType::C_S1, longest);
   type.setCset(H5T_CSET_UTF8);
+  type.setStrpad(H5T_STR_NULLPAD);
   return type;
+}
+
+// `values` packed into a fixed-length buffer of `type`.
+std::vector<char> packed(const std::vector<std::string>& values, const H5::StrType& type) {
+  const std::size_t len = type.getSize();
+  std::vector<char> buffer(values.size() * len, '\0');
+  for (std::size_t i = 0; i < values.size(); ++i) std::copy(values[i].begin(), values[i].end(), buffer.begin() + i * len);
+  return buffer;
 }
 
 void remove_attr_if_present(H5::H5Object& obj, const std::string& name) {
@@ -143,6 +160,20 @@ bool dtype_matches(const H5::DataType& type, DType expected) {
       return type.getClass() == H5T_STRING;
   }
   return false;
+}
+
+H5::H5File create_file(const std::string& path) {
+  Lock lock;
+  // File format of HDF5 1.8 and later: the superblock, object headers and
+  // chunk indices carry their own checksums, so damaged metadata is refused
+  // by the library instead of being parsed (an old-format header with
+  // flipped bytes can crash libhdf5 itself). Every HDF5 >= 1.8 reads it.
+  H5::FileAccPropList fapl;
+  fapl.setLibverBounds(H5F_LIBVER_V18, H5F_LIBVER_LATEST);
+  // No modification time on the root group either: same data, same bytes.
+  H5::FileCreatPropList fcpl;
+  H5Pset_obj_track_times(fcpl.getId(), false);
+  return H5::H5File(path, H5F_ACC_TRUNC, fcpl, fapl);
 }
 
 H5::H5File open_read(const std::string& path, const H5::FileAccPropList& fapl) {
@@ -379,22 +410,24 @@ void write(H5::Group& loc, const std::string& name, const std::vector<T>& data, 
 
 void write_strings(H5::Group& loc, const std::string& name, const std::vector<std::string>& values) {
   Lock lock;
-  const H5::StrType type = vlen_utf8();
+  const H5::StrType type = fixed_utf8(values);
   const Dims dims{values.size()};
   H5::DSetCreatPropList plist;
   H5Pset_obj_track_times(plist.getId(), false);
+  if (!values.empty()) {
+    plist.setChunk(1, dims.data());
+    plist.setFletcher32();
+  }
   H5::DataSet ds = loc.createDataSet(name, type, H5::DataSpace(1, dims.data()), plist);
-  std::vector<const char*> pointers;
-  for (const auto& v : values) pointers.push_back(v.c_str());
-  if (!pointers.empty()) ds.write(pointers.data(), type);
+  if (!values.empty()) ds.write(packed(values, type).data(), type);
 }
 
 void set_attr(H5::H5Object& obj, const std::string& name, const std::string& value) {
   Lock lock;
   remove_attr_if_present(obj, name);
-  const H5::StrType type = vlen_utf8();
+  const H5::StrType type = fixed_utf8({value});
   H5::Attribute attr = obj.createAttribute(name, type, H5::DataSpace(H5S_SCALAR));
-  attr.write(type, value);
+  attr.write(type, packed({value}, type).data());
 }
 
 void set_attr(H5::H5Object& obj, const std::string& name, std::int64_t value) {
@@ -415,13 +448,11 @@ void set_attr(H5::H5Object& obj, const std::string& name, double value) {
 void set_attr(H5::H5Object& obj, const std::string& name, const std::vector<std::string>& values) {
   Lock lock;
   remove_attr_if_present(obj, name);
-  const H5::StrType type = vlen_utf8();
+  const H5::StrType type = fixed_utf8(values);
   const Dims dims{values.size()};
   H5::DataSpace space = values.empty() ? H5::DataSpace(H5S_NULL) : H5::DataSpace(1, dims.data());
   H5::Attribute attr = obj.createAttribute(name, type, space);
-  std::vector<const char*> pointers;
-  for (const auto& v : values) pointers.push_back(v.c_str());
-  if (!pointers.empty()) attr.write(type, pointers.data());
+  if (!values.empty()) attr.write(type, packed(values, type).data());
 }
 
 AttrKind attr_kind(const H5::H5Object& obj, const std::string& name) {

@@ -69,6 +69,10 @@ template <> struct Native<double> {
   static constexpr DType dtype = DType::Float64;
 };
 
+// Creates (truncates) an HDF5 file in the 1.8+ format, whose metadata
+// carries checksums (every writer of the toolkit uses it).
+H5::H5File create_file(const std::string& path);
+
 // Opening files. open_read checks existence and the HDF5 signature first
 // so that the errors say "does not exist" / "not an HDF5 file"; a
 // truncated file fails with HDF5's own "truncated file" detail.

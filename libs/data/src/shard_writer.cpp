@@ -39,7 +39,7 @@ ShardWriter::ShardWriter(std::string path) : impl_(std::make_unique<Impl>(std::m
   h5::Lock lock;
   const std::string& target = impl_->atomic.target();
   h5::guard(target, "", [&] {
-    impl_->file = H5::H5File(impl_->atomic.temp(), H5F_ACC_TRUNC);
+    impl_->file = h5::create_file(impl_->atomic.temp());
     H5::Group root = impl_->file.openGroup("/");
     h5::set_attr(root, "format", std::string(kFormatName));
     h5::set_attr(root, "format_version", kFormatVersion);

@@ -173,7 +173,7 @@ void write_stats(const std::string& path, const NormStats& stats) {
   {
     h5::Lock lock;
     h5::guard(path, "", [&] {
-      H5::H5File file(atomic.temp(), H5F_ACC_TRUNC);
+      H5::H5File file = h5::create_file(atomic.temp());
       H5::Group root = file.openGroup("/");
       h5::set_attr(root, "format", std::string(kStatsFormat));
       h5::set_attr(root, "format_version", kStatsVersion);

@@ -44,8 +44,9 @@ std::string torch_message(const std::exception& e) {
   return first_line(e.what());
 }
 
-// The verified torch archive bytes of a checkpoint file.
-std::string checked_payload(const std::string& path) {
+// The verified torch archive bytes of a checkpoint file; `checksum` gets
+// the verified hash ("" for a file written before checksums).
+std::string checked_payload(const std::string& path, std::string& checksum) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "checkpoint", "a readable file", "cannot open it");
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -69,6 +70,7 @@ std::string checked_payload(const std::string& path) {
   const std::string actual = content_hash(payload);
   if (actual != hex)
     throw InputError(path, "checksum", std::string("fnv1a64 ") + hex, actual + " (the file is damaged)");
+  checksum = actual;
   return payload;
 }
 
@@ -120,13 +122,15 @@ void save_checkpoint(const std::string& path, zoo::Model& model, const torch::op
 CheckpointState load_checkpoint(const std::string& path, zoo::Model& model, torch::optim::Optimizer* optimizer) {
   if (!std::filesystem::exists(path)) throw InputError(path, "checkpoint", "an existing file", "no such file");
   torch::serialize::InputArchive in;
-  std::istringstream payload(checked_payload(path));
+  std::string checksum;
+  std::istringstream payload(checked_payload(path, checksum));
   try {
     in.load_from(payload);
   } catch (const std::exception& e) {
     throw InputError(path, "checkpoint", "a layers checkpoint (torch archive)", "unreadable: " + torch_message(e));
   }
   CheckpointState state;
+  state.checksum = checksum;
   const at::Tensor name = read_tensor(in, "model_name", path);
   for (std::int64_t i = 0; i < name.numel(); ++i) state.model_name.push_back(static_cast<char>(name[i].item<std::int64_t>()));
   if (state.model_name != model.name())

@@ -221,6 +221,8 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
   for (const auto& [type, summary] : report.per_type) types[type] = to_json(summary);
   json doc = {{"model", report.model},
               {"checkpoint", report.checkpoint},
+              // Ties these results to the exact checkpoint bytes they came from.
+              {"checkpoint_fnv1a64", state.checksum},
               {"trained_epochs", state.epochs_done},
               {"experiment", config.source},
               {"dataset", config.data.dataset},

@@ -15,6 +15,12 @@ namespace layers::train {
 Session open_session(const ExperimentConfig& config, const zoo::Registry& registry) {
   if (config.data.dataset.empty())
     throw InputError(config.source, "data.dataset", "a dataset folder (made by `layers generate`)", "nothing");
+  {
+    std::error_code ec;
+    if (!std::filesystem::exists(config.data.dataset, ec))
+      throw InputError(config.source, "data.dataset", "a dataset folder (made by `layers generate`) or shard file",
+                       "'" + config.data.dataset + "' (no such folder or file)");
+  }
   if (config.run.device == "cuda" && !at::hasCUDA())
     throw InputError(config.source, "run.device", "a device this build can use (cpu)", "cuda, but torch has no CUDA");
   if (config.run.threads > 0) at::set_num_threads(config.run.threads);

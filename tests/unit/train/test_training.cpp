@@ -132,6 +132,7 @@ TEST_F(Fixture, DamagedCheckpointIsRefusedWithOneLine) {
   std::ifstream in(good, std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   ASSERT_EQ(bytes.rfind("layers-checkpoint 1 fnv1a64 ", 0), 0u);
+  EXPECT_EQ(load_checkpoint(good, *a.model, nullptr).checksum, bytes.substr(28, 16));  // the header's hash
   auto write = [&](const std::string& name, const std::string& content) {
     std::ofstream(dir.path() + "/" + name, std::ios::binary) << content;
     return dir.path() + "/" + name;
@@ -195,6 +196,11 @@ TEST_F(Fixture, EvaluationWritesMetricsAndPredictions) {
   std::ifstream in(r.out_dir + "/metrics.json");
   const nlohmann::json j = nlohmann::json::parse(in);
   EXPECT_EQ(j["model"], "tiny");
+  // The results name the checkpoint bytes they came from.
+  std::ifstream ckpt(j["checkpoint"].get<std::string>(), std::ios::binary);
+  std::string header;
+  std::getline(ckpt, header);
+  EXPECT_EQ(header.substr(28, 16), j["checkpoint_fnv1a64"].get<std::string>());
   EXPECT_EQ(j["by_step"].size(), 6u);
   EXPECT_NEAR(j["overall"]["error_mm"]["mean"].get<double>(), r.overall.error_mm.mean, 1e-9);
   const data::Dataset pred = data::Dataset::open(r.out_dir + "/predictions.h5");
