@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "file_bytes.h"
 #include "layers/core/config.h"
 #include "layers/core/error.h"
 #include "layers/data/dataset.h"
@@ -37,12 +38,7 @@ using namespace layers;
 
 namespace {
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::read_bytes;
 
 void write_file(const std::string& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary) << bytes;
@@ -144,13 +140,13 @@ int main(int argc, char** argv) {
 
   fs::create_directories(work);
   const std::string current = work + "/current." + kind;
-  const std::string seed = read_file(seed_file);
+  const std::string seed = read_bytes(seed_file);
   if (seed.empty()) {
     std::fprintf(stderr, "layers_fuzz: empty or missing seed file %s\n", seed_file.c_str());
     return 2;
   }
   std::vector<std::string> inputs;
-  for (int i = 6; i < argc; ++i) inputs.push_back(read_file(argv[i]));
+  for (int i = 6; i < argc; ++i) inputs.push_back(read_bytes(argv[i]));
   const std::size_t regressions = inputs.size();
   long refused = 0, accepted = 0;
   for (long i = 0; i < static_cast<long>(regressions) + iterations; ++i) {

@@ -5,9 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
+#include "file_bytes.h"
 #include "regression_paths.h"
 #include "run_command.h"
 #include "temp_dir.h"
@@ -18,12 +17,7 @@ using test::run_command;
 
 namespace {
 
-std::string bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::read_bytes;
 
 test::CommandResult train(const std::string& experiment, const std::string& extra = "") {
   return run_command("LAYERS_PLUGIN_PATH=" + test::plugin_dir() + " " + test::layers_bin() + " train " + experiment +
@@ -44,8 +38,8 @@ TEST(CliTrain, ExistingRunIsNeverOverwrittenOrLost) {
                   "run: {output: " + run + ", threads: 1, seed: 0}\n");
   auto first = train(experiment);
   ASSERT_EQ(first.exit_code, 0) << first.output;
-  const std::string checkpoint = bytes(run + "/checkpoint-last.pt");
-  const std::string resolved = bytes(run + "/experiment.yaml");
+  const std::string checkpoint = read_bytes(run + "/checkpoint-last.pt");
+  const std::string resolved = read_bytes(run + "/experiment.yaml");
   ASSERT_FALSE(checkpoint.empty());
 
   // Again without --resume: refused with one line, nothing touched.
@@ -55,14 +49,14 @@ TEST(CliTrain, ExistingRunIsNeverOverwrittenOrLost) {
                                     "there, --force moves it aside), got a folder holding a run (checkpoint-best.pt, ...)"),
             std::string::npos)
       << again.output;
-  EXPECT_EQ(bytes(run + "/checkpoint-last.pt"), checkpoint);
-  EXPECT_EQ(bytes(run + "/experiment.yaml"), resolved);
+  EXPECT_EQ(read_bytes(run + "/checkpoint-last.pt"), checkpoint);
+  EXPECT_EQ(read_bytes(run + "/experiment.yaml"), resolved);
 
   // A failing train (unknown model) does not rewrite experiment.yaml.
   auto unknown = train(experiment, "--set model.name=no_such_model --resume");
   EXPECT_EQ(unknown.exit_code, 1) << unknown.output;
   EXPECT_NE(unknown.output.find("unknown model 'no_such_model'"), std::string::npos) << unknown.output;
-  EXPECT_EQ(bytes(run + "/experiment.yaml"), resolved);
+  EXPECT_EQ(read_bytes(run + "/experiment.yaml"), resolved);
 
   // --resume and --force together are a usage error.
   EXPECT_EQ(train(experiment, "--resume --force").exit_code, 2);
@@ -75,8 +69,8 @@ TEST(CliTrain, ExistingRunIsNeverOverwrittenOrLost) {
     if (e.path().filename().string().rfind("run.replaced-", 0) == 0) aside = e.path().string();
   ASSERT_FALSE(aside.empty()) << forced.output;
   EXPECT_NE(forced.output.find("moved the old run " + run + " aside to " + aside), std::string::npos) << forced.output;
-  EXPECT_EQ(bytes(aside + "/checkpoint-last.pt"), checkpoint);
-  EXPECT_EQ(bytes(aside + "/experiment.yaml"), resolved);
+  EXPECT_EQ(read_bytes(aside + "/checkpoint-last.pt"), checkpoint);
+  EXPECT_EQ(read_bytes(aside + "/experiment.yaml"), resolved);
   EXPECT_TRUE(fs::exists(run + "/checkpoint-last.pt"));
 }
 
