@@ -14,6 +14,17 @@
 namespace layers::scene {
 namespace {
 
+// Channel and offset values beyond this (degrees, or the clip's length
+// unit) are damage, not motion: they would overflow the pose maths.
+constexpr double kMaxBvhValue = 1e6;
+
+// A number as written by %g (1e+30, 0.008333), for messages.
+std::string shortest(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
 // Whitespace-separated tokens with their line numbers, read lazily so that
 // the MOTION data can be taken line by line afterwards.
 class Tokens {
@@ -90,7 +101,10 @@ bool parse_channel(const std::string& s, BvhChannel& c) {
 Vec3 read_offset(Tokens& t) {
   t.expect("OFFSET");
   Vec3 v;
-  for (int k = 0; k < 3; ++k) v[k] = t.number("three OFFSET numbers");
+  for (int k = 0; k < 3; ++k) {
+    v[k] = t.number("three OFFSET numbers");
+    if (std::fabs(v[k]) > kMaxBvhValue) t.fail("OFFSET values within +-1e+06", shortest(v[k]));
+  }
   return v;
 }
 
@@ -166,13 +180,6 @@ int BvhClip::index(const std::string& name) const {
   return -1;
 }
 
-// A number as written by %g (1e+30, 0.008333), for messages.
-static std::string shortest(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
-
 BvhClip parse_bvh(std::istream& in, const std::string& name) {
   BvhClip clip;
   clip.source = name;
@@ -217,8 +224,9 @@ BvhClip parse_bvh(std::istream& in, const std::string& name) {
       std::string token(start, p);
       char* end = nullptr;
       double v = std::strtod(token.c_str(), &end);
-      if (end == token.c_str() || *end != '\0' || !std::isfinite(v))
-        t.fail("a number (value " + std::to_string(count + 1) + " of frame " + std::to_string(read + 1) + ")", "'" + token + "'");
+      if (end == token.c_str() || *end != '\0' || !std::isfinite(v) || std::fabs(v) > kMaxBvhValue)
+        t.fail("a number within +-1e+06 (value " + std::to_string(count + 1) + " of frame " + std::to_string(read + 1) + ")",
+               "'" + token + "'");
       if (count < channels) values[count] = v;
       ++count;
     }

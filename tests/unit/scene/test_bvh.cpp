@@ -141,6 +141,10 @@ TEST(Bvh, FrameCountAndFrameTimeAreBounded) {
   expect_error_at_line(edited("Frame Time: 0.1", "Frame Time: 1e300"), 27, "got 1e+300");
   expect_error_at_line(edited("Frame Time: 0.1", "Frame Time: 0"), 27, "got 0");
   EXPECT_NO_THROW(parse(edited("Frame Time: 0.1", "Frame Time: 1")));
+  // Values that would overflow the pose maths are refused where they stand.
+  expect_error_at_line(edited("3 2 3 0 0 0 0 0 0 0 0 0 0", "3 2 3 1e300 0 0 0 0 0 0 0 0 0"), 30,
+                       "a number within +-1e+06 (value 4 of frame 3), got '1e300'");
+  expect_error_at_line(edited("OFFSET 0.1 -0.1 0", "OFFSET 0.1 -1e9 0"), 8, "OFFSET values within +-1e+06, got -1e+09");
 }
 
 TEST(Bvh, DirectoryIsNotABvhFile) {
