@@ -2,6 +2,8 @@
 // dataset_writer.h).
 #include "layers/data/dataset_writer.h"
 
+#include "layers/data/content_hash.h"
+
 #include <cstdio>
 #include <filesystem>
 #include <set>
@@ -131,6 +133,7 @@ void DatasetWriter::finish() {
   manifest.generator_yaml = w.options.generator_config_yaml;
   write_splits(splits_path, w.splits);
   write_manifest(w.path(kManifestFile), manifest);
+  record_content_hashes(w.folder);
 }
 
 std::vector<std::string> DatasetWriter::ids() const {

@@ -22,6 +22,11 @@ std::string manifest_to_yaml(const DatasetManifest& m) {
   out << YAML::Key << "garments" << YAML::Value << m.n_garments;
   out << YAML::Key << "shards" << YAML::Value << m.n_shards;
   out << YAML::EndMap;
+  if (!m.content_hashes.empty()) {
+    out << YAML::Key << "content_hashes" << YAML::Value << YAML::BeginMap;
+    for (const auto& [id, hash] : m.content_hashes) out << YAML::Key << id << YAML::Value << hash;
+    out << YAML::EndMap;
+  }
   if (!m.generator_yaml.empty()) {
     out << YAML::Key << "generator" << YAML::Value << parse_yaml_text(m.generator_yaml, "<generator config>");
   }
@@ -59,6 +64,16 @@ DatasetManifest read_manifest(const std::string& path) {
                                                             {"shards", &m.n_shards}};
     for (const auto& [key, target] : fields) {
       if (counts[key]) *target = yaml_scalar<std::int64_t>(counts[key], path, std::string("counts.") + key, "an integer");
+    }
+  }
+  if (const YAML::Node hashes = root["content_hashes"]) {
+    if (!hashes.IsMap()) throw InputError(yaml_where(path, hashes), "content_hashes", "a mapping id: hash", "something else");
+    for (const auto& kv : hashes) {
+      const std::string id = kv.first.as<std::string>();
+      const std::string hash = yaml_scalar<std::string>(kv.second, path, "content_hashes." + id, "a string");
+      if (hash.size() != 16 || hash.find_first_not_of("0123456789abcdef") != std::string::npos)
+        throw InputError(yaml_where(path, kv.second), "content_hashes." + id, "16 hex digits", "'" + hash + "'");
+      m.content_hashes[id] = hash;
     }
   }
   if (const YAML::Node generator = root["generator"]) {

@@ -13,6 +13,7 @@
 #include "dataset_files.h"
 #include "h5_io.h"
 #include "layers/core/error.h"
+#include "layers/data/content_hash.h"
 #include "layers/data/dataset.h"
 #include "layers/data/format.h"
 #include "layers/data/manifest.h"
@@ -306,12 +307,25 @@ void validate_folder(const std::string& folder, ProblemSink& sink) {
 // Every frame through the reader, which checks the physical bounds of
 // value_bounds.h (finite, within 10 m of the body root, ...). Run only on a
 // structurally valid dataset, so that one damage is not reported twice.
+// With the manifest's content hashes (a folder), each sequence's content
+// is hashed again and compared.
 void check_frame_bounds(const std::string& path, ProblemSink& sink) {
   try {
     const Dataset dataset = Dataset::open(path);
+    const std::string manifest_path = (fs::path(path) / kManifestFile).string();
+    std::map<std::string, std::string> recorded;
+    if (fs::is_directory(path)) recorded = read_manifest(manifest_path).content_hashes;
     for (const std::string& id : dataset.ids()) {
       try {
-        dataset.read_sequence(id);
+        const SequenceData seq = dataset.read_sequence(id);
+        if (recorded.empty()) continue;  // written before content hashes
+        const auto it = recorded.find(id);
+        const std::string now = sequence_content_hash(seq);
+        if (it == recorded.end())
+          sink.report(Problem{manifest_path, "content_hashes", "no hash for sequence '" + id + "'"});
+        else if (it->second != now)
+          sink.report(Problem{manifest_path, "content_hashes." + id,
+                              "expected " + it->second + ", got " + now + " (the sequence changed since it was written)"});
       } catch (const InputError& e) {
         sink.report(problem_from(e));
       }

@@ -15,6 +15,7 @@
 #include "layers/core/error.h"
 #include "layers/core/progress.h"
 #include "layers/core/text_file.h"
+#include "layers/data/content_hash.h"
 #include "layers/data/dataset.h"
 #include "layers/data/dataset_writer.h"
 #include "layers/data/manifest.h"
@@ -110,6 +111,7 @@ bool finalize(const Layout& layout, const std::string& config_yaml) {
   manifest.n_shards = layout.n_shards();
   manifest.generator_yaml = config_yaml;
   data::write_manifest((layout.out / "dataset.yaml").string(), manifest);
+  data::record_content_hashes(layout.out.string());
   if (!out.get("train").empty()) {
     data::Dataset ds = data::Dataset::open(layout.out.string());
     data::write_stats((layout.out / "stats.h5").string(), data::compute_stats(ds));

@@ -7,8 +7,10 @@
 #include <limits>
 
 #include "layers/core/error.h"
+#include "layers/data/content_hash.h"
 #include "layers/data/dataset.h"
 #include "layers/data/dataset_writer.h"
+#include "layers/data/manifest.h"
 #include "layers/data/stats.h"
 #include "layers/data/validate.h"
 #include "error_of.h"
@@ -207,32 +209,51 @@ TEST_F(DataValidate, ReportsEveryProblemNotJustTheFirst) {
 // naming file, sequence, array, frame and vertex -- in the reader (so
 // train and eval never blame a model for it) and in `layers validate`.
 TEST(DataBounds, AbsurdOrNonFiniteFramesAreInputErrors) {
+  // A good dataset damaged afterwards (through HDF5, so the chunk checksums
+  // still match): the value checks must catch what the checksums cannot.
   // The validator's own scan reports non-finite values first, in its words.
-  auto expect_refused = [](SequenceData seq, const std::string& needle, const std::string& validator_needle = "") {
+  auto expect_refused = [](const std::string& object, const std::vector<hsize_t>& index, float value,
+                           const std::string& needle, const std::string& validator_needle = "") {
     TempDir dir;
     const std::string folder = dir.file("ds");
-    DatasetWriterOptions options;
-    DatasetWriter writer(folder, options);
+    DatasetWriter writer(folder, DatasetWriterOptions{});
+    const SequenceData seq = make_sequence("s", 1);
     writer.add(seq);
     writer.set_split("train", {});
-    writer.set_split("test", {seq.id});
+    writer.set_split("test", {"s"});
     writer.finish();
+    testing::poke(folder + "/shard-00000.h5", object, index, value);
     const Dataset ds = Dataset::open(folder);
-    const std::string message = layers::test::error_of([&] { ds.read_frames(seq.id, 0, seq.n_frames); });
+    const std::string message = layers::test::error_of([&] { ds.read_frames("s", 0, seq.n_frames); });
     EXPECT_NE(message.find(needle), std::string::npos) << message;
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
     EXPECT_TRUE(has_problem(validate_dataset(folder), validator_needle.empty() ? needle : validator_needle));
   };
-  SequenceData nan = make_sequence("n", 1);
-  const std::size_t per_frame = nan.garments[0].positions.size() / static_cast<std::size_t>(nan.n_frames);
-  nan.garments[0].positions[3 * per_frame + 3 * 17 + 1] = std::numeric_limits<float>::quiet_NaN();
-  expect_refused(nan, "/seq/n/garments/0/positions: expected finite values, got nan at frame 3, vertex 17",
-                 "/seq/n/garments/0/positions: expected finite values, got 1 non-finite (first NaN at [3,17,1])");
+  expect_refused("/seq/s/garments/0/positions", {3, 17, 1}, std::numeric_limits<float>::quiet_NaN(),
+                 "/seq/s/garments/0/positions: expected finite values, got nan at frame 3, vertex 17",
+                 "/seq/s/garments/0/positions: expected finite values, got 1 non-finite (first NaN at [3,17,1])");
+  expect_refused("/seq/s/body/positions", {0, 5, 0}, 2.5e38f,
+                 "/seq/s/body/positions: expected positions within 10 m of the body root, got 2.5e+38 m away "
+                 "at frame 0, vertex 5");
+}
 
-  SequenceData far = make_sequence("f", 2);
-  far.body.positions[3 * 5] = 2.5e38f;  // frame 0, vertex 5
-  expect_refused(far, "/seq/f/body/positions: expected positions within 10 m of the body root, got 2.5e+38 m away "
-                      "at frame 0, vertex 5");
+// dataset.yaml records each sequence's content hash; a sequence changed
+// afterwards -- even to values within every bound -- fails validation.
+TEST(DataBounds, ContentHashesCatchAChangedSequence) {
+  TempDir dir;
+  const std::string folder = dir.file("ds");
+  DatasetWriter writer(folder, DatasetWriterOptions{});
+  const SequenceData seq = make_sequence("s", 1);
+  writer.add(seq);
+  writer.set_split("train", {});
+  writer.set_split("test", {"s"});
+  writer.finish();
+  const DatasetManifest manifest = read_manifest(folder + "/dataset.yaml");
+  ASSERT_EQ(manifest.content_hashes.size(), 1u);
+  EXPECT_EQ(manifest.content_hashes.at("s"), sequence_content_hash(seq));
+  EXPECT_TRUE(validate_dataset(folder).empty());
+  testing::poke(folder + "/shard-00000.h5", "/seq/s/garments/1/positions", {2, 3, 0}, 0.25f);
+  EXPECT_TRUE(has_problem(validate_dataset(folder), "content_hashes.s: expected " + sequence_content_hash(seq)));
 }
 
 

@@ -7,9 +7,11 @@
 //   sequences_per_shard: <n>
 //   counts: {sequences: n, frames: n, garments: n, shards: n}
 //   generator: <the generator config, as a YAML mapping; optional>
+//   content_hashes: {<sequence id>: <16 hex digits>, ...}   # optional (content_hash.h)
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 
 namespace layers::data {
@@ -21,6 +23,7 @@ struct DatasetManifest {
   std::int64_t sequences_per_shard = 0;
   std::int64_t n_sequences = 0, n_frames = 0, n_garments = 0, n_shards = 0;
   std::string generator_yaml;  // YAML text of the generator config; "" if none
+  std::map<std::string, std::string> content_hashes;  // id -> content hash; empty if not recorded
 };
 
 std::string manifest_to_yaml(const DatasetManifest& manifest);
