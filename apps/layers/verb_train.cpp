@@ -71,6 +71,12 @@ VerbRun register_train(CLI::App& app, const Global&) {
     // Everything that can be checked before the run folder is touched: a
     // failing command leaves it as it was.
     zoo::create_model(load_plugins().registry, loaded.typed.model);
+    {
+      std::error_code ec;
+      if (!loaded.typed.data.dataset.empty() && !fs::exists(loaded.typed.data.dataset, ec))
+        throw InputError(a->config.file, "data.dataset", "a dataset folder (made by `layers generate`) or shard file",
+                         "'" + loaded.typed.data.dataset + "' (no such folder or file)");
+    }
     const fs::path out = loaded.typed.run.output;
     const std::vector<std::string> held = run_results_in(out);
     if (!held.empty() && !a->resume && !a->force)

@@ -86,6 +86,7 @@ TEST(CliTrain, BadHorizonAndMissingDatasetAreNamed) {
   EXPECT_NE(horizon.output.find("--horizon"), std::string::npos) << horizon.output;
   auto missing = train(experiment);
   EXPECT_EQ(missing.exit_code, 1) << missing.output;
+  EXPECT_FALSE(fs::exists(dir.file("run"))) << "a failing train made its run folder";
   EXPECT_NE(missing.output.find(experiment + ": data.dataset: expected a dataset folder (made by `layers generate`) "
                                               "or shard file, got '" + dir.file("nothing") + "' (no such folder or file)"),
             std::string::npos)

@@ -237,6 +237,18 @@ TEST(DataBounds, AbsurdOrNonFiniteFramesAreInputErrors) {
                  "at frame 0, vertex 5");
 }
 
+// A dataset with a train split needs its statistics: validate says so
+// instead of passing what eval would refuse.
+TEST(DataBounds, MissingStatsIsAProblem) {
+  TempDir dir;
+  const std::string folder = dir.file("ds");
+  DatasetWriter writer(folder, DatasetWriterOptions{});
+  writer.add(make_sequence("s", 1));
+  writer.set_split("train", {"s"});
+  writer.finish();
+  EXPECT_TRUE(has_problem(validate_dataset(folder), "stats.h5: missing (train, eval and bench need"));
+}
+
 // dataset.yaml records each sequence's content hash; a sequence changed
 // afterwards -- even to values within every bound -- fails validation.
 TEST(DataBounds, ContentHashesCatchAChangedSequence) {
