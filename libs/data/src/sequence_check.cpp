@@ -58,6 +58,22 @@ class Checker {
   const std::string& file_;
 };
 
+// The index ranges of a body and a garment: one set of rules for the
+// writer (check_sequence) and the reader (check_static_indices).
+void check_body_indices(const BodyStatic& b, std::int64_t n_vertices, std::int64_t n_joints, const std::string& base,
+                        const Checker& check) {
+  check.rule(check_index_range(b.faces, 0, n_vertices, 3), base + "/body/faces");
+  check.rule(check_index_range(b.skin_index, 0, n_joints, 4), base + "/body/skin_index");
+  check.rule(check_joint_parents(b.joint_parents), base + "/body/joint_parents");
+}
+
+void check_garment_indices(const GarmentStatic& g, std::int64_t n_vertices, std::int64_t n_uv, const std::string& base,
+                           const Checker& check) {
+  check.rule(check_index_range(g.faces, 0, n_vertices, 3), base + "/faces");
+  check.rule(check_index_range(g.uv_faces, 0, n_uv, 3), base + "/uv_faces");
+  check.rule(check_index_range(g.panel, 0, std::numeric_limits<std::int32_t>::max(), 1), base + "/panel");
+}
+
 }  // namespace
 
 void check_sequence(const SequenceData& seq, const std::string& file) {
@@ -81,11 +97,7 @@ void check_sequence(const SequenceData& seq, const std::string& file) {
       check.size(dims, spec, n, base + "/" + spec.path);
     }
   }
-  const auto n_body = *dims.get("Vb");
-  const auto n_joints = *dims.get("J");
-  check.rule(check_index_range(seq.body.faces, 0, n_body, 3), base + "/body/faces");
-  check.rule(check_index_range(seq.body.skin_index, 0, n_joints, 4), base + "/body/skin_index");
-  check.rule(check_joint_parents(seq.body.joint_parents), base + "/body/joint_parents");
+  check_body_indices(seq.body, *dims.get("Vb"), *dims.get("J"), base, check);
 
   for (std::size_t k = 0; k < seq.garments.size(); ++k) {
     const GarmentData& g = seq.garments[k];
@@ -102,9 +114,17 @@ void check_sequence(const SequenceData& seq, const std::string& file) {
     for (const auto& spec : garment_arrays()) {
       check.size(gdims, spec, garment_array_size(g, spec.path), gbase + "/" + spec.path);
     }
-    check.rule(check_index_range(g.faces, 0, *gdims.get("V"), 3), gbase + "/faces");
-    check.rule(check_index_range(g.uv_faces, 0, *gdims.get("U"), 3), gbase + "/uv_faces");
-    check.rule(check_index_range(g.panel, 0, std::numeric_limits<std::int32_t>::max(), 1), gbase + "/panel");
+    check_garment_indices(g, *gdims.get("V"), *gdims.get("U"), gbase, check);
+  }
+}
+
+void check_static_indices(const SequenceStatic& seq, const std::string& file) {
+  const Checker check(file);
+  const std::string base = "/seq/" + seq.id;
+  check_body_indices(seq.body, seq.body.n_vertices(), seq.body.n_joints(), base, check);
+  for (std::size_t k = 0; k < seq.garments.size(); ++k) {
+    const GarmentStatic& g = seq.garments[k];
+    check_garment_indices(g, g.n_vertices(), g.n_uv(), base + "/garments/" + std::to_string(k), check);
   }
 }
 

@@ -88,6 +88,7 @@ SequenceStatic read_static(const std::string& file, const H5::Group& seq, const 
     g.panel = garment.all<std::int32_t>("panel");
     out.garments.push_back(std::move(g));
   }
+  check_static_indices(out, file);
   return out;
 }
 

@@ -237,6 +237,22 @@ TEST(DataBounds, AbsurdOrNonFiniteFramesAreInputErrors) {
                  "at frame 0, vertex 5");
 }
 
+// A bad index in the static arrays is blamed on the shard it is in when the
+// sequence is read, not on a file written later from it.
+TEST(DataBounds, BadJointParentIsBlamedOnTheShard) {
+  TempDir dir;
+  const std::string folder = dir.file("ds");
+  DatasetWriter writer(folder, DatasetWriterOptions{});
+  writer.add(make_sequence("s", 1));
+  writer.set_split("train", {});
+  writer.set_split("test", {"s"});
+  writer.finish();
+  testing::poke(folder + "/shard-00000.h5", "/seq/s/body/joint_parents", {2}, std::int32_t{99});
+  const Dataset ds = Dataset::open(folder);
+  const std::string message = layers::test::error_of([&] { ds.statics("s"); });
+  EXPECT_EQ(message.rfind(folder + "/shard-00000.h5: /seq/s/body/joint_parents: ", 0), 0u) << message;
+}
+
 // A dataset with a train split needs its statistics: validate says so
 // instead of passing what eval would refuse.
 TEST(DataBounds, MissingStatsIsAProblem) {

@@ -133,4 +133,9 @@ struct Window {
 // for NaN (the validator does that on files).
 void check_sequence(const SequenceData& seq, const std::string& file);
 
+// The index rules of check_sequence on what a reader read of a sequence's
+// static arrays (faces, skin_index, joint_parents, uv_faces, panel), so a
+// bad index is blamed on the file it came from, not on a later output.
+void check_static_indices(const SequenceStatic& seq, const std::string& file);
+
 }  // namespace layers::data
