@@ -205,6 +205,17 @@ TEST_F(DataValidate, ReportsEveryProblemNotJustTheFirst) {
   EXPECT_EQ(problems.size(), 4u) << all_text(problems);
 }
 
+// A finished dataset of one synthetic sequence "s" in the test split.
+SequenceData write_one(const std::string& folder) {
+  DatasetWriter writer(folder, DatasetWriterOptions{});
+  const SequenceData seq = make_sequence("s", 1);
+  writer.add(seq);
+  writer.set_split("train", {});
+  writer.set_split("test", {"s"});
+  writer.finish();
+  return seq;
+}
+
 // Ground truth out of physical bounds is an input error of the data,
 // naming file, sequence, array, frame and vertex -- in the reader (so
 // train and eval never blame a model for it) and in `layers validate`.
@@ -216,12 +227,7 @@ TEST(DataBounds, AbsurdOrNonFiniteFramesAreInputErrors) {
                            const std::string& needle, const std::string& validator_needle = "") {
     TempDir dir;
     const std::string folder = dir.file("ds");
-    DatasetWriter writer(folder, DatasetWriterOptions{});
-    const SequenceData seq = make_sequence("s", 1);
-    writer.add(seq);
-    writer.set_split("train", {});
-    writer.set_split("test", {"s"});
-    writer.finish();
+    const SequenceData seq = write_one(folder);
     testing::poke(folder + "/shard-00000.h5", object, index, value);
     const Dataset ds = Dataset::open(folder);
     const std::string message = layers::test::error_of([&] { ds.read_frames("s", 0, seq.n_frames); });
@@ -242,11 +248,7 @@ TEST(DataBounds, AbsurdOrNonFiniteFramesAreInputErrors) {
 TEST(DataBounds, BadJointParentIsBlamedOnTheShard) {
   TempDir dir;
   const std::string folder = dir.file("ds");
-  DatasetWriter writer(folder, DatasetWriterOptions{});
-  writer.add(make_sequence("s", 1));
-  writer.set_split("train", {});
-  writer.set_split("test", {"s"});
-  writer.finish();
+  write_one(folder);
   testing::poke(folder + "/shard-00000.h5", "/seq/s/body/joint_parents", {2}, std::int32_t{99});
   const Dataset ds = Dataset::open(folder);
   const std::string message = layers::test::error_of([&] { ds.statics("s"); });
@@ -270,12 +272,7 @@ TEST(DataBounds, MissingStatsIsAProblem) {
 TEST(DataBounds, ContentHashesCatchAChangedSequence) {
   TempDir dir;
   const std::string folder = dir.file("ds");
-  DatasetWriter writer(folder, DatasetWriterOptions{});
-  const SequenceData seq = make_sequence("s", 1);
-  writer.add(seq);
-  writer.set_split("train", {});
-  writer.set_split("test", {"s"});
-  writer.finish();
+  const SequenceData seq = write_one(folder);
   const DatasetManifest manifest = read_manifest(folder + "/dataset.yaml");
   ASSERT_EQ(manifest.content_hashes.size(), 1u);
   EXPECT_EQ(manifest.content_hashes.at("s"), sequence_content_hash(seq));
