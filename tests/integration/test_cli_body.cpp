@@ -50,4 +50,15 @@ TEST(CliBody, BadInputNamesTheProblem) {
   EXPECT_EQ(broken.exit_code, 1);
   EXPECT_NE(broken.output.find("broken.bvh: line 5"), std::string::npos) << broken.output;
   EXPECT_FALSE(fs::exists(dir.file("x.h5")));
+  // Flags are named as flags (usage, exit 2), not as the config keys behind them.
+  auto transition = run_command(test::layers_bin() + " body --frames 3 --transition 15 --out " + dir.file("x.h5"));
+  EXPECT_EQ(transition.exit_code, 2) << transition.output;
+  EXPECT_NE(transition.output.find("--transition: expected fewer frames than --frames (3), got 15"), std::string::npos)
+      << transition.output;
+  auto missing = run_command(test::layers_bin() + " info " + dir.file("no-such-dataset"));
+  EXPECT_EQ(missing.exit_code, 1) << missing.output;
+  EXPECT_NE(missing.output.find(dir.file("no-such-dataset") + ": expected an existing dataset folder or HDF5 file, got nothing "
+                                                             "(no such file or folder)"),
+            std::string::npos)
+      << missing.output;
 }

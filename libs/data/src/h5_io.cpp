@@ -179,7 +179,8 @@ H5::H5File create_file(const std::string& path) {
 H5::H5File open_read(const std::string& path, const H5::FileAccPropList& fapl) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  if (!fs::exists(path, ec)) throw InputError::message(path, "", "file does not exist");
+  if (!fs::exists(path, ec))
+    throw InputError(path, "", "an existing dataset folder or HDF5 file", "nothing (no such file or folder)");
   if (fs::is_directory(path, ec)) throw InputError(path, "", "an HDF5 file", "a directory");
   const auto size = fs::file_size(path, ec);
   Lock lock;
