@@ -10,8 +10,6 @@
 #include "layers/core/config.h"
 #include "layers/core/error.h"
 #include "layers/core/text_file.h"
-#include "layers/data/dataset_writer.h"
-#include "layers/data/splits.h"
 #include "layers/generate/generator.h"
 #include "layers/report/report.h"
 #include "layers/train/bench.h"
@@ -26,18 +24,6 @@ namespace fs = std::filesystem;
 namespace layers::app {
 namespace {
 
-// Every file a finished `layers generate` leaves: all shards, splits.yaml,
-// dataset.yaml and (when there is a train split) stats.h5.
-bool dataset_complete(const std::string& folder, const generate::GeneratorConfig& config) {
-  const fs::path dir(folder);
-  if (!fs::exists(dir / "dataset.yaml") || !fs::exists(dir / "splits.yaml")) return false;
-  const int shards = (config.sequences + config.sequences_per_shard - 1) / config.sequences_per_shard;
-  for (int j = 0; j < shards; ++j)
-    if (!fs::exists(dir / data::shard_file_name(j))) return false;
-  const data::Splits splits = data::read_splits((dir / "splits.yaml").string());
-  return fs::exists(dir / "stats.h5") || !splits.has("train") || splits.get("train").empty();
-}
-
 bool make_dataset(const train::StudyDataset& d) {
   if (d.config.empty()) {  // a finished dataset, used as it is
     for (const char* f : {"dataset.yaml", "splits.yaml"})
@@ -51,7 +37,7 @@ bool make_dataset(const train::StudyDataset& d) {
   const auto config = cfg::read<generate::GeneratorConfig>(tree);
   generate::check(config, d.config);
   const std::string resolved = cfg::to_yaml(cfg::to_node(config));
-  if (dataset_complete(d.folder, config)) {
+  if (generate::dataset_complete(d.folder, config)) {
     const fs::path saved = fs::path(d.folder) / "generator.yaml";
     if (!fs::exists(saved) || read_text_file(saved.string()) != resolved)
       throw InputError::message(saved.string(), "",

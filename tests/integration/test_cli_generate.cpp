@@ -111,3 +111,29 @@ TEST(CliGenerate, BadConfigAndMismatchedResume) {
   EXPECT_EQ(unknown.exit_code, 1) << unknown.output;
   EXPECT_NE(unknown.output.find("sim.substep"), std::string::npos) << unknown.output;
 }
+
+// `layers run` makes its dataset with the generator when the folder is
+// missing, finds it complete the second time (the generator's own
+// completeness check), and refuses a folder made with other settings.
+TEST(CliRun, StudyGeneratesItsDatasetOnceThenReusesIt) {
+  test::TempDir dir;
+  const std::string src = test::source_dir();
+  const std::string study = dir.write(
+      "study.yaml",
+      "name: st\noutput: " + dir.file("runs") + "\ndataset:\n  config: " + src + "/configs/data/tiny.yaml\n  folder: " +
+          dir.file("data") +
+          "\n  set: [sequences=3, frames=4, drape_frames=2, body.transition_frames=2, sequences_per_shard=3,"
+          " garments.fit.edge_length=0.1, sim.validation.max_l_penetration=1, sim.validation.max_h_penetration=1,"
+          " sim.validation.max_stretch=100]\nsteps: [train, eval]\nexperiments:\n  - {name: static, file: " +
+          src + "/configs/experiments/static_tiny.yaml}\n");
+  auto first = run_command(test::layers_bin() + " run " + study);
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  EXPECT_NE(first.output.find("3 scenes simulated (3 written, 0 skipped)"), std::string::npos) << first.output;
+  EXPECT_TRUE(fs::exists(dir.file("runs/static/eval-test/metrics.json")));
+  auto second = run_command(test::layers_bin() + " run " + study);
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  EXPECT_NE(second.output.find("0 steps ran"), std::string::npos) << second.output;
+  auto other = run_command(test::layers_bin() + " run " + study + " --set \"dataset.set=[sequences=3, frames=5]\"");
+  EXPECT_EQ(other.exit_code, 1) << other.output;
+  EXPECT_NE(other.output.find("made with another generator config"), std::string::npos) << other.output;
+}

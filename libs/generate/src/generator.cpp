@@ -215,4 +215,13 @@ GenerateReport generate_dataset(const GeneratorConfig& config, const std::string
   return report;
 }
 
+bool dataset_complete(const std::string& folder, const GeneratorConfig& config) {
+  const Layout layout{folder, config};
+  if (!fs::exists(layout.out / "dataset.yaml") || !fs::exists(layout.out / "splits.yaml")) return false;
+  for (int j = 0; j < layout.n_shards(); ++j)
+    if (!fs::exists(layout.shard(j))) return false;
+  const data::Splits splits = data::read_splits((layout.out / "splits.yaml").string());
+  return fs::exists(layout.out / "stats.h5") || !splits.has("train") || splits.get("train").empty();
+}
+
 }  // namespace layers::generate

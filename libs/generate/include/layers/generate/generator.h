@@ -48,4 +48,9 @@ GenerateReport generate_dataset(const GeneratorConfig& config, const std::string
 // "k/n" -> (k, n); InputError naming --shard otherwise.
 std::pair<int, int> parse_shard(const std::string& text);
 
+// Whether `folder` holds every file a finished generate_dataset(config)
+// leaves: all shards, splits.yaml, dataset.yaml and (when the train split
+// is not empty) stats.h5. Says nothing about which config made them.
+bool dataset_complete(const std::string& folder, const GeneratorConfig& config);
+
 }  // namespace layers::generate
