@@ -31,7 +31,11 @@ endfunction()
 
 # layers_plugin(<name> SOURCES ... [OUTPUT_DIR dir] [DEPS ...])
 # A plugin built into the default folder is installed; one built elsewhere
-# (the test plugins) is not.
+# (the test plugins) is not. Every plugin exports only its entry point
+# (plugin_exports.map): its model code stays private to it, so two plugins
+# never resolve each other's symbols. Its sources reuse the zoo's
+# precompiled torch headers.
+set(LAYERS_PLUGIN_EXPORTS_MAP ${CMAKE_CURRENT_LIST_DIR}/plugin_exports.map)
 function(layers_plugin name)
   cmake_parse_arguments(ARG "" "OUTPUT_DIR" "SOURCES;DEPS" ${ARGN})
   set(installed OFF)
@@ -45,7 +49,11 @@ function(layers_plugin name)
     LIBRARY_OUTPUT_DIRECTORY ${ARG_OUTPUT_DIR}
     PREFIX "lib"
     BUILD_RPATH "${CMAKE_BINARY_DIR}/lib"
-    INSTALL_RPATH "$ORIGIN/../..")
+    INSTALL_RPATH "$ORIGIN/../.."
+    DEFINE_SYMBOL ""
+    LINK_DEPENDS ${LAYERS_PLUGIN_EXPORTS_MAP})
+  target_link_options(layers_plugin_${name} PRIVATE "LINKER:--version-script=${LAYERS_PLUGIN_EXPORTS_MAP}")
+  layers_zoo_pch(layers_plugin_${name})
   if(installed)
     install(TARGETS layers_plugin_${name} LIBRARY DESTINATION lib/layers/plugins)
   endif()

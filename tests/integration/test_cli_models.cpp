@@ -2,6 +2,8 @@
 // tests/plugins found through LAYERS_PLUGIN_PATH.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "run_command.h"
 #include "temp_dir.h"
 
@@ -20,12 +22,25 @@ TEST(CliModels, ListsTestPluginLoadedThroughDlopen) {
   EXPECT_NE(r.output.find("test_constant_velocity"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("liblayers_plugin_test_constant_velocity.so"), std::string::npos) << r.output;
   // The deliberately broken plugins are refused with their reasons.
-  EXPECT_NE(r.output.find("built for zoo API v999, this layers expects v1"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("built for zoo API v999, this layers expects v2"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("no entry point"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("registered twice"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("expected a function symbol, got a data object"), std::string::npos) << r.output;
   auto strict = run_command(with_test_plugins("models --strict"));
   EXPECT_EQ(strict.exit_code, 1) << strict.output;
+}
+
+TEST(CliModels, StrictRefusesPluginBuiltAgainstAnotherLibTorch) {
+  test::TempDir dir;
+  // Only the mismatched plugin on the path, so --strict fails because of it.
+  std::filesystem::copy_file(test::plugin_dir() + "/liblayers_plugin_test_wrong_abi.so",
+                             dir.path() + "/liblayers_plugin_test_wrong_abi.so");
+  auto r = run_command("LAYERS_PLUGIN_PATH=" + dir.path() + " " + test::layers_bin() + " models --strict");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("liblayers_plugin_test_wrong_abi.so: built against LibTorch 0.4.1, this layers uses "),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("rebuild the plugin against this layers"), std::string::npos) << r.output;
 }
 
 TEST(CliModels, ConfigChecksModelNameAndParameters) {

@@ -13,7 +13,7 @@
 
 #include "layers/core/error.h"
 #include "layers/core/install_paths.h"
-#include "layers/zoo/plugin.h"
+#include "layers/zoo/plugin_abi.h"
 
 namespace fs = std::filesystem;
 
@@ -136,14 +136,24 @@ std::string join(const std::vector<std::string>& items, const char* sep) {
 // Runs the entry point with the registry in loading state and turns its
 // outcome into models or an InputError (after undoing its registrations).
 std::vector<std::string> register_plugin(Registry& registry, const std::string& path, PluginEntry entry) {
+  const PluginAbi& host = host_plugin_abi();
+  PluginAbi plugin{};
   RegistryLoading::begin(registry, path);
-  int rc = entry(&registry, api_version());
+  int rc = entry(&host, &plugin, &registry);
   std::vector<std::string> errors = RegistryLoading::end(registry);
   std::vector<std::string> models = RegistryLoading::models_of(registry, path);
   std::string failure;
   if (rc > 0) {
+    // A plugin of the v1 protocol took the host record's address for its
+    // version argument and returned its own version without registering.
     failure = "built for zoo API v" + std::to_string(rc) + ", this layers expects v" +
-              std::to_string(api_version()) + "; rebuild the plugin";
+              std::to_string(host.api_version) + "; rebuild the plugin against this layers";
+  } else if (rc == kPluginRecordMismatch) {
+    failure = "its plugin ABI record differs in size from this layers' (another plugin protocol); "
+              "rebuild the plugin against this layers";
+  } else if (rc == kPluginAbiMismatch) {
+    failure = plugin_abi_mismatch(host, plugin);
+    if (failure.empty()) failure = "refused the handshake although its ABI record matches this layers'";
   } else if (rc != 0) {
     // Errors thrown by Registry::add already start with this plugin's path.
     for (auto& e : errors)
@@ -162,7 +172,7 @@ std::vector<std::string> register_plugin(Registry& registry, const std::string& 
 
 }  // namespace
 
-int api_version() { return LAYERS_ZOO_API_VERSION; }
+int api_version() { return static_cast<int>(host_plugin_abi().api_version); }
 
 std::vector<std::string> plugin_search_path() {
   std::vector<std::string> dirs;

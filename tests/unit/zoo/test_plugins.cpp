@@ -1,12 +1,16 @@
-// Plugin loading through dlopen: the good plugin, a wrong API version, a
-// missing entry point, an unloadable file, a duplicate model name, and the
-// LAYERS_PLUGIN_PATH search.
+// Plugin loading through dlopen: the good plugin, a wrong API version, the
+// ABI handshake, a missing entry point, an unloadable file, a duplicate
+// model name, what a plugin exports, and the LAYERS_PLUGIN_PATH search.
 #include <gtest/gtest.h>
 
+#include <dlfcn.h>
+
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 
 #include "layers/core/error.h"
+#include "layers/zoo/plugin_abi.h"
 #include "layers/zoo/plugin_loader.h"
 #include "test_paths.h"
 #include "temp_dir.h"
@@ -67,8 +71,55 @@ TEST(PluginLoader, WrongApiVersionAsksForRebuild) {
   zoo::Registry r;
   std::string path = canonical(plugin_file("test_wrong_api"));
   EXPECT_EQ(load_error(r, path), path + ": built for zoo API v999, this layers expects v" +
-                                     std::to_string(zoo::api_version()) + "; rebuild the plugin");
+                                     std::to_string(zoo::api_version()) +
+                                     "; rebuild the plugin against this layers");
   EXPECT_TRUE(r.names().empty());
+}
+
+TEST(PluginLoader, AbiHandshakeRefusesAnotherLibTorch) {
+  zoo::Registry r;
+  std::string path = canonical(plugin_file("test_wrong_abi"));
+  const std::string host_torch = zoo::host_plugin_abi().torch_version;
+  ASSERT_FALSE(host_torch.empty());
+  EXPECT_EQ(load_error(r, path), path + ": built against LibTorch 0.4.1, this layers uses " + host_torch +
+                                     "; rebuild the plugin against this layers");
+  EXPECT_TRUE(r.names().empty());
+}
+
+TEST(PluginAbi, NamesEveryDifference) {
+  const zoo::PluginAbi& host = zoo::host_plugin_abi();
+  EXPECT_EQ(zoo::plugin_abi_mismatch(host, host), "");
+  ASSERT_GE(host.type_count, 10u);
+  zoo::PluginAbi plugin = host;
+  plugin.cxx11_abi = host.cxx11_abi ? 0 : 1;
+  // The Model layout: the fifth crossing type.
+  ASSERT_STREQ(plugin.types[4].name, "layers::zoo::Model");
+  plugin.types[4].size += 8;
+  const std::string m = zoo::plugin_abi_mismatch(host, plugin);
+  EXPECT_NE(m.find("built with _GLIBCXX_USE_CXX11_ABI=" + std::to_string(plugin.cxx11_abi) + ", this layers with " +
+                   std::to_string(host.cxx11_abi)),
+            std::string::npos)
+      << m;
+  EXPECT_NE(m.find("layers::zoo::Model is " + std::to_string(host.types[4].size + 8) + " bytes (align " +
+                   std::to_string(host.types[4].align) + ") in the plugin, " + std::to_string(host.types[4].size) +
+                   " bytes"),
+            std::string::npos)
+      << m;
+  EXPECT_EQ(m.find("LibTorch"), std::string::npos) << m;
+  // A plugin with another list of crossing types is named at the first difference.
+  zoo::PluginAbi fewer = host;
+  fewer.type_count = 3;
+  EXPECT_NE(zoo::plugin_abi_mismatch(host, fewer).find("list of crossing types differs from this layers' at entry 4"),
+            std::string::npos);
+}
+
+TEST(PluginLoader, PluginExportsOnlyItsEntryPoint) {
+  void* handle = dlopen(canonical(plugin_file("test_constant_velocity")).c_str(), RTLD_NOW | RTLD_LOCAL);
+  ASSERT_NE(handle, nullptr) << dlerror();
+  EXPECT_NE(dlsym(handle, "layers_plugin_register"), nullptr);
+  // Defined in the plugin with default visibility; hidden by its exports map.
+  EXPECT_EQ(dlsym(handle, "layers_test_plugin_private_helper"), nullptr);
+  dlclose(handle);
 }
 
 TEST(PluginLoader, MissingEntryPointNamesFileAndSymbol) {
@@ -131,13 +182,15 @@ TEST(PluginLoader, LoadAllReportsEveryProblem) {
   ASSERT_EQ(report.searched, std::vector<std::string>{canonical(layers::test::plugin_dir())});
   ASSERT_EQ(report.loaded.size(), 1u);
   EXPECT_EQ(report.loaded[0].models, std::vector<std::string>{"test_constant_velocity"});
-  // Files load in name order: data_entry, duplicate (after the good one), no_entry, wrong_api.
-  ASSERT_EQ(report.problems.size(), 4u);
+  // Files load in name order: data_entry, duplicate (after the good one),
+  // no_entry, wrong_abi, wrong_api.
+  ASSERT_EQ(report.problems.size(), 5u);
   EXPECT_NE(report.problems[0].message.find("expected a function symbol"), std::string::npos);
   EXPECT_EQ(report.problems[1].path, canonical(plugin_file("test_duplicate")));
   EXPECT_NE(report.problems[1].message.find("registered twice"), std::string::npos);
   EXPECT_NE(report.problems[2].message.find("no entry point"), std::string::npos);
-  EXPECT_NE(report.problems[3].message.find("built for zoo API v999"), std::string::npos);
+  EXPECT_NE(report.problems[3].message.find("built against LibTorch 0.4.1"), std::string::npos);
+  EXPECT_NE(report.problems[4].message.find("built for zoo API v999"), std::string::npos);
   EXPECT_EQ(r.names(), std::vector<std::string>{"test_constant_velocity"});
 }
 

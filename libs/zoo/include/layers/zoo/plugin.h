@@ -1,47 +1,42 @@
 // layers/zoo/plugin.h -- what a model plugin includes to register itself.
 //
 // A plugin is a shared library named liblayers_plugin_<name>.so (build it
-// with layers_plugin() in CMake) containing exactly one
+// with layers_plugin() in CMake, which exports only the entry point)
+// containing exactly one
 //
 //   LAYERS_PLUGIN(registry) {
 //     registry.add("my_model", "one-line description",
 //                  [](const layers::cfg::Node& params) { return std::make_shared<MyModel>(params); });
 //   }
 //
-// The macro defines the extern "C" entry point layers_plugin_register with
-// the plugin's own LAYERS_ZOO_API_VERSION compiled in. When the host's
-// version differs, the plugin registers nothing and returns its version,
-// and the loader asks for a rebuild. Exceptions thrown by the block are
-// caught inside the plugin (none crosses the C boundary) and reported to
-// the loader through the registry; whatever the plugin registered before
-// the failure is then removed. This header needs no torch; include
-// layers/zoo/model.h for the Model interface.
+// The macro defines the extern "C" entry point layers_plugin_register
+// (plugin_abi.h). It first writes the plugin's ABI record (zoo API version,
+// LibTorch version, string ABI, layouts of the crossing types; see
+// plugin_abi_of.h) and compares it with the host's: when they differ the
+// plugin registers nothing and the loader names the differences.
+// Exceptions thrown by the block are caught inside the plugin (none crosses
+// the C boundary) and reported to the loader through the registry;
+// whatever the plugin registered before the failure is then removed.
 #pragma once
 
+#include <cstring>
 #include <exception>
 #include <type_traits>
 
-#include "layers/zoo/api_version.h"
+#include "layers/zoo/plugin_abi.h"
+#include "layers/zoo/plugin_abi_of.h"
 #include "layers/zoo/registry.h"
 
 namespace layers::zoo {
-
-// The entry point's type and name, as the loader looks them up.
-using PluginEntry = int (*)(Registry* registry, int host_api_version);
-inline constexpr const char* kPluginEntryPoint = "layers_plugin_register";
-
-// Return codes of the entry point: 0 registered; kPluginFailed: the block
-// threw (message given to Registry::report_plugin_error); any positive
-// value: the plugin's API version, which differs from the host's.
-inline constexpr int kPluginFailed = -1;
-
 namespace plugin_detail {
 
-// Compiled into each plugin (internal linkage), so the version checked here
-// is the plugin's own.
-static inline int run_registration(Registry* registry, int host_api_version,
+// Compiled into each plugin (internal linkage), so the record written and
+// compared here is the plugin's own.
+static inline int run_registration(const PluginAbi* host, PluginAbi* plugin, Registry* registry,
                                    void (*body)(Registry&)) noexcept {
-  if (host_api_version != LAYERS_ZOO_API_VERSION) return LAYERS_ZOO_API_VERSION;
+  if (host->record_size != sizeof(PluginAbi)) return kPluginRecordMismatch;
+  fill_plugin_abi(*plugin);
+  if (std::memcmp(host, plugin, sizeof(PluginAbi)) != 0) return kPluginAbiMismatch;
   const char* failure = nullptr;
   try {
     body(*registry);
@@ -70,12 +65,13 @@ static inline int run_registration(Registry* registry, int host_api_version,
 #define LAYERS_PLUGIN(registry)                                                                   \
   static void layers_plugin_body(::layers::zoo::Registry& registry);                              \
   extern "C" __attribute__((visibility("default"))) int layers_plugin_register(                   \
-      ::layers::zoo::Registry* layers_registry, int layers_host_api_version);                     \
+      const ::layers::zoo::PluginAbi* layers_host_abi, ::layers::zoo::PluginAbi* layers_plugin_abi, \
+      ::layers::zoo::Registry* layers_registry);                                                  \
   static_assert(std::is_same_v<decltype(&layers_plugin_register), ::layers::zoo::PluginEntry>);   \
-  extern "C" int layers_plugin_register(::layers::zoo::Registry* layers_registry,                 \
-                                        int layers_host_api_version) {                            \
-    return ::layers::zoo::plugin_detail::run_registration(layers_registry,                        \
-                                                          layers_host_api_version,                \
-                                                          &layers_plugin_body);                   \
+  extern "C" int layers_plugin_register(const ::layers::zoo::PluginAbi* layers_host_abi,          \
+                                        ::layers::zoo::PluginAbi* layers_plugin_abi,              \
+                                        ::layers::zoo::Registry* layers_registry) {               \
+    return ::layers::zoo::plugin_detail::run_registration(layers_host_abi, layers_plugin_abi,     \
+                                                          layers_registry, &layers_plugin_body);  \
   }                                                                                               \
   static void layers_plugin_body(::layers::zoo::Registry& registry)
