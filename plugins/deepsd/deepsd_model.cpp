@@ -9,10 +9,9 @@
 
 #include "garment_graph.h"
 #include "layers/core/error.h"
-#include "layers/geometry/nearest.h"
 #include "layers/zoo/losses.h"
 #include "pose_features.h"
-#include "skinning.h"
+#include "layers/zoo/skinning.h"
 
 namespace layers::deepsd {
 namespace {
@@ -63,12 +62,14 @@ DeepsdModel::DeepsdModel(const DeepsdParams& params) : Model(kDeepsdName), param
     width = params_.graph_widths[i];
   }
   const std::int64_t descriptor = 2 * width + kAttributes;
-  weight_head_ = register_module("weight_head", std::make_shared<Mlp>(descriptor, params_.weight_head, params_.joints));
-  deformation_head_ = register_module(
-      "deformation_head", std::make_shared<Mlp>(descriptor, params_.deformation_head, 3 * params_.basis));
+  // DeePSD's heads name their layers "0", "1", ... in checkpoints.
+  auto head = [](std::int64_t in, const std::vector<int>& hidden, std::int64_t out) {
+    return zoo::Mlp(zoo::MlpOptions(in, std::vector<std::int64_t>(hidden.begin(), hidden.end()), out).layer_prefix(""));
+  };
+  weight_head_ = register_module("weight_head", head(descriptor, params_.weight_head, params_.joints));
+  deformation_head_ = register_module("deformation_head", head(descriptor, params_.deformation_head, 3 * params_.basis));
   pose_head_ = register_module(
-      "pose_head", std::make_shared<Mlp>(pose_feature_size(params_.joints, params_.wind), params_.pose_head,
-                                         params_.basis));
+      "pose_head", head(pose_feature_size(params_.joints, params_.wind), params_.pose_head, params_.basis));
   // Start as plain skinning: no deformation until trained.
   at::NoGradGuard no_grad;
   deformation_head_->last()->weight.zero_();
@@ -89,7 +90,7 @@ std::shared_ptr<const zoo::Model::Derived> DeepsdModel::derive(const zoo::Sequen
   }
   auto out = std::make_shared<Inputs>();
   out->tpose = data.tpose_joints;
-  out->root = root_joint(data.joint_parents);
+  out->root = zoo::root_joint(data.joint_parents);
   out->rest_rotation = data.tpose_joints[out->root].slice(1, 0, 3);
   const at::Tensor origin = data.tpose_joints[out->root].select(1, 3);
   for (std::size_t k = 0; k < data.garments.size(); ++k) {
@@ -163,7 +164,7 @@ at::Tensor DeepsdModel::pose_embedding(const zoo::StepInput& in) {
 zoo::StepOutput DeepsdModel::predict(const zoo::StepInput& in) {
   const Inputs& inputs = this->inputs();
   const at::Tensor coefficients = pose_embedding(in);
-  const at::Tensor maps = tpose_to_frame(inputs.tpose, in.joints_next);
+  const at::Tensor maps = zoo::tpose_to_frame(inputs.tpose, in.joints_next);
   last_ = LastStep{};
   last_.sequence = sequence().id;
   bool reused = false;
@@ -174,7 +175,7 @@ zoo::StepOutput DeepsdModel::predict(const zoo::StepInput& in) {
     const GarmentHeads& h = last_.heads[k];
     const at::Tensor offsets = at::matmul(h.basis.transpose(1, 2), coefficients);  // [V,3], rest frame
     const at::Tensor shape = inputs.garments[k].rest + at::matmul(offsets, inputs.rest_rotation.transpose(0, 1));
-    out.garments.push_back(skin(shape, h.weights, maps));
+    out.garments.push_back(zoo::skin(shape, h.weights, maps));
     last_.offsets.push_back(offsets);
     vertices += offsets.size(0);
   }
@@ -195,19 +196,14 @@ std::vector<at::Tensor> DeepsdModel::prior_targets(const Inputs& in) {
                      "none");
   }
   at::NoGradGuard no_grad;
-  const at::Tensor body = unskin(last_.body_next.detach(), s.skin_index, s.skin_weight, last_.maps.detach())
+  const at::Tensor body = zoo::unskin(last_.body_next.detach(), s.skin_index, s.skin_weight, last_.maps.detach())
                               .to(at::kCPU, at::kFloat)
                               .contiguous();
   if (!at::isfinite(body).all().item<bool>())
     fail("weight prior", "a body that maps back to the T-pose (invertible blended joint rotations)", "NaN");
-  const geometry::PointIndex index(Eigen::Map<const geometry::Points>(body.data_ptr<float>(), body.size(0), 3));
-  const at::Tensor weights = dense_weights(s.skin_index, s.skin_weight, params_.joints);
-  for (const Inputs::Garment& g : in.garments) {
-    const at::Tensor rest = g.rest.to(at::kCPU, at::kFloat).contiguous();
-    Eigen::VectorXi nearest = index.nearest_all(Eigen::Map<const geometry::Points>(rest.data_ptr<float>(), rest.size(0), 3));
-    const at::Tensor rows = at::from_blob(nearest.data(), {nearest.size()}, at::kInt).to(weights.device(), at::kLong);
-    in.prior_targets.push_back(weights.index_select(0, rows));
-  }
+  const at::Tensor weights = zoo::dense_weights(s.skin_index, s.skin_weight, params_.joints);
+  for (const Inputs::Garment& g : in.garments)
+    in.prior_targets.push_back(weights.index_select(0, zoo::nearest_body_vertex(g.rest, body).to(weights.device())));
   return in.prior_targets;
 }
 

@@ -38,7 +38,8 @@
 
 #include "factory.h"
 #include "layers/zoo/model.h"
-#include "mlp.h"
+#include "graph_layer.h"
+#include "layers/zoo/mlp.h"
 #include "params.h"
 
 namespace layers::deepsd {
@@ -69,8 +70,8 @@ class DeepsdModel : public zoo::Model {
   // The pose embedding (K coefficients) of a step input.
   at::Tensor pose_embedding(const zoo::StepInput& in);
 
-  Mlp& weight_head() { return *weight_head_; }
-  Mlp& deformation_head() { return *deformation_head_; }
+  zoo::MlpImpl& weight_head() { return *weight_head_; }
+  zoo::MlpImpl& deformation_head() { return *deformation_head_; }
 
  protected:
   std::shared_ptr<const Derived> derive(const zoo::SequenceStatic& data) override;
@@ -85,7 +86,7 @@ class DeepsdModel : public zoo::Model {
 
   DeepsdParams params_;
   std::vector<std::shared_ptr<GraphLayer>> graph_;
-  std::shared_ptr<Mlp> weight_head_, deformation_head_, pose_head_;
+  zoo::Mlp weight_head_{nullptr}, deformation_head_{nullptr}, pose_head_{nullptr};
 
   // What the last step produced, for auxiliary_losses().
   struct LastStep {

@@ -13,8 +13,9 @@
 
 #include "decoder.h"
 #include "factory.h"
+#include "integration.h"
 #include "layers/zoo/model.h"
-#include "mlp.h"
+#include "layers/zoo/mlp.h"
 #include "params.h"
 #include "tie_block.h"
 
@@ -44,18 +45,32 @@ class LayersNet : public zoo::Model {
 
  protected:
   std::shared_ptr<const Derived> derive(const zoo::SequenceStatic& data) override;
+  std::shared_ptr<const Derived> bind(const zoo::SequenceStatic& data, std::shared_ptr<const Derived> derived,
+                                      const zoo::StepInput& first) override;
   zoo::StepOutput predict(const zoo::StepInput& input) override;
 
  private:
   struct Cached;
+  struct StepContext;  // the topology, moving frames and garment state of one step
+  struct Encoded;      // its tokens and sender graph
+
+  // predict() in three stages: the step's frames and state; its graph and
+  // tokens; the TIE blocks over the patch tokens; decoding and integrating
+  // to the positions at t+1 [V,3] (world, all garments).
+  StepContext context(const zoo::StepInput& in) const;
+  Encoded encode(const StepContext& c, const zoo::StepInput& in);
+  void process(Encoded& e);
+  at::Tensor integrate(const StepContext& c, const Encoded& e, const zoo::StepInput& in);
+
   Params params_;
   Base base_;
   bool learned_blend_;
   StepCounts counts_;
-  std::shared_ptr<Mlp> encode_state_, encode_attributes_, encode_wind_;
+  zoo::Mlp encode_state_{nullptr}, encode_attributes_{nullptr}, encode_wind_{nullptr};
   std::shared_ptr<Decoder> decoder_;
   at::Tensor gravity_;  // [1,width] learned token
   std::vector<std::shared_ptr<TieBlock>> blocks_;
+  std::unique_ptr<IntegrationBase> integration_;  // by params_.base
 };
 
 }  // namespace layers::layersnet

@@ -10,6 +10,19 @@
 
 namespace layers::layersnet {
 
+// The integration base and how it blends with p + v (Params::base, blend).
+enum class Base { inertial, body, bones, skin };
+inline const cfg::EnumNames<Base>& enum_names(Base) {
+  static const cfg::EnumNames<Base> names{
+      {Base::inertial, "inertial"}, {Base::body, "body"}, {Base::bones, "bones"}, {Base::skin, "skin"}};
+  return names;
+}
+enum class Blend { radius, learned };
+inline const cfg::EnumNames<Blend>& enum_names(Blend) {
+  static const cfg::EnumNames<Blend> names{{Blend::radius, "radius"}, {Blend::learned, "learned"}};
+  return names;
+}
+
 struct Params {
   double patch_size = 0.1;       // UV square side (UVs are sewing-pattern metres)
   double world_radius = 0.04;    // E^W: patch centroids closer than this (m)
@@ -26,13 +39,13 @@ struct Params {
   // vertex is bound to in the rest pose) or "skin" (p moved by the skinning
   // of the body vertex nearest its rest position in the T-pose; both in
   // joint_binding.h).
-  std::string base = "inertial";
+  Base base = Base::inertial;
   // Where and how much the body or bones base replaces p + v: "radius"
   // (fully, within body_radius of the body) or "learned" (a per-vertex
   // gate g in (0,1) the decoder predicts beside the acceleration:
   // v + g (follow - v); for "bones" and "skin" everywhere, for "body"
   // within body_radius, where a nearest body vertex exists).
-  std::string blend = "radius";
+  Blend blend = Blend::radius;
 
   template <class V>
   void visit(V& v) {
@@ -46,17 +59,12 @@ struct Params {
     v("heading_frame", heading_frame,
       cfg::opt().help("express each step in the body root's heading frame (yaw about +y) instead of world axes"));
     v("base", base,
-      cfg::opt().choices({"inertial", "body", "bones", "skin"})
-          .help("integration base within body_radius of the body: p + v (inertial), the nearest body vertex's displacement (body), the motion of the vertex's rest-pose bones (bones) or of its T-pose nearest body vertex's skinning (skin)"));
+      cfg::opt().help("integration base within body_radius of the body: p + v (inertial), the nearest body vertex's displacement (body), the motion of the vertex's rest-pose bones (bones) or of its T-pose nearest body vertex's skinning (skin)"));
     v("blend", blend,
-      cfg::opt().choices({"radius", "learned"})
-          .help("body/bones/skin base: replaces p + v within body_radius (radius) or blended with it by a learned per-vertex gate (learned)"));
+      cfg::opt().help("body/bones/skin base: replaces p + v within body_radius (radius) or blended with it by a learned per-vertex gate (learned)"));
   }
 };
 
-// The integration base, parsed once (the names of Params::base).
-enum class Base { inertial, body, bones, skin };
-Base base_from_name(const std::string& name);
 
 // Reads and checks the parameters (null: all defaults). Throws InputError
 // naming the key (heads odd or not dividing width; blend learned with the

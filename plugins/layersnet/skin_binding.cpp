@@ -4,19 +4,12 @@
 
 #include "joint_binding.h"
 #include "layers/core/error.h"
-#include "layers/geometry/nearest.h"
-#include "layers/zoo/joint_motion.h"
+#include "layers/zoo/skinning.h"
 
 namespace layers::layersnet {
 namespace {
 
 std::string where(const zoo::SequenceStatic& s) { return "sequence '" + s.id + "'"; }
-
-// A float32 CPU [N,3] tensor as geometry points (copied).
-geometry::Points points(const at::Tensor& x) {
-  const at::Tensor c = x.contiguous();
-  return Eigen::Map<const geometry::Points>(c.data_ptr<float>(), c.size(0), 3);
-}
 
 }  // namespace
 
@@ -35,7 +28,7 @@ JointBinding bind_to_skin(const zoo::SequenceStatic& s, const at::Tensor& body_t
   at::NoGradGuard no_grad;
   const at::Tensor body = body_t.detach().to(at::kCPU, at::kFloat);
   const at::Tensor index = s.skin_index.to(at::kCPU, at::kLong);
-  at::Tensor weight = s.skin_weight.to(at::kCPU, at::kFloat);
+  const at::Tensor weight = s.skin_weight.to(at::kCPU, at::kFloat);
   const std::int64_t vb = body.size(0), nj = joints_t.size(0);
   if (index.size(0) != vb)
     throw InputError(where(s), "skin_index", std::to_string(vb) + " rows (the body's vertices)",
@@ -53,28 +46,19 @@ JointBinding bind_to_skin(const zoo::SequenceStatic& s, const at::Tensor& body_t
   if (!(smallest > 0))
     throw InputError(where(s), "skin_weight", "a positive weight sum for every body vertex",
                      "a sum of " + std::to_string(smallest));
-  weight = weight / sums;
-
-  // Each body vertex's blended map T-pose -> t, x -> A x + b, inverted.
-  const zoo::JointSteps blended = zoo::blend_joint_steps(
-      zoo::joint_steps(s.tpose_joints.to(at::kCPU, at::kFloat), joints_t.detach().to(at::kCPU, at::kFloat)), index,
-      weight, at::kFloat);
-  const double det = at::linalg_det(blended.m).abs().min().item<double>();
+  const at::Tensor maps =
+      zoo::tpose_to_frame(s.tpose_joints.to(at::kCPU, at::kFloat), joints_t.detach().to(at::kCPU, at::kFloat));
+  const double det = zoo::smallest_blend_determinant(index, weight, maps);
   if (!(det > 1e-6))
     throw InputError(where(s), "skin_weight", "blended joint maps that can be inverted (|det| > 1e-6)",
                      "|det| " + std::to_string(det));
-  const at::Tensor tpose_body = at::linalg_solve(blended.m, (body - blended.c).unsqueeze(2)).squeeze(2);
-
-  // The nearest T-pose body vertex of each garment vertex's rest position.
+  // The body brought back to the T-pose; each garment vertex's rest
+  // position bound to the skinning of its nearest T-pose body vertex.
+  const at::Tensor tpose_body = zoo::unskin(body, index, weight, maps);
   std::vector<at::Tensor> rest;
   for (const zoo::GarmentStatic& g : s.garments) rest.push_back(g.rest.to(at::kCPU, at::kFloat));
-  const geometry::PointIndex tree(points(tpose_body));
-  Eigen::VectorXi nearest = tree.nearest_all(points(at::cat(rest)));
-  const at::Tensor ids = at::from_blob(nearest.data(), {nearest.size()}, at::kInt).to(at::kLong);
-  JointBinding out;
-  out.joint = index.index_select(0, ids).to(body_t.device());
-  out.weight = weight.index_select(0, ids).to(body_t.device());
-  return out;
+  const zoo::SkinBinding b = zoo::bind_to_nearest_skin(at::cat(rest), tpose_body, index, weight);
+  return {b.joint.to(body_t.device()), b.weight.to(body_t.device())};
 }
 
 }  // namespace layers::layersnet

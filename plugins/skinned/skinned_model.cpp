@@ -1,16 +1,15 @@
 // The "skinned" reference model (see skinned_model.h): binding garment
-// vertices to body vertices' skinning weights, and moving them with the
-// blended joint motion from t to t+1.
+// vertices to body vertices' skinning weights on the first step, and
+// moving them with the blended joint motion from t to t+1.
 #include "skinned_model.h"
 
 #include <vector>
 
 #include "layers/core/config.h"
 #include "layers/core/error.h"
-#include "layers/geometry/nearest.h"
-#include "layers/zoo/joint_motion.h"
 #include "layers/zoo/model.h"
 #include "layers/zoo/model_config.h"
+#include "layers/zoo/skinning.h"
 
 namespace layers::reference {
 namespace {
@@ -19,13 +18,10 @@ namespace {
   throw Error(std::string("model '") + kSkinnedName + "': " + field + ": expected " + expected + ", got " + got);
 }
 
-// A detached float32 CPU copy of [N,3] positions; `field` names them in
-// the error when one is not finite.
-geometry::Points finite_cpu_points(const at::Tensor& t, const std::string& field) {
-  at::Tensor cpu = t.detach().to(at::kCPU, at::kFloat).contiguous();
-  geometry::Points out = Eigen::Map<const geometry::Points>(cpu.data_ptr<float>(), cpu.size(0), 3);
-  if (!out.allFinite()) fail(field, "finite positions to bind the garments to the body", "NaN or infinity");
-  return out;
+// Refuses positions that are not finite; `field` names them.
+void check_finite(const at::Tensor& t, const std::string& field) {
+  if (!at::isfinite(t.detach()).all().item<bool>())
+    fail(field, "finite positions to bind the garments to the body", "NaN or infinity");
 }
 
 class SkinnedModel : public zoo::Model {
@@ -35,14 +31,14 @@ class SkinnedModel : public zoo::Model {
   cfg::Node config() const override { return cfg::to_node(zoo::NoParams{}); }
 
  protected:
+  // What derive() checked: the sequence has skinning data.
+  struct Skinnable : Derived {};
+
   // Per garment: the joints [V,4] (int64) and weights [V,4] (sum 1) of the
-  // body vertex each garment vertex is bound to. Filled on the first step
-  // after the sequence was derived (see skinned_model.h), hence mutable.
+  // body vertex each garment vertex is bound to (see skinned_model.h).
   struct Binding : Derived {
-    mutable bool bound = false;
-    mutable std::vector<at::Tensor> joints;
-    mutable std::vector<at::Tensor> weights;
-    mutable std::int64_t max_joint = -1;
+    std::vector<zoo::SkinBinding> garments;
+    std::int64_t max_joint = -1;
   };
 
   std::shared_ptr<const Derived> derive(const zoo::SequenceStatic& data) override {
@@ -51,7 +47,36 @@ class SkinnedModel : public zoo::Model {
                        "skinning data (LAYERS-H5 body/skin_index and body/skin_weight) for model 'skinned'",
                        "none");
     }
-    return std::make_shared<Binding>();
+    return std::make_shared<Skinnable>();
+  }
+
+  // Binds every garment vertex to the nearest body vertex at t.
+  std::shared_ptr<const Derived> bind(const zoo::SequenceStatic& s, std::shared_ptr<const Derived>,
+                                      const zoo::StepInput& in) override {
+    check_finite(in.body, "step input body");
+    auto binding = std::make_shared<Binding>();
+    std::int64_t lo = 0;
+    for (std::size_t k = 0; k < in.garments.size(); ++k) {
+      const at::Tensor& current = in.garments[k].current;
+      check_finite(current, "step input garments[" + std::to_string(k) + "].current");
+      const at::Tensor rows = zoo::nearest_body_vertex(current, in.body).to(s.skin_index.device());
+      if (rows.size(0) > 0) {
+        const double smallest = s.skin_weight.index_select(0, rows).sum(1).min().item<double>();
+        if (!(smallest > 0)) {
+          throw InputError("sequence '" + s.id + "'", "skin_weight",
+                           "a positive weight sum for every body vertex a garment vertex binds to",
+                           "a sum of " + std::to_string(smallest));
+        }
+      }
+      zoo::SkinBinding b = zoo::bind_to_nearest_skin(current, in.body, s.skin_index, s.skin_weight);
+      if (rows.size(0) > 0) {
+        lo = std::min(lo, b.joint.min().item<std::int64_t>());
+        binding->max_joint = std::max(binding->max_joint, b.joint.max().item<std::int64_t>());
+      }
+      binding->garments.push_back(std::move(b));
+    }
+    if (lo < 0) fail("sequence '" + s.id + "' skin_index", "joint indices >= 0", std::to_string(lo));
+    return binding;
   }
 
   zoo::StepOutput predict(const zoo::StepInput& in) override {
@@ -61,7 +86,6 @@ class SkinnedModel : public zoo::Model {
            in.joints.defined() ? "no joints_next" : "no joints");
     }
     const Binding& binding = derived<Binding>();
-    if (!binding.bound) bind(binding, in);
     const std::int64_t nj = in.joints.size(0);
     if (binding.max_joint >= nj) {
       fail("step input joints", "at least " + std::to_string(binding.max_joint + 1) +
@@ -72,45 +96,9 @@ class SkinnedModel : public zoo::Model {
     const zoo::JointSteps steps = zoo::joint_steps(in.joints, in.joints_next);
     zoo::StepOutput out;
     for (std::size_t k = 0; k < in.garments.size(); ++k)
-      out.garments.push_back(
-          zoo::move_with_joints(steps, in.garments[k].current, binding.joints[k], binding.weights[k]));
+      out.garments.push_back(zoo::move_with_joints(steps, in.garments[k].current, binding.garments[k].joint,
+                                                   binding.garments[k].weight));
     return out;
-  }
-
- private:
-  // Binds every garment vertex to the nearest body vertex at t.
-  void bind(const Binding& binding, const zoo::StepInput& in) const {
-    const zoo::SequenceStatic& s = sequence();
-    const geometry::PointIndex body(finite_cpu_points(in.body, "step input body"));
-    std::vector<at::Tensor> joints, weights;
-    std::int64_t lo = 0, hi = -1;
-    for (std::size_t k = 0; k < in.garments.size(); ++k) {
-      const at::Tensor& current = in.garments[k].current;
-      Eigen::VectorXi nearest =
-          body.nearest_all(finite_cpu_points(current, "step input garments[" + std::to_string(k) + "].current"));
-      at::Tensor index =
-          at::from_blob(nearest.data(), {nearest.size()}, at::kInt).to(at::kLong).to(s.skin_index.device());
-      at::Tensor j = s.skin_index.index_select(0, index);
-      at::Tensor w = s.skin_weight.index_select(0, index);
-      at::Tensor sums = w.sum(1, /*keepdim=*/true);
-      if (nearest.size() > 0) {
-        const double smallest = sums.min().item<double>();
-        if (!(smallest > 0)) {
-          throw InputError("sequence '" + s.id + "'", "skin_weight",
-                           "a positive weight sum for every body vertex a garment vertex binds to",
-                           "a sum of " + std::to_string(smallest));
-        }
-        lo = std::min(lo, j.min().item<std::int64_t>());
-        hi = std::max(hi, j.max().item<std::int64_t>());
-      }
-      joints.push_back(j);
-      weights.push_back(w / sums);
-    }
-    if (lo < 0) fail("sequence '" + s.id + "' skin_index", "joint indices >= 0", std::to_string(lo));
-    binding.joints = std::move(joints);
-    binding.weights = std::move(weights);
-    binding.max_joint = hi;
-    binding.bound = true;
   }
 };
 

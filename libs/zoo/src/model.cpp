@@ -206,6 +206,11 @@ const SequenceStatic& Model::sequence() const {
 
 std::shared_ptr<const Model::Derived> Model::derive(const SequenceStatic&) { return nullptr; }
 
+std::shared_ptr<const Model::Derived> Model::bind(const SequenceStatic&, std::shared_ptr<const Derived> derived,
+                                                  const StepInput&) {
+  return derived;
+}
+
 const Model::Derived* Model::current_derived() const {
   const SequenceStatic& s = sequence();
   if (!current_->derived) throw Error("model '" + name() + "' derived no data for sequence '" + s.id + "'");
@@ -254,6 +259,10 @@ StepOutput Model::step(const StepInput& in) {
   if (in.joints.defined()) check.tensor(in.joints, {false, {nj, 3, 4}}, "step input joints");
   if (in.joints_next.defined()) check.tensor(in.joints_next, {false, {nj, 3, 4}}, "step input joints_next");
 
+  if (!current_->bound) {
+    current_->derived = bind(s, current_->derived, in);
+    current_->bound = true;
+  }
   StepOutput out = predict(in);
   check.count(out.garments.size(), s.garments.size(), "step output garments");
   for (std::size_t k = 0; k < s.garments.size(); ++k) {

@@ -25,12 +25,6 @@ at::Tensor cat_states(const zoo::StepInput& in, bool current) {
 
 }  // namespace
 
-Base base_from_name(const std::string& name) {
-  if (name == "constant_velocity") return Base::constant_velocity;
-  if (name == "body_seeds") return Base::body_seeds;
-  throw Error("mgnet: unknown base prediction '" + name + "'");
-}
-
 StepMaps step_maps(const GarmentLayout& layout, const zoo::StepInput& in, const zoo::Normalization& norm,
                    Base base) {
   const at::Tensor roots = f32(in.root), body = f32(in.body), body_next = f32(in.body_next);

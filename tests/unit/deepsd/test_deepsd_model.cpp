@@ -17,7 +17,7 @@
 #include "layers/zoo/model_config.h"
 #include "layers/zoo/plugin_loader.h"
 #include "layers/zoo/registry.h"
-#include "skinning.h"
+#include "layers/zoo/skinning.h"
 #include "test_paths.h"
 
 namespace layers::deepsd {
@@ -57,6 +57,11 @@ void force_plain_skinning(DeepsdModel& model, int joint) {
   model.deformation_head().last()->weight.zero_();
   model.deformation_head().last()->bias.zero_();
 }
+
+using layers::zoo::dense_weights;
+using layers::zoo::skin;
+using layers::zoo::tpose_to_frame;
+using layers::zoo::unskin;
 
 TEST(DeepsdSkinning, OneHotAndBlendedWeightsMatchHandComputedLbs) {
   const Scene scene;

@@ -14,7 +14,7 @@
 
 #include "layers/core/config_node.h"
 #include "layers/core/error.h"
-#include "layers/zoo/joint_motion.h"
+#include "layers/zoo/skinning.h"
 #include "layers/zoo/plugin_loader.h"
 #include "layers/zoo/registry.h"
 #include "layers/zoo/rotations.h"

@@ -19,7 +19,19 @@
 // cfg::to_node(value) turns it back into a tree (the resolved config that
 // every run prints and saves). Field types: bool, integers, float, double,
 // std::string, std::vector<T>, std::map<std::string, T>, nested structs
-// with visit(), and cfg::Node (kept raw, e.g. a plugin's own parameters).
+// with visit(), enums (below), and cfg::Node (kept raw, e.g. a plugin's own
+// parameters).
+//
+// An enum field is written and read by name. Its names are listed once,
+// next to the enum, by a function found through argument-dependent lookup:
+//
+//   enum class Kind { adam, sgd };
+//   inline const cfg::EnumNames<Kind>& enum_names(Kind) {
+//     static const cfg::EnumNames<Kind> names{{Kind::adam, "adam"}, {Kind::sgd, "sgd"}};
+//     return names;
+//   }
+//
+// A value outside the names is refused like a string outside choices().
 #pragma once
 
 #include <cstdint>
@@ -27,6 +39,7 @@
 #include <optional>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "layers/core/config_node.h"
@@ -48,6 +61,10 @@ struct Opt {
   Opt& help(std::string h) { text = std::move(h); return *this; }
 };
 inline Opt opt() { return {}; }
+
+// The names of an enum's values, in the order they are listed in errors.
+template <class E>
+using EnumNames = std::vector<std::pair<E, const char*>>;
 
 namespace detail {
 template <class T, class = void>
@@ -104,6 +121,15 @@ class Reader {
   static void read_value(const Node& n, const std::string& path, T& out, const Opt& o) {
     if constexpr (std::is_same_v<T, Node>) {
       out = n;
+    } else if constexpr (std::is_enum_v<T>) {
+      std::string name;
+      detail::parse_scalar(n, path, name);
+      Opt named = o;
+      named.allowed.clear();
+      for (const auto& [value, text] : enum_names(T{})) named.allowed.emplace_back(text);
+      detail::check_choice(n, path, name, named);
+      for (const auto& [value, text] : enum_names(T{}))
+        if (name == text) out = value;
     } else if constexpr (std::is_same_v<T, bool> || std::is_same_v<T, std::string>) {
       detail::parse_scalar(n, path, out);
       if constexpr (std::is_same_v<T, std::string>) detail::check_choice(n, path, out, o);
@@ -178,6 +204,10 @@ class Writer {
     } else if constexpr (std::is_same_v<T, std::string>) {
       n.kind = Node::Kind::Scalar;
       n.scalar = value;
+    } else if constexpr (std::is_enum_v<T>) {
+      n.kind = Node::Kind::Scalar;
+      for (const auto& [v, text] : enum_names(T{}))
+        if (v == value) n.scalar = text;
     } else if constexpr (std::is_integral_v<T>) {
       n.kind = Node::Kind::Scalar;
       n.scalar = std::to_string(value);

@@ -160,6 +160,12 @@ class Model : public torch::nn::Module {
   };
   // Called once per sequence id and device; the default derives nothing.
   virtual std::shared_ptr<const Derived> derive(const SequenceStatic& data);
+  // Called by step() once per derived sequence, on its first step (input
+  // already checked), for what needs a body frame (e.g. garments bound to
+  // the skin): the data it returns replaces derive()'s for this sequence
+  // and stays immutable afterwards. The default keeps `derived`.
+  virtual std::shared_ptr<const Derived> bind(const SequenceStatic& data, std::shared_ptr<const Derived> derived,
+                                              const StepInput& first);
   // The current sequence's derived data, as the subclass T made it.
   template <class T>
   const T& derived() const {
@@ -178,12 +184,13 @@ class Model : public torch::nn::Module {
     at::Device device;
     SequenceStatic data;
     std::shared_ptr<const Derived> derived;
+    bool bound = false;  // bind() ran on this sequence's first step
   };
   const Derived* current_derived() const;
 
   mutable Normalization norm_ = Normalization::identity();
   std::list<Prepared> cache_;  // most recently used first
-  const Prepared* current_ = nullptr;
+  Prepared* current_ = nullptr;
   std::size_t capacity_ = 64;
 };
 

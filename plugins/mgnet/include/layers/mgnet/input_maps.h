@@ -31,6 +31,7 @@
 #include <ATen/ATen.h>
 
 #include "layers/mgnet/layout.h"
+#include "layers/mgnet/params.h"
 #include "layers/zoo/model.h"
 
 namespace layers::mgnet {
@@ -38,9 +39,7 @@ namespace layers::mgnet {
 inline constexpr std::int64_t kStateChannels = 14;
 inline constexpr std::int64_t kDynamicChannels = 26;
 
-enum class Base { constant_velocity, body_seeds };
 // "constant_velocity" or "body_seeds" (Params::base).
-Base base_from_name(const std::string& name);
 
 struct StepMaps {
   at::Tensor state;    // [G,kStateChannels,R,R]

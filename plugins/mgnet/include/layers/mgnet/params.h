@@ -11,6 +11,14 @@
 
 namespace layers::mgnet {
 
+// The prediction the decoded displacement is added to (input_maps.h).
+enum class Base { constant_velocity, body_seeds };
+inline const cfg::EnumNames<Base>& enum_names(Base) {
+  static const cfg::EnumNames<Base> names{{Base::body_seeds, "body_seeds"},
+                                          {Base::constant_velocity, "constant_velocity"}};
+  return names;
+}
+
 struct Params {
   // The UV image is resolution x resolution pixels; it must be divisible by
   // 2^channels.size() (each encoder stage halves it).
@@ -23,15 +31,14 @@ struct Params {
   // The prediction the displacement is added to (input_maps.h):
   // "body_seeds" (each vertex moves with its body seed point, as MGNet's
   // output is carried by the body) or "constant_velocity" (root-relative).
-  std::string base = "body_seeds";
+  Base base = Base::body_seeds;
 
   template <class V>
   void visit(V& v) {
     v("resolution", resolution, cfg::opt().range(4, 1024).help("UV image side in pixels"));
     v("channels", channels, cfg::opt().range(1, 4096).help("channels of each stride-2 encoder stage"));
     v("latent", latent, cfg::opt().range(1, 65536).help("latent size of each encoder"));
-    v("base", base, cfg::opt().choices({"body_seeds", "constant_velocity"})
-                        .help("prediction the displacement is added to"));
+    v("base", base, cfg::opt().help("prediction the displacement is added to: body_seeds or constant_velocity"));
   }
 };
 
