@@ -11,7 +11,7 @@
 #include "layers/data/export.h"
 #include "layers/data/shard_writer.h"
 #include "layers/generate/body_data.h"
-#include "layers/scene/body_config.h"
+#include "layers/motion/body_config.h"
 #include "verbs.h"
 
 namespace fs = std::filesystem;
@@ -84,11 +84,11 @@ VerbRun register_body(CLI::App& app, const Global&) {
     section.map.emplace_back("transition_frames", scalar(std::to_string(a->transition), "--transition"));
     section.map.emplace_back("seed", scalar(std::to_string(a->seed), "--seed"));
     section.map.emplace_back("on_intersection", scalar(a->on_intersection, "--on-intersection"));
-    auto config = cfg::read<scene::BodyMotionConfig>(section, "body");
+    auto config = cfg::read<motion::BodyMotionConfig>(section, "body");
     if (!a->export_format.empty()) data::parse_export_format(a->export_format, "--export");
 
     Timer timer;
-    scene::GeneratedBody generated = scene::generate_body(config);
+    motion::GeneratedBody generated = motion::generate_body(config);
     double seconds = timer.seconds();
     data::SequenceData seq = generate::body_only_sequence(generated, a->id, config.seed);
 

@@ -30,7 +30,7 @@
 #include "layers/data/dataset.h"
 #include "layers/data/validate.h"
 #include "layers/generate/generator_config.h"
-#include "layers/scene/bvh.h"
+#include "layers/motion/bvh.h"
 #include "layers/train/experiment_config.h"
 
 namespace fs = std::filesystem;
@@ -47,8 +47,8 @@ void write_file(const std::string& path, const std::string& bytes) {
 // One reader: parse `bytes` (stored at `path`) as a user's file would be.
 void parse_bvh(const std::string& bytes, const std::string&) {
   std::istringstream in(bytes);
-  const scene::BvhClip clip = scene::parse_bvh(in, "fuzz.bvh");
-  scene::resample(clip, 30.0);
+  const motion::BvhClip clip = motion::parse_bvh(in, "fuzz.bvh");
+  motion::resample(clip, 30.0);
 }
 
 // A generator config (it has `sequences`) or an experiment.

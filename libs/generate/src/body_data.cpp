@@ -1,9 +1,10 @@
 // Conversion of a generated body into LAYERS-H5 arrays (see body_data.h).
 #include "layers/generate/body_data.h"
 
+#include "layers/body/body_arrays.h"
+#include "layers/body/skeleton.h"
+#include "layers/body/skinning.h"
 #include "layers/core/error.h"
-#include "layers/scene/skeleton.h"
-#include "layers/scene/skinning.h"
 
 namespace layers::generate {
 
@@ -16,14 +17,14 @@ std::vector<T> frames(const std::vector<T>& all, std::size_t per_frame, int firs
 }
 }  // namespace
 
-void fill_body(data::SequenceData& seq, const scene::GeneratedBody& generated, int first, int count,
+void fill_body(data::SequenceData& seq, const motion::GeneratedBody& generated, int first, int count,
                const Eigen::Isometry3d& tpose_placement) {
-  const scene::BodySequence& s = generated.sequence;
+  const motion::BodySequence& s = generated.sequence;
   if (count < 0) count = s.num_frames - first;
   if (first < 0 || first + count > s.num_frames)
     throw Error("fill_body: frames [" + std::to_string(first) + ", " + std::to_string(first + count) +
                 ") outside the body sequence of " + std::to_string(s.num_frames) + " frames");
-  const scene::BodyArrays arrays = scene::body_arrays(generated.body);
+  const body::BodyArrays arrays = body::body_arrays(generated.body);
   seq.n_frames = count;
   seq.motion = s.motion;
   seq.shape = {{"gender", generated.body.shape.gender},
@@ -42,17 +43,17 @@ void fill_body(data::SequenceData& seq, const scene::GeneratedBody& generated, i
   b.root_rot = frames(s.root_rot, 4, first, count);
   b.joints = frames(s.joints, joints * 12, first, count);
   // The T-pose the garments were made in, placed where they were put.
-  scene::JointTransforms tpose = scene::forward_kinematics(generated.body.skeleton, generated.body.t_pose);
-  const scene::Quat turn(tpose_placement.rotation());
+  body::JointTransforms tpose = body::forward_kinematics(generated.body.skeleton, generated.body.t_pose);
+  const body::Quat turn(tpose_placement.rotation());
   for (std::size_t j = 0; j < tpose.rotation.size(); ++j) {
     tpose.rotation[j] = turn * tpose.rotation[j];
     tpose.position[j] = tpose_placement * tpose.position[j];
   }
   b.tpose_joints.resize(joints * 12);
-  scene::joint_matrices(tpose, b.tpose_joints.data());
+  body::joint_matrices(tpose, b.tpose_joints.data());
 }
 
-data::SequenceData body_only_sequence(const scene::GeneratedBody& generated, const std::string& id,
+data::SequenceData body_only_sequence(const motion::GeneratedBody& generated, const std::string& id,
                                       std::uint64_t seed) {
   data::SequenceData seq;
   seq.id = id;

@@ -88,7 +88,7 @@ void check(const GeneratorConfig& c, const std::string& file) {
   }
   if (total <= 0) throw InputError(file, "garments.outfits", "at least one outfit with a positive weight", "all zero");
   check_holdouts(c, file);
-  scene::validate(c.garments.fit);
+  garment::validate(c.garments.fit);
   sim::check(c.sim, "sim");
 }
 

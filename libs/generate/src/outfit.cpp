@@ -47,12 +47,12 @@ sim::GarmentAttributes garment_attributes(const std::map<std::string, double>& v
   return attributes;
 }
 
-std::vector<data::GarmentData> fit_outfit(const scene::Body& body, const SceneSpec& spec,
-                                          const scene::GarmentParams& params) {
+std::vector<data::GarmentData> fit_outfit(const body::Body& body, const SceneSpec& spec,
+                                          const garment::GarmentParams& params) {
   std::vector<std::string> inner;
   std::string outer;
   for (const auto& g : spec.garments) (g.layer == 0 ? inner.push_back(g.type) : void(outer = g.type));
-  const auto meshes = scene::build_outfit(inner, outer, scene::t_pose_body(body), params, spec.seed);
+  const auto meshes = garment::build_outfit(inner, outer, garment::t_pose_body(body), params, spec.seed);
   std::vector<data::GarmentData> out;
   for (const auto& m : meshes) {
     const GarmentSpec* g = nullptr;
@@ -66,7 +66,7 @@ std::vector<data::GarmentData> fit_outfit(const scene::Body& body, const SceneSp
     d.attributes = attribute_map(g->attributes);
     d.faces = flat<geometry::Faces, std::int32_t>(m.faces);
     d.rest = flat<geometry::Points, float>(m.vertices);
-    d.uv = flat<scene::garment::UVs, float>(m.uv);
+    d.uv = flat<garment::UVs, float>(m.uv);
     d.uv_faces = flat<geometry::Faces, std::int32_t>(m.uv_faces);
     d.panel.assign(m.panel.data(), m.panel.data() + m.panel.size());
     out.push_back(std::move(d));

@@ -13,8 +13,10 @@
 #include "layers/core/progress.h"
 #include "layers/generate/body_data.h"
 #include "layers/generate/outfit.h"
-#include "layers/scene/body_sequence.h"
-#include "layers/scene/motion.h"
+#include "layers/body/body_arrays.h"
+#include "layers/body/pose_body.h"
+#include "layers/motion/body_sequence.h"
+#include "layers/motion/motion.h"
 #include "layers/sim/measures.h"
 
 namespace layers::generate {
@@ -45,8 +47,8 @@ double thread_cpu_seconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-scene::GeneratedBody make_body(const GeneratorConfig& config, const SceneSpec& spec) {
-  scene::BodyMotionConfig body;
+motion::GeneratedBody make_body(const GeneratorConfig& config, const SceneSpec& spec) {
+  motion::BodyMotionConfig body;
   body.shape = spec.shape;
   body.motion = spec.motion;
   body.frames = config.body.transition_frames + config.frames;
@@ -54,21 +56,21 @@ scene::GeneratedBody make_body(const GeneratorConfig& config, const SceneSpec& s
   body.seed = spec.seed;
   body.intersection_tolerance_mm = config.body.intersection_tolerance_mm;
   body.on_intersection = "longest_run";
-  return scene::generate_body(body);
+  return motion::generate_body(body);
 }
 
 }  // namespace
 
 SceneSimulation::SceneSimulation(const GeneratorConfig& config, const SceneSpec& spec)
     : config_(config), spec_(spec), generated_(make_body(config, spec)), wind_(spec.wind), solver_(config.sim) {
-  const scene::BodySequence& motion = generated_.sequence;
+  const motion::BodySequence& motion = generated_.sequence;
   const int needed = config_.body.transition_frames + config_.frames;
   if (motion.num_frames < needed || motion.source_frame.front() != 0) {
     problem_ = "the body self-intersects in frames that could not be repaired (" + std::to_string(motion.num_frames) +
                " of " + std::to_string(needed) + " frames usable)";
     return;
   }
-  const scene::BodyArrays body_arrays = scene::body_arrays(generated_.body);
+  const body::BodyArrays body_arrays = body::body_arrays(generated_.body);
   geometry::TriMesh body;
   body.faces = Eigen::Map<const geometry::Faces>(body_arrays.faces.data(),
                                                  static_cast<Eigen::Index>(body_arrays.faces.size() / 3), 3);
@@ -88,7 +90,7 @@ SceneSimulation::SceneSimulation(const GeneratorConfig& config, const SceneSpec&
 
 void SceneSimulation::add_garments() {
   garments_ = fit_outfit(generated_.body, spec_, config_.garments.fit);
-  const scene::BodyFrame t_pose = scene::pose_body(generated_.body, generated_.body.t_pose);
+  const body::BodyFrame t_pose = body::pose_body(generated_.body, generated_.body.t_pose);
   place_ = rigid_fit(t_pose.vertices, body_frame(0));
   for (auto& g : garments_) {
     geometry::TriMesh rest;
@@ -108,7 +110,7 @@ void SceneSimulation::add_garments() {
 }
 
 geometry::Points SceneSimulation::body_frame(int frame) const {
-  const scene::BodySequence& motion = generated_.sequence;
+  const motion::BodySequence& motion = generated_.sequence;
   const int n = motion.num_vertices;
   geometry::Points p(n, 3);
   std::copy(motion.positions.begin() + static_cast<std::ptrdiff_t>(frame) * n * 3,

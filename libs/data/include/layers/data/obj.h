@@ -1,9 +1,8 @@
 // layers/data/obj.h -- Wavefront OBJ triangle meshes (import and export).
 //
-// read_obj understands v, vt and f lines (vn, o, g, s, usemtl, mtllib, l
-// and comments are skipped), face vertices written v, v/vt, v//vn or
-// v/vt/vn, negative (relative) indices, and polygons, which are
-// fan-triangulated. Errors name the file and line.
+// read_obj reads with layers::geometry's OBJ reader (geometry/obj.h: v, vt
+// and f lines, v/vt/vn face vertices, negative indices; errors name the
+// file and line) and fan-triangulates polygons.
 #pragma once
 
 #include <cstdint>

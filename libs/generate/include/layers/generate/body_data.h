@@ -7,7 +7,7 @@
 #include <string>
 
 #include "layers/data/sequence.h"
-#include "layers/scene/body_config.h"
+#include "layers/motion/body_config.h"
 
 namespace layers::generate {
 
@@ -17,12 +17,12 @@ namespace layers::generate {
 // the end). body/tpose_joints is the body's T-pose moved by
 // `tpose_placement`: the rigid motion the garments' rest shapes (fitted
 // around the T-pose body) were moved by.
-void fill_body(data::SequenceData& seq, const scene::GeneratedBody& generated, int first = 0, int count = -1,
+void fill_body(data::SequenceData& seq, const motion::GeneratedBody& generated, int first = 0, int count = -1,
                const Eigen::Isometry3d& tpose_placement = Eigen::Isometry3d::Identity());
 
 // A sequence with the body only: no garments, and no wind (strength 0,
 // identity rotation) for every frame.
-data::SequenceData body_only_sequence(const scene::GeneratedBody& generated, const std::string& id,
+data::SequenceData body_only_sequence(const motion::GeneratedBody& generated, const std::string& id,
                                       std::uint64_t seed);
 
 }  // namespace layers::generate

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "layers/core/config.h"
-#include "layers/scene/body_config.h"
-#include "layers/scene/garment.h"
+#include "layers/motion/body_config.h"
+#include "layers/garment/garment.h"
 #include "layers/sim/config.h"
 #include "layers/sim/material.h"
 
@@ -72,7 +72,7 @@ struct WindConfig {
 };
 
 struct BodySampling {
-  scene::ShapeSampling shape;
+  motion::ShapeSampling shape;
   std::vector<std::string> motions{"procedural:walk"};  // drawn uniformly per scene
   int transition_frames = 10;                           // T-pose -> motion blend (part of warm-up)
   double intersection_tolerance_mm = 4.0;
@@ -87,7 +87,7 @@ struct BodySampling {
 };
 
 struct GarmentSampling {
-  scene::GarmentParams fit;  // templates: edge length, ease, lengths, clearances
+  garment::GarmentParams fit;  // templates: edge length, ease, lengths, clearances
   std::vector<OutfitConfig> outfits{OutfitConfig{}};
   AttributeRanges attributes;
 

@@ -10,8 +10,8 @@
 
 #include "layers/data/sequence.h"
 #include "layers/generate/scene_spec.h"
-#include "layers/scene/body_model.h"
-#include "layers/scene/garment.h"
+#include "layers/body/body_model.h"
+#include "layers/garment/garment.h"
 
 namespace layers::generate {
 
@@ -19,8 +19,8 @@ namespace layers::generate {
 // first, a bottom before the t-shirt over it, then the outer one), with
 // rest shape, faces, UVs, panels, type, layer and attributes filled in
 // and no positions yet. The outer garment is fitted over the inner ones.
-std::vector<data::GarmentData> fit_outfit(const scene::Body& body, const SceneSpec& spec,
-                                          const scene::GarmentParams& params);
+std::vector<data::GarmentData> fit_outfit(const body::Body& body, const SceneSpec& spec,
+                                          const garment::GarmentParams& params);
 
 // A garment's attributes as stored in LAYERS-H5 (name -> value) and back;
 // InputError naming `what` for a missing attribute.

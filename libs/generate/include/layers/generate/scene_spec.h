@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "layers/generate/generator_config.h"
-#include "layers/scene/body_model.h"
+#include "layers/body/body_model.h"
 #include "layers/sim/material.h"
 #include "layers/sim/wind.h"
 
@@ -25,7 +25,7 @@ struct SceneSpec {
   int index = 0;
   std::string id;            // "seq-000042"
   std::uint64_t seed = 0;    // the scene's own seed (motion, garment sizes)
-  scene::ShapeParams shape;
+  body::ShapeParams shape;
   std::string motion;
   std::vector<GarmentSpec> garments;  // inner garments first, then the outer one
   std::string wind_regime;            // calm, strong or mixed

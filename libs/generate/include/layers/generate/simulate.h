@@ -13,7 +13,7 @@
 #include "layers/data/sequence.h"
 #include "layers/generate/generator_config.h"
 #include "layers/generate/scene_spec.h"
-#include "layers/scene/body_config.h"
+#include "layers/motion/body_config.h"
 #include "layers/sim/solver.h"
 
 namespace layers::generate {
@@ -62,7 +62,7 @@ class SceneSimulation {
   const sim::Solver& solver() const { return solver_; }
   sim::Solver& solver() { return solver_; }
   const sim::WindSchedule& wind() const { return wind_; }
-  const scene::GeneratedBody& body() const { return generated_; }
+  const motion::GeneratedBody& body() const { return generated_; }
   // The garments' arrays (rest shapes as simulated, no positions).
   std::vector<data::GarmentData>& garments() { return garments_; }
   // The rigid motion that took the T-pose garments to the motion's start.
@@ -75,7 +75,7 @@ class SceneSimulation {
   GeneratorConfig config_;
   SceneSpec spec_;
   std::string problem_;
-  scene::GeneratedBody generated_;
+  motion::GeneratedBody generated_;
   std::vector<data::GarmentData> garments_;
   Eigen::Isometry3d place_ = Eigen::Isometry3d::Identity();
   sim::WindSchedule wind_;

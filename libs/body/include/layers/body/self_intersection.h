@@ -1,0 +1,62 @@
+// layers/body/self_intersection.h -- body self-intersection per frame.
+//
+// The skin is split into five parts by skinning weights (torso with head,
+// hips and clavicles; each arm; each leg). A vertex belongs to a part when
+// at least 99% of its weight is on that part's bones; the blend zones
+// between parts (armpits, groin, shoulders) deform into each other by
+// construction and are not tested. Per frame, vertices of a limb are
+// tested against the surfaces of the other parts it can hit (arm -> torso,
+// legs, other arm; leg -> torso, other leg) with the nearest-vertex sign
+// test of layers::geometry: a vertex x whose nearest surface vertex h
+// (normal n) is closer than `max_distance` and has (x - h) . n < 0 lies
+// inside, by depth -(x - h) . n. Bounding boxes skip pairs that cannot
+// touch. Depths are attributed to the limb that should move (an arm, or
+// both legs for leg/leg and leg/torso contact).
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "layers/geometry/mesh.h"
+#include "layers/body/body_model.h"
+
+namespace layers::body {
+
+enum class BodyPart { torso = 0, left_arm = 1, right_arm = 2, left_leg = 3, right_leg = 4 };
+constexpr int kNumBodyParts = 5;
+const char* body_part_name(BodyPart part);
+
+struct IntersectionOptions {
+  double tolerance = 0.004;     // m: deeper than this counts as intersecting
+  double max_distance = 0.06;   // m: farther from the nearest surface vertex is not tested
+};
+
+struct FrameIntersection {
+  double depth = 0.0;                 // deepest penetration found (m)
+  std::array<double, 4> limb_depth{};  // left arm, right arm, left leg, right leg
+  int vertices = 0;                   // vertices deeper than the tolerance
+  bool intersects(double tolerance) const { return depth > tolerance; }
+};
+
+// Keeps a reference to `body`, which must outlive it.
+class SelfIntersection {
+ public:
+  explicit SelfIntersection(const Body& body, IntersectionOptions options = {});
+
+  // `posed`: the skin vertices of one frame (same order as body.rest).
+  FrameIntersection check(const geometry::Points& posed) const;
+
+  const IntersectionOptions& options() const { return options_; }
+  // Per skin vertex its part, or -1 in a blend zone.
+  const std::vector<int>& part() const { return part_; }
+
+ private:
+  const Body& body_;
+  IntersectionOptions options_;
+  std::vector<int> part_;
+  std::array<std::vector<int>, kNumBodyParts> members_;   // core vertices per part
+  std::vector<char> near_blend_;                          // core vertex next to a blend zone
+};
+
+}  // namespace layers::body

@@ -1,0 +1,130 @@
+// Part-based self-intersection test (see self_intersection.h).
+#include "layers/body/self_intersection.h"
+
+#include <algorithm>
+#include <cctype>
+#include <memory>
+
+#include "layers/geometry/nearest.h"
+#include "layers/geometry/normals.h"
+#include "layers/geometry/topology.h"
+
+namespace layers::body {
+namespace {
+
+constexpr float kCoreWeight = 0.99f;
+constexpr int kBlendRings = 2;  // rings of core vertices next to a blend zone that are not trusted as surface
+
+int part_of_joint(const std::string& name) {
+  auto has = [&](const char* s) { return name.find(s) != std::string::npos; };
+  const bool left = name.rfind("Left", 0) == 0 ||
+                    (name.size() > 1 && name[0] == 'L' && std::isupper(static_cast<unsigned char>(name[1])));
+  if (has("Shoulder")) return static_cast<int>(BodyPart::torso);  // clavicles move with the chest
+  if (has("Arm") || has("Hand") || has("Thumb") || has("Finger"))
+    return static_cast<int>(left ? BodyPart::left_arm : BodyPart::right_arm);
+  if (has("UpLeg") || has("Leg") || has("Foot") || has("Toe"))
+    return static_cast<int>(left ? BodyPart::left_leg : BodyPart::right_leg);
+  return static_cast<int>(BodyPart::torso);
+}
+
+struct Box {
+  Eigen::RowVector3f lo = Eigen::RowVector3f::Constant(1e30f), hi = Eigen::RowVector3f::Constant(-1e30f);
+  void add(const Eigen::RowVector3f& p) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  bool contains(const Eigen::RowVector3f& p, float margin) const {
+    return (p.array() >= lo.array() - margin).all() && (p.array() <= hi.array() + margin).all();
+  }
+};
+
+// Limb index (0..3) of a part, -1 for the torso.
+int limb(int part) { return part - 1; }
+
+}  // namespace
+
+const char* body_part_name(BodyPart part) {
+  switch (part) {
+    case BodyPart::torso: return "torso";
+    case BodyPart::left_arm: return "left_arm";
+    case BodyPart::right_arm: return "right_arm";
+    case BodyPart::left_leg: return "left_leg";
+    case BodyPart::right_leg: return "right_leg";
+  }
+  return "?";
+}
+
+SelfIntersection::SelfIntersection(const Body& body, IntersectionOptions options)
+    : body_(body), options_(options) {
+  const int nv = body.num_vertices();
+  std::vector<int> joint_part(body.skeleton.num_joints());
+  for (int j = 0; j < body.skeleton.num_joints(); ++j) joint_part[j] = part_of_joint(body.skeleton.names[j]);
+  part_.assign(nv, -1);
+  for (int v = 0; v < nv; ++v) {
+    std::array<float, kNumBodyParts> share{};
+    for (int k = 0; k < 4; ++k) share[joint_part[body.weights.index(v, k)]] += body.weights.weight(v, k);
+    for (int p = 0; p < kNumBodyParts; ++p)
+      if (share[p] >= kCoreWeight) part_[v] = p;
+  }
+  // Core vertices within a few rings of a blend zone.
+  const geometry::Adjacency adj = geometry::vertex_adjacency(body.rest.faces, nv);
+  std::vector<char> mark(nv, 0);
+  for (int v = 0; v < nv; ++v) mark[v] = part_[v] < 0;
+  for (int ring = 0; ring < kBlendRings; ++ring) {
+    std::vector<char> next = mark;
+    for (int v = 0; v < nv; ++v)
+      if (mark[v])
+        for (const int* n = adj.begin(v); n != adj.end(v); ++n) next[*n] = 1;
+    mark.swap(next);
+  }
+  near_blend_ = mark;
+  for (int v = 0; v < nv; ++v)
+    if (part_[v] >= 0) members_[part_[v]].push_back(v);
+}
+
+FrameIntersection SelfIntersection::check(const geometry::Points& posed) const {
+  FrameIntersection out;
+  const geometry::Points normals = geometry::vertex_normals(posed, body_.rest.faces);
+  std::array<Box, kNumBodyParts> box;
+  for (int p = 0; p < kNumBodyParts; ++p)
+    for (int v : members_[p]) box[p].add(posed.row(v));
+
+  // Which surfaces each part's vertices are tested against.
+  static const std::vector<std::pair<int, int>> pairs = {
+      {1, 0}, {2, 0}, {1, 3}, {1, 4}, {2, 3}, {2, 4}, {1, 2}, {3, 4}, {3, 0}, {4, 0}};
+  const float gate = static_cast<float>(options_.max_distance);
+  std::array<std::unique_ptr<geometry::PointIndex>, kNumBodyParts> index;
+  for (const auto& [a, b] : pairs) {
+    const bool apart = (box[a].lo.array() > box[b].hi.array() + gate).any() ||
+                       (box[b].lo.array() > box[a].hi.array() + gate).any();
+    if (apart) continue;
+    if (!index[b]) {
+      geometry::Points pts(static_cast<Eigen::Index>(members_[b].size()), 3);
+      for (std::size_t i = 0; i < members_[b].size(); ++i) pts.row(static_cast<Eigen::Index>(i)) = posed.row(members_[b][i]);
+      index[b] = std::make_unique<geometry::PointIndex>(std::move(pts));
+    }
+    for (int v : members_[a]) {
+      const Eigen::RowVector3f x = posed.row(v);
+      if (!box[b].contains(x, gate)) continue;
+      const geometry::Neighbour n = index[b]->nearest(x);
+      if (n.index < 0 || n.distance > gate) continue;
+      const int h = members_[b][n.index];
+      if (near_blend_[h]) continue;
+      const double offset = static_cast<double>((x - posed.row(h)).dot(normals.row(h)));
+      if (offset >= 0.0) continue;
+      const double depth = -offset;
+      if (depth > options_.tolerance) ++out.vertices;
+      out.depth = std::max(out.depth, depth);
+      // Arms move for any contact; legs share leg/leg and leg/torso contact.
+      if (a == 1 || a == 2) {
+        out.limb_depth[limb(a)] = std::max(out.limb_depth[limb(a)], depth);
+      } else {
+        out.limb_depth[2] = std::max(out.limb_depth[2], depth);
+        out.limb_depth[3] = std::max(out.limb_depth[3], depth);
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace layers::body

@@ -1,0 +1,82 @@
+// layers/motion/body_config.h -- the typed config of the body-and-motion
+// part of a scene (embedded by the generator config, used by the `layers
+// body` verb), shape sampling ranges, and a one-call generator.
+//
+// YAML example:
+//   body:
+//     shape: {gender: 0.3, muscle: 0.5, weight: 0.6, height: 0.45}
+//     motion: procedural:walk      # or bvh:<path>, or a path ending in .bvh
+//     frames: 120                  # 0 = the whole BVH clip (+ transition)
+//     seed: 7
+//     transition_frames: 15        # blend in from the T-pose
+//     intersection_tolerance_mm: 4
+//     on_intersection: longest_run # or drop, keep
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "layers/core/config.h"
+#include "layers/body/body_model.h"
+#include "layers/motion/body_sequence.h"
+#include "layers/motion/motion.h"
+
+namespace layers::motion {
+
+struct BodyMotionConfig {
+  body::ShapeParams shape;
+  std::string motion = "procedural:walk";
+  int frames = 120;
+  std::uint64_t seed = 0;
+  int transition_frames = 15;
+  double intersection_tolerance_mm = 4.0;
+  std::string on_intersection = "longest_run";
+  std::string assets;  // asset root; "" = $LAYERS_ASSETS or the build-time default
+
+  template <class V>
+  void visit(V& v) {
+    v("shape", shape);
+    v("motion", motion, cfg::opt().help("procedural:<kind>, bvh:<path> or a .bvh path"));
+    v("frames", frames, cfg::opt().min(0).help("total frames at 30 fps, transition included; 0 = whole clip"));
+    v("seed", seed, cfg::opt().help("randomises procedural speed, amplitude and choices"));
+    v("transition_frames", transition_frames, cfg::opt().min(0).help("frames blending in from the T-pose"));
+    v("intersection_tolerance_mm", intersection_tolerance_mm, cfg::opt().range(0.5, 50).help("allowed self-intersection depth"));
+    v("on_intersection", on_intersection, cfg::opt().choices({"longest_run", "drop", "keep"}));
+    v("assets", assets, cfg::opt().help("asset root (default: $LAYERS_ASSETS, then <prefix>/share/layers/assets, then <source>/assets)"));
+  }
+};
+
+// Ranges [lo, hi] within which shapes are drawn per sequence.
+struct ShapeSampling {
+  std::vector<double> gender{0.0, 1.0};
+  std::vector<double> muscle{0.25, 0.75};
+  std::vector<double> weight{0.25, 0.75};
+  std::vector<double> height{0.3, 0.7};
+
+  template <class V>
+  void visit(V& v) {
+    v("gender", gender, cfg::opt().range(0, 1).help("[lo, hi]"));
+    v("muscle", muscle, cfg::opt().range(0, 1).help("[lo, hi]"));
+    v("weight", weight, cfg::opt().range(0, 1).help("[lo, hi]"));
+    v("height", height, cfg::opt().range(0, 1).help("[lo, hi] (0.5 = average, 1.67 m)"));
+  }
+};
+
+// Uniform draws within the ranges; InputError for a range that is not
+// two numbers lo <= hi.
+body::ShapeParams sample_shape(const ShapeSampling& ranges, std::uint64_t seed);
+
+MotionSpec motion_spec(const BodyMotionConfig& config);
+SequenceOptions sequence_options(const BodyMotionConfig& config);
+
+struct GeneratedBody {
+  body::Body body;
+  BodySequence sequence;
+};
+
+// Loads the model (cached), builds the shaped body, the motion and the
+// checked per-frame arrays.
+GeneratedBody generate_body(const BodyMotionConfig& config);
+
+}  // namespace layers::motion

@@ -1,0 +1,112 @@
+// Intersection checks and repair over a motion, and the per-frame arrays (see body_sequence.h).
+#include "layers/motion/body_sequence.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "intersection_repair.h"
+#include "layers/core/error.h"
+#include "layers/body/pose_body.h"
+#include "layers/body/skinning.h"
+
+namespace layers::motion {
+namespace {
+
+body::FrameIntersection check_pose(const body::Body& body, const body::SelfIntersection& si, const body::Pose& pose) {
+  geometry::Points v;
+  body::skin(body.rest.vertices, body.weights, body.skeleton, body::forward_kinematics(body.skeleton, pose), v);
+  return si.check(v);
+}
+
+}  // namespace
+
+BodySequence generate_body_sequence(const body::Body& body, const MotionSource& motion, const SequenceOptions& options) {
+  const std::string& policy = options.on_intersection;
+  if (policy != "longest_run" && policy != "drop" && policy != "keep")
+    throw InputError("body", "on_intersection", "longest_run, drop or keep", "'" + policy + "'");
+  const body::Skeleton& sk = body.skeleton;
+  const body::SelfIntersection si(body, options.intersection);
+  const double tol = options.intersection.tolerance;
+  const int n = motion.num_frames();
+
+  std::vector<body::Pose> poses(n);
+  std::vector<body::FrameIntersection> found(n);
+  IntersectionReport report;
+  report.frames = n;
+  for (int f = 0; f < n; ++f) {
+    poses[f] = motion.pose(f);
+    found[f] = check_pose(body, si, poses[f]);
+    report.worst_before = std::max(report.worst_before, found[f].depth);
+    if (found[f].intersects(tol)) ++report.intersecting;
+  }
+
+  if (options.resolve && report.intersecting > 0) {
+    std::vector<char> was_bad(n);
+    for (int f = 0; f < n; ++f) was_bad[f] = found[f].intersects(tol);
+    repair_intersections(body, si, {options.max_arm_correction, options.max_leg_correction}, poses, found);
+    for (int f = 0; f < n; ++f) report.resolved += was_bad[f] && !found[f].intersects(tol);
+  }
+
+  std::vector<char> bad(n, 0);
+  for (int f = 0; f < n; ++f) {
+    bad[f] = found[f].intersects(tol);
+    report.remaining += bad[f];
+    report.worst_after = std::max(report.worst_after, found[f].depth);
+  }
+
+  // Which frames are written.
+  std::vector<int> keep;
+  if (policy == "keep") {
+    for (int f = 0; f < n; ++f) keep.push_back(f);
+  } else if (policy == "drop") {
+    for (int f = 0; f < n; ++f)
+      if (!bad[f]) keep.push_back(f);
+  } else {
+    int best_start = 0, best_len = 0;
+    for (int f = 0; f < n;) {
+      if (bad[f]) {
+        ++f;
+        continue;
+      }
+      int g = f;
+      while (g < n && !bad[g]) ++g;
+      if (g - f > best_len) {
+        best_len = g - f;
+        best_start = f;
+      }
+      f = g;
+    }
+    for (int f = best_start; f < best_start + best_len; ++f) keep.push_back(f);
+  }
+  report.dropped = n - static_cast<int>(keep.size());
+  if (keep.empty())
+    throw InputError("motion", motion.describe(), "at least one frame without body self-intersection",
+                     "all " + std::to_string(n) + " frames intersect (deepest " +
+                         std::to_string(static_cast<int>(std::round(report.worst_after * 1000))) + " mm)");
+
+  BodySequence seq;
+  seq.motion = motion.describe();
+  seq.num_frames = static_cast<int>(keep.size());
+  seq.num_vertices = body.num_vertices();
+  seq.num_joints = sk.num_joints();
+  seq.intersection = report;
+  seq.source_frame = keep;
+  const std::size_t nv = static_cast<std::size_t>(seq.num_vertices), nj = static_cast<std::size_t>(seq.num_joints);
+  seq.positions.resize(keep.size() * nv * 3);
+  seq.root.resize(keep.size() * 3);
+  seq.root_rot.resize(keep.size() * 4);
+  seq.joints.resize(keep.size() * nj * 12);
+  for (std::size_t i = 0; i < keep.size(); ++i) {
+    const body::BodyFrame frame = body::pose_body(body, poses[keep[i]]);
+    std::copy(frame.vertices.data(), frame.vertices.data() + nv * 3, seq.positions.data() + i * nv * 3);
+    for (int k = 0; k < 3; ++k) seq.root[i * 3 + k] = static_cast<float>(frame.joints.position[0][k]);
+    const body::Quat& q = frame.joints.rotation[0];
+    const float wxyz[4] = {static_cast<float>(q.w()), static_cast<float>(q.x()), static_cast<float>(q.y()),
+                           static_cast<float>(q.z())};
+    std::copy(wxyz, wxyz + 4, seq.root_rot.data() + i * 4);
+    body::joint_matrices(frame.joints, seq.joints.data() + i * nj * 12);
+  }
+  return seq;
+}
+
+}  // namespace layers::motion

@@ -1,0 +1,188 @@
+// Smooth repair of self-intersecting frames (see intersection_repair.h).
+#include "intersection_repair.h"
+
+#include <algorithm>
+#include <array>
+
+#include "layers/body/skinning.h"
+#include "smoothing.h"
+
+namespace layers::motion {
+namespace {
+
+constexpr double kStep = 0.05;         // rad per search step
+constexpr double kSpreadSigma = 2.0;   // frames: corrections spread over about 3 sigma each side
+constexpr int kRounds = 3;             // search / spread rounds
+constexpr int kRunGap = 12;            // frames: affected frames closer than this share one way
+
+// Limb roots (left arm, right arm, left leg, right leg) and the joint whose
+// axes the corrections turn about (chest for arms, pelvis for legs).
+struct Limbs {
+  std::array<int, 4> root, frame;
+  explicit Limbs(const body::Skeleton& sk)
+      : root{sk.require("LeftArm"), sk.require("RightArm"), sk.require("LeftUpLeg"), sk.require("RightUpLeg")},
+        frame{sk.require("Spine1"), sk.require("Spine1"), 0, 0} {}
+};
+
+// Correction channels: which limb turns, about which axis of its frame
+// (z forward: abduction; x lateral: swing), in which direction.
+struct Channel {
+  int limb;
+  int axis;
+  double sign;
+};
+constexpr int kChannels = 8;
+constexpr Channel kChannel[kChannels] = {
+    {0, 2, +1.0}, {1, 2, -1.0}, {2, 2, +1.0}, {3, 2, -1.0},  // abduct each limb outward
+    {0, 0, -1.0}, {1, 0, -1.0},                              // swing an arm forward
+    {0, 0, +1.0}, {1, 0, +1.0},                              // swing an arm backward
+};
+using Corrections = std::array<double, kChannels>;
+constexpr int kWays = 3;
+// Channel of arm a (0 left, 1 right) for each way: abduct, forward, backward.
+constexpr int kArmChannel[kWays][2] = {{0, 1}, {4, 5}, {6, 7}};
+
+body::Pose corrected(const body::Skeleton& sk, const Limbs& limbs, const body::Pose& pose, const Corrections& c) {
+  if (std::all_of(c.begin(), c.end(), [](double x) { return x == 0.0; })) return pose;
+  const body::JointTransforms t = body::forward_kinematics(sk, pose);
+  body::Pose out = pose;
+  for (int ch = 0; ch < kChannels; ++ch) {
+    if (c[ch] == 0.0) continue;
+    const Channel& k = kChannel[ch];
+    const int j = limbs.root[k.limb];
+    const body::Quat parent = t.rotation[sk.parents[j]];
+    const body::Vec3 axis = t.rotation[limbs.frame[k.limb]] * body::Vec3::Unit(k.axis);
+    out.local[j] = (parent.conjugate() * body::axis_angle(axis, k.sign * c[ch]) * parent * out.local[j]).normalized();
+  }
+  return out;
+}
+
+class Repair {
+ public:
+  Repair(const body::Body& body, const body::SelfIntersection& si, const RepairLimits& limits, const std::vector<body::Pose>& original)
+      : body_(body), si_(si), limits_(limits), limbs_(body.skeleton), original_(original) {}
+
+  body::FrameIntersection check(int f, const Corrections& c) const {
+    geometry::Points v;
+    const body::Pose p = corrected(body_.skeleton, limbs_, original_[f], c);
+    body::skin(body_.rest.vertices, body_.weights, body_.skeleton, body::forward_kinematics(body_.skeleton, p), v);
+    return si_.check(v);
+  }
+  body::Pose pose(int f, const Corrections& c) const { return corrected(body_.skeleton, limbs_, original_[f], c); }
+
+  // Steps the channels of the offending limbs (arms the way given per
+  // arm) until frame f is clean or at the limits; true when clean.
+  bool search(int f, Corrections& c, body::FrameIntersection r, const std::array<int, 2>& way) const {
+    const double tol = si_.options().tolerance;
+    while (r.intersects(tol)) {
+      bool moved = false;
+      for (int limb = 0; limb < 4; ++limb) {
+        if (r.limb_depth[limb] <= tol) continue;
+        const int ch = limb < 2 ? kArmChannel[way[limb]][limb] : limb;
+        const double limit = limb < 2 ? limits_.arm : limits_.leg;
+        if (c[ch] + kStep <= limit + 1e-9) {
+          c[ch] += kStep;
+          moved = true;
+        }
+      }
+      if (!moved) return false;
+      r = check(f, c);
+    }
+    return true;
+  }
+
+ private:
+  const body::Body& body_;
+  const body::SelfIntersection& si_;
+  RepairLimits limits_;
+  Limbs limbs_;
+  const std::vector<body::Pose>& original_;
+};
+
+// Runs of affected frames per arm: [first, last] with gaps of at most
+// kRunGap unaffected frames inside.
+std::vector<std::pair<int, int>> runs(const std::vector<char>& affected) {
+  std::vector<std::pair<int, int>> out;
+  const int n = static_cast<int>(affected.size());
+  for (int f = 0; f < n; ++f) {
+    if (!affected[f]) continue;
+    if (!out.empty() && f - out.back().second <= kRunGap) out.back().second = f;
+    else out.emplace_back(f, f);
+  }
+  return out;
+}
+
+}  // namespace
+
+void repair_intersections(const body::Body& body, const body::SelfIntersection& checker, const RepairLimits& limits,
+                          std::vector<body::Pose>& poses, std::vector<body::FrameIntersection>& found) {
+  const double tol = checker.options().tolerance;
+  const int n = static_cast<int>(poses.size());
+  const std::vector<body::Pose> original = poses;
+  const Repair repair(body, checker, limits, original);
+
+  // Which way each arm goes: per run of frames where it intersects, the
+  // way (abduct, forward, backward) that alone clears most of them.
+  std::array<std::vector<int>, 2> way{std::vector<int>(n, 0), std::vector<int>(n, 0)};
+  // clears[f][w]: 1 when way w alone clears frame f, 0 when not, -1 untried.
+  std::vector<std::array<int, kWays>> clears(n, {-1, -1, -1});
+  auto try_way = [&](int f, int w) {
+    if (clears[f][w] < 0) {
+      Corrections c{};
+      clears[f][w] = repair.search(f, c, found[f], {w, w}) ? 1 : 0;
+    }
+    return clears[f][w] == 1;
+  };
+  for (int a = 0; a < 2; ++a) {
+    std::vector<char> affected(n);
+    for (int f = 0; f < n; ++f) affected[f] = found[f].limb_depth[a] > tol;
+    for (const auto& [first, last] : runs(affected)) {
+      // Abduction when it clears the whole run; else the best scoring way.
+      std::array<int, kWays> score{};
+      int frames = 0;
+      for (int f = first; f <= last; ++f)
+        if (affected[f]) {
+          ++frames;
+          score[0] += try_way(f, 0);
+        }
+      if (score[0] < frames)
+        for (int w = 1; w < kWays; ++w)
+          for (int f = first; f <= last; ++f) score[w] += affected[f] && try_way(f, w);
+      const int chosen = static_cast<int>(std::max_element(score.begin(), score.end()) - score.begin());
+      for (int f = first; f <= last; ++f) way[a][f] = chosen;
+    }
+  }
+
+  std::array<std::vector<double>, kChannels> need, applied;
+  for (int ch = 0; ch < kChannels; ++ch) {
+    need[ch].assign(n, 0.0);
+    applied[ch].assign(n, 0.0);
+  }
+  auto at = [&](const std::array<std::vector<double>, kChannels>& v, int f) {
+    Corrections c;
+    for (int ch = 0; ch < kChannels; ++ch) c[ch] = v[ch][f];
+    return c;
+  };
+  for (int round = 0; round < kRounds; ++round) {
+    bool grew = false;
+    for (int f = 0; f < n; ++f) {
+      if (!found[f].intersects(tol)) continue;
+      Corrections c = at(applied, f);
+      repair.search(f, c, found[f], {way[0][f], way[1][f]});
+      for (int ch = 0; ch < kChannels; ++ch) {
+        grew = grew || c[ch] > need[ch][f] + 1e-12;
+        need[ch][f] = std::max(need[ch][f], c[ch]);
+      }
+    }
+    if (!grew) break;
+    for (int ch = 0; ch < kChannels; ++ch) applied[ch] = upper_envelope(need[ch], kSpreadSigma);
+    for (int f = 0; f < n; ++f) {
+      const Corrections c = at(applied, f);
+      if (std::all_of(c.begin(), c.end(), [](double x) { return x < 1e-6; })) continue;
+      poses[f] = repair.pose(f, c);
+      found[f] = repair.check(f, c);
+    }
+  }
+}
+
+}  // namespace layers::motion

@@ -1,0 +1,26 @@
+// intersection_repair.h (private to layers::motion) -- repairs body
+// self-intersections over a pose sequence: the offending arm is abducted
+// or swung forward / backward (one way per run of affected frames: the
+// way that alone clears most of them), the legs abducted, each by the smallest
+// angle (in 0.05 rad steps) that clears a frame; the per-frame angles are
+// spread over neighbouring frames with a smooth envelope that stays above
+// them, applied to the original poses, and the search repeats for frames
+// that still fail.
+#pragma once
+
+#include <vector>
+
+#include "layers/body/self_intersection.h"
+
+namespace layers::motion {
+
+struct RepairLimits {
+  double arm = 0.9;  // rad
+  double leg = 0.35;
+};
+
+// `found` holds the check of every pose and is updated with the result.
+void repair_intersections(const body::Body& body, const body::SelfIntersection& checker, const RepairLimits& limits,
+                          std::vector<body::Pose>& poses, std::vector<body::FrameIntersection>& found);
+
+}  // namespace layers::motion

@@ -1,0 +1,119 @@
+// Body self-intersection: clean rest poses, detection of an arm pushed into
+// the torso, repair by abduction, and the frame policies.
+#include <gtest/gtest.h>
+
+#include "layers/core/error.h"
+#include "layers/body/pose_body.h"
+#include "layers/motion/body_sequence.h"
+#include "layers/motion/procedural.h"
+#include "layers/body/self_intersection.h"
+#include "body_fixture.h"
+
+namespace layers::motion {
+namespace {
+
+using body::test::shape;
+
+// The rest pose with the left upper arm turned `angle` rad toward the body
+// (about the forward axis).
+body::Pose arm_in(const body::Body& b, double angle) {
+  body::Pose p = body::rest_pose(b.skeleton);
+  p.local[b.skeleton.require("LeftArm")] = body::rot_z(-angle);
+  return p;
+}
+
+TEST(SelfIntersection, RestPosesAreClean) {
+  for (const body::ShapeParams& s : {shape(0.5, 0.5, 0.5, 0.5), shape(0, 0, 0, 0), shape(1, 1, 1, 1), shape(0, 1, 1, 0.5)}) {
+    const body::Body& b = body::test::body(s);
+    const body::SelfIntersection si(b);
+    const body::FrameIntersection r = si.check(b.rest.vertices);
+    EXPECT_LT(r.depth, si.options().tolerance) << s.gender << " " << s.muscle << " " << s.weight;
+  }
+}
+
+TEST(SelfIntersection, PartsCoverTheBody) {
+  const body::Body& b = body::test::body();
+  const body::SelfIntersection si(b);
+  std::array<int, body::kNumBodyParts + 1> count{};
+  for (int p : si.part()) ++count[p + 1];
+  for (int p = 1; p <= body::kNumBodyParts; ++p) EXPECT_GT(count[p], 1000) << body::body_part_name(static_cast<body::BodyPart>(p - 1));
+  EXPECT_LT(count[0], b.num_vertices() / 5);  // blend zones stay small
+}
+
+TEST(SelfIntersection, DetectsAnArmInTheTorso) {
+  const body::Body& b = body::test::body();
+  const body::SelfIntersection si(b);
+  const body::FrameIntersection r = si.check(body::pose_body(b, arm_in(b, 0.9)).vertices);
+  EXPECT_GT(r.depth, 0.01);
+  EXPECT_GT(r.limb_depth[0], 0.01);  // left arm
+  EXPECT_LT(r.limb_depth[1], 1e-9);  // right arm untouched
+  EXPECT_GT(r.vertices, 10);
+}
+
+TEST(SelfIntersection, SequencesResolveSmallIntersections) {
+  const body::Body& b = body::test::body();
+  // 40 frames: the left arm sinks into the torso (a little) and back.
+  std::vector<body::Pose> poses;
+  for (int f = 0; f < 40; ++f) poses.push_back(arm_in(b, 0.95 * std::sin(M_PI * f / 39.0)));
+  const PoseTrack motion(poses, "test:arm");
+  const BodySequence seq = generate_body_sequence(b, motion);
+  EXPECT_GT(seq.intersection.intersecting, 0);
+  EXPECT_EQ(seq.intersection.remaining, 0);
+  EXPECT_EQ(seq.num_frames, 40);
+  EXPECT_LE(seq.intersection.worst_after, 0.004);
+  // Every written frame is clean.
+  const body::SelfIntersection si(b);
+  geometry::Points v(b.num_vertices(), 3);
+  for (int f = 0; f < seq.num_frames; ++f) {
+    std::copy(seq.positions.begin() + static_cast<std::ptrdiff_t>(f) * b.num_vertices() * 3,
+              seq.positions.begin() + static_cast<std::ptrdiff_t>(f + 1) * b.num_vertices() * 3, v.data());
+    EXPECT_LE(si.check(v).depth, 0.004) << "frame " << f;
+  }
+}
+
+TEST(SelfIntersection, PoliciesForFramesThatStayIntersecting) {
+  const body::Body& b = body::test::body();
+  // Frames 10..14 push the arm deep into the torso (beyond any repair).
+  std::vector<body::Pose> poses;
+  for (int f = 0; f < 30; ++f) poses.push_back(f >= 10 && f < 15 ? arm_in(b, 2.0) : body::rest_pose(b.skeleton));
+  const PoseTrack motion(poses, "test:deep");
+  SequenceOptions o;
+  o.resolve = false;
+  o.on_intersection = "longest_run";
+  BodySequence seq = generate_body_sequence(b, motion, o);
+  EXPECT_EQ(seq.num_frames, 15);
+  EXPECT_EQ(seq.source_frame.front(), 15);
+  EXPECT_EQ(seq.intersection.dropped, 15);
+  o.on_intersection = "drop";
+  seq = generate_body_sequence(b, motion, o);
+  EXPECT_EQ(seq.num_frames, 25);
+  EXPECT_EQ(seq.source_frame[10], 15);
+  o.on_intersection = "keep";
+  seq = generate_body_sequence(b, motion, o);
+  EXPECT_EQ(seq.num_frames, 30);
+  EXPECT_EQ(seq.intersection.remaining, 5);
+  EXPECT_NEAR(seq.intersection.share_intersecting(), 5.0 / 30.0, 1e-12);
+  o.on_intersection = "sometimes";
+  EXPECT_THROW(generate_body_sequence(b, motion, o), InputError);
+}
+
+TEST(SelfIntersection, SequenceArraysHaveTheH5Shapes) {
+  const body::Body& b = body::test::body();
+  const auto m = make_procedural(sample_procedural("wave", 20, 1), b);
+  const BodySequence seq = generate_body_sequence(b, *m);
+  ASSERT_EQ(seq.num_frames, 20);
+  EXPECT_EQ(seq.positions.size(), 20u * b.num_vertices() * 3);
+  EXPECT_EQ(seq.root.size(), 20u * 3);
+  EXPECT_EQ(seq.root_rot.size(), 20u * 4);
+  EXPECT_EQ(seq.joints.size(), 20u * 31 * 12);
+  // root_rot is a unit quaternion; joints[.., 0, :, 3] is the root position.
+  for (int f = 0; f < 20; ++f) {
+    double n = 0.0;
+    for (int k = 0; k < 4; ++k) n += seq.root_rot[4 * f + k] * seq.root_rot[4 * f + k];
+    EXPECT_NEAR(n, 1.0, 1e-5);
+    for (int k = 0; k < 3; ++k) EXPECT_FLOAT_EQ(seq.joints[f * 31 * 12 + 4 * k + 3], seq.root[3 * f + k]);
+  }
+}
+
+}  // namespace
+}  // namespace layers::motion
