@@ -8,7 +8,7 @@
 #include "layers/core/atomic_file.h"
 #include "layers/core/error.h"
 #include "layers/generate/generator_config.h"
-#include "layers/train/study.h"
+#include "layers/study/config.h"
 #include "layers/zoo/model_config.h"
 #include "plugins.h"
 #include "verbs.h"
@@ -47,7 +47,7 @@ VerbRun register_config(CLI::App& app, const Global&) {
     std::string text;
     switch (kind_of(tree)) {
       case ConfigKind::Study: {
-        const train::StudyConfig study = train::load_study(args->config.file, args->config.sets);
+        const study::StudyConfig study = study::load_study(args->config.file, args->config.sets);
         text = cfg::to_yaml(cfg::to_node(study));
         break;
       }

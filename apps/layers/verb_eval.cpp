@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "config_loading.h"
+#include "layers/data/run_layout.h"
 #include "layers/train/evaluator.h"
 #include "plugins.h"
 #include "verbs.h"
@@ -52,8 +53,9 @@ VerbRun register_eval(CLI::App& app, const Global&) {
                   percent(m.h_collision).c_str(), percent(m.l_collision).c_str());
     std::printf("ground truth: H-coll %.2f%%, L-coll %.2f%%\n", 100.0 * r.truth_h_collision,
                 std::isfinite(r.truth_l_collision) ? 100.0 * r.truth_l_collision : 0.0);
-    std::printf("written: %s/metrics.json, sequences.csv%s\n", r.out_dir.c_str(),
-                loaded.typed.eval.save_predictions ? ", predictions.h5" : "");
+    std::printf("written: %s/%s, %s%s%s\n", r.out_dir.c_str(), data::run_layout::kMetrics, data::run_layout::kSequences,
+                loaded.typed.eval.save_predictions ? ", " : "",
+                loaded.typed.eval.save_predictions ? data::run_layout::kPredictions : "");
     return static_cast<int>(kOk);
   };
 }

@@ -8,6 +8,7 @@
 #include "config_loading.h"
 #include "layers/data/dataset.h"
 #include "layers/data/export.h"
+#include "layers/data/run_layout.h"
 #include "layers/train/evaluator.h"
 #include "plugins.h"
 #include "verbs.h"
@@ -38,8 +39,8 @@ VerbRun register_rollout(CLI::App& app, const Global&) {
     std::printf("%s: %lld frames predicted, error %s mm, %lld diverged\n", r.model.c_str(),
                 static_cast<long long>(r.frames), zoo::format(r.overall.error_mm).c_str(),
                 static_cast<long long>(r.diverged));
-    const std::string predictions = (std::filesystem::path(r.out_dir) / "predictions.h5").string();
-    std::printf("written: %s, %s/metrics.json\n", predictions.c_str(), r.out_dir.c_str());
+    const std::string predictions = (std::filesystem::path(r.out_dir) / data::run_layout::kPredictions).string();
+    std::printf("written: %s, %s/%s\n", predictions.c_str(), r.out_dir.c_str(), data::run_layout::kMetrics);
     if (!a->format.empty()) {
       const data::ExportFormat format = data::parse_export_format(a->format, "--export");
       const data::Dataset predicted = data::Dataset::open(predictions);

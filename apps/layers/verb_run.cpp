@@ -1,6 +1,6 @@
 // `layers run <study.yaml>`: a whole study -- dataset, then train, eval and
 // bench for each experiment, then the report -- skipping the steps whose
-// outputs are current (libs/train/include/layers/train/study.h,
+// outputs are current (libs/study/include/layers/study/study.h,
 // docs/studies.md). This file binds the study's steps to the libraries, all
 // in-process: layers::generate for the dataset, layers::train for
 // train/eval/bench and layers::report (write_report) for the report.
@@ -14,7 +14,7 @@
 #include "layers/report/report.h"
 #include "layers/train/bench.h"
 #include "layers/train/evaluator.h"
-#include "layers/train/study.h"
+#include "layers/study/study.h"
 #include "layers/train/trainer.h"
 #include "plugins.h"
 #include "verbs.h"
@@ -24,7 +24,7 @@ namespace fs = std::filesystem;
 namespace layers::app {
 namespace {
 
-bool make_dataset(const train::StudyDataset& d) {
+bool make_dataset(const study::StudyDataset& d) {
   if (d.config.empty()) {  // a finished dataset, used as it is
     for (const char* f : {"dataset.yaml", "splits.yaml"})
       if (!fs::is_regular_file(fs::path(d.folder) / f))
@@ -62,10 +62,10 @@ std::string percent(const zoo::MeanStd& m) {
   return buf;
 }
 
-train::StudyActions library_actions() {
-  train::StudyActions a;
+study::StudyActions library_actions() {
+  study::StudyActions a;
   a.dataset = make_dataset;
-  a.train = [](const train::StudyRun& run, bool resume) {
+  a.train = [](const study::StudyRun& run, bool resume) {
     train::TrainOptions options;
     options.resume = resume;
     const train::TrainReport r = train::run_training(run.config, load_plugins().registry, options);
@@ -73,7 +73,7 @@ train::StudyActions library_actions() {
                 static_cast<long long>(r.steps), resume ? ", resumed" : "",
                 static_cast<long long>(r.trainable_parameters));
   };
-  a.eval = [](const train::StudyRun& run, const std::string& split) {
+  a.eval = [](const study::StudyRun& run, const std::string& split) {
     train::EvalOptions options;
     options.checkpoint = run.checkpoint;
     options.split = split;
@@ -83,18 +83,13 @@ train::StudyActions library_actions() {
                 percent(r.overall.h_collision).c_str(), percent(r.overall.l_collision).c_str(),
                 static_cast<long long>(r.diverged), static_cast<long long>(r.sequences), r.ms_per_frame);
   };
-  a.bench = [](const train::StudyRun& run, const train::StudyBench& b) {
-    train::BenchOptions options;
-    options.levels = b.levels;
-    options.min_time = b.min_time;
-    options.train = b.train;
-    options.far_body = b.far_body;
+  a.bench = [](const study::StudyRun& run, const train::BenchOptions& options) {
     const train::BenchReport r = train::run_bench(run.config, load_plugins().registry, options);
     if (!r.rows.empty())
       std::printf("  %s: %.2f ms/frame at %lld garment vertices -> %s\n", run.name.c_str(), r.rows.front().ms_per_frame,
                   static_cast<long long>(r.rows.front().garment_vertices), r.out.c_str());
   };
-  a.report = [](const train::StudyConfig& study, const std::vector<std::string>& dirs, const std::string& out) {
+  a.report = [](const study::StudyConfig& study, const std::vector<std::string>& dirs, const std::string& out) {
     report::ReportInputs inputs;
     inputs.runs = dirs;
     inputs.title = study.report.title.empty() ? "Study " + study.name : study.report.title;
@@ -119,7 +114,7 @@ VerbRun register_run(CLI::App& app, const Global&) {
   struct Args {
     std::string file;
     std::vector<std::string> sets;
-    train::StudyOptions options;
+    study::StudyOptions options;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("study", a->file, "study file")->required()->check(CLI::ExistingFile);
@@ -128,8 +123,8 @@ VerbRun register_run(CLI::App& app, const Global&) {
   cmd->add_flag("--force", a->options.force, "rerun every step of this study, current or not");
   cmd->add_flag("--dry-run", a->options.dry_run, "print which steps are current and which would run");
   return [a]() {
-    const train::StudyResult r = train::run_study(a->file, a->sets, library_actions(), a->options);
-    using S = train::StepStatus;
+    const study::StudyResult r = study::run_study(a->file, a->sets, library_actions(), a->options);
+    using S = study::StepStatus;
     std::printf("%zu steps ran, %zu current", r.count(S::Ran), r.count(S::Current));
     if (a->options.dry_run) std::printf(", %zu would run", r.count(S::WouldRun));
     if (r.count(S::Failed) || r.count(S::Blocked))

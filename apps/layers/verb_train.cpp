@@ -12,6 +12,7 @@
 #include "config_loading.h"
 #include "layers/core/atomic_file.h"
 #include "layers/core/error.h"
+#include "layers/data/run_layout.h"
 #include "layers/train/trainer.h"
 #include "layers/zoo/model_config.h"
 #include "plugins.h"
@@ -30,9 +31,7 @@ std::vector<std::string> run_results_in(const fs::path& dir) {
   if (!fs::is_directory(dir, ec)) return found;
   for (const auto& e : fs::directory_iterator(dir, ec)) {
     const std::string name = e.path().filename().string();
-    if (name == "checkpoint-last.pt" || name == "checkpoint-best.pt" || name == "bench.json" ||
-        name.rfind("eval-", 0) == 0)
-      found.push_back(name);
+    if (data::run_layout::is_result(name)) found.push_back(name);
   }
   std::sort(found.begin(), found.end());
   return found;
@@ -89,7 +88,7 @@ VerbRun register_train(CLI::App& app, const Global&) {
       std::printf("moved the old run %s aside to %s\n", out.string().c_str(), aside.string().c_str());
     }
     fs::create_directories(out);
-    write_text_atomic((out / "experiment.yaml").string(), cfg::to_yaml(loaded.resolved));
+    write_text_atomic((out / data::run_layout::kExperiment).string(), cfg::to_yaml(loaded.resolved));
     train::TrainOptions options;
     options.resume = a->resume;
     options.progress = !a->quiet;

@@ -29,7 +29,7 @@
 #include "layers/core/error.h"
 #include "layers/core/progress.h"
 #include "layers/core/text_file.h"
-#include "layers/train/study.h"
+#include "layers/study/runs.h"
 #include "layers/zoo/plugin_loader.h"
 #include "layers/zoo/registry.h"
 #include "regression_paths.h"
@@ -88,9 +88,9 @@ struct Regression {
       zoo::Registry registry;
       const fs::path bin_plugins = fs::path(test::layers_bin()).parent_path() / "plugins";
       zoo::load_all(registry, {test::plugin_dir(), bin_plugins.string()});
-      const train::StudyConfig study = train::load_study(study_file());
+      const study::StudyConfig config = study::load_study(study_file());
       std::string only;
-      for (const train::StudyRun& run : train::resolve_runs(study)) {
+      for (const study::StudyRun& run : study::resolve_runs(config)) {
         const cfg::Node* name = run.config.model.find("name");
         r.model_of[run.name] = name ? name->scalar : "";
         if (name && registry.contains(name->scalar)) {
@@ -125,7 +125,7 @@ struct Regression {
 std::vector<std::string> study_runs() {
   try {
     std::vector<std::string> names;
-    for (const auto& e : train::load_study(study_file()).experiments) names.push_back(e.name);
+    for (const auto& e : study::load_study(study_file()).experiments) names.push_back(e.name);
     return names;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "test_regression: cannot read %s: %s\n", study_file().c_str(), e.what());

@@ -7,6 +7,7 @@
 
 #include "layers/core/atomic_file.h"
 #include "layers/core/error.h"
+#include "layers/data/run_layout.h"
 #include "layers/report/charts.h"
 #include "layers/report/gnuplot.h"
 #include "layers/report/tables.h"
@@ -96,8 +97,8 @@ ReportResult write_report(const std::vector<RunResults>& runs, const ReportInput
   std::vector<std::string> chart_files;
   for (const std::string& c : result.charts) chart_files.push_back(fs::relative(c, out_dir).string());
   write("summary.json", summary_json(inputs.title, runs, content.problems, chart_files));
-  result.report = (fs::path(out_dir) / "report.md").string();
-  write("report.md", report_markdown(content));
+  result.report = (fs::path(out_dir) / data::run_layout::kReport).string();
+  write(data::run_layout::kReport, report_markdown(content));
   for (std::size_t i : runs_front_order(runs)) result.pareto_front.push_back(runs[i].name);
   result.problems = content.problems;
   result.files.insert(result.files.end(), result.charts.begin(), result.charts.end());

@@ -11,8 +11,11 @@
 #include "layers/core/config_node.h"
 #include "layers/core/error.h"
 #include "layers/core/text_file.h"
+#include "layers/data/run_layout.h"
 
 namespace layers::report {
+
+namespace run_layout = data::run_layout;
 namespace {
 
 namespace fs = std::filesystem;
@@ -154,12 +157,12 @@ std::pair<std::string, std::string> experiment_facts(const std::string& file) {
 
 // eval-<split> folder of a run ("" when none).
 std::string eval_folder(const fs::path& dir, const std::string& split) {
-  if (!split.empty()) return (dir / ("eval-" + split)).string();
-  if (fs::is_directory(dir / "eval-test")) return (dir / "eval-test").string();
+  if (!split.empty()) return (dir / run_layout::eval_folder(split)).string();
+  if (fs::is_directory(dir / run_layout::eval_folder("test"))) return (dir / run_layout::eval_folder("test")).string();
   std::vector<std::string> found;
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(dir, ec))
-    if (entry.is_directory() && entry.path().filename().string().rfind("eval-", 0) == 0)
+    if (entry.is_directory() && run_layout::is_eval_folder(entry.path().filename().string()))
       found.push_back(entry.path().string());
   std::sort(found.begin(), found.end());
   return found.empty() ? "" : found.front();
@@ -222,7 +225,7 @@ RunResults load_run(const std::string& dir, const std::string& split) {
     run.problems.push_back("no such run folder");
     return run;
   }
-  const fs::path experiment = path / "experiment.yaml";
+  const fs::path experiment = path / run_layout::kExperiment;
   if (fs::exists(experiment)) {
     try {
       std::tie(run.dataset, run.model) = experiment_facts(experiment.string());
@@ -231,7 +234,7 @@ RunResults load_run(const std::string& dir, const std::string& split) {
     }
   }
   const std::string eval_dir = eval_folder(path, split);
-  const fs::path metrics = eval_dir.empty() ? fs::path() : fs::path(eval_dir) / "metrics.json";
+  const fs::path metrics = eval_dir.empty() ? fs::path() : fs::path(eval_dir) / run_layout::kMetrics;
   if (eval_dir.empty() || !fs::exists(metrics)) {
     run.problems.push_back("no evaluation (" +
                            (eval_dir.empty() ? std::string("no eval-<split>/metrics.json")
@@ -240,15 +243,15 @@ RunResults load_run(const std::string& dir, const std::string& split) {
   } else {
     try {
       run.eval = parse_metrics(read_text_file(metrics.string()), metrics.string());
-      if (fs::exists(fs::path(eval_dir) / "predictions.h5"))
-        run.eval->predictions = (fs::path(eval_dir) / "predictions.h5").string();
+      if (fs::exists(fs::path(eval_dir) / run_layout::kPredictions))
+        run.eval->predictions = (fs::path(eval_dir) / run_layout::kPredictions).string();
       run.model = run.eval->model;
       if (run.dataset.empty()) run.dataset = run.eval->dataset;
     } catch (const std::exception& e) {
       run.problems.push_back(std::string("cannot read the evaluation: ") + e.what());
     }
   }
-  const fs::path bench = path / "bench.json";
+  const fs::path bench = path / run_layout::kBench;
   if (!fs::exists(bench)) {
     run.problems.push_back("no bench.json (run `layers bench <experiment.yaml>` for speed by scene size)");
   } else {

@@ -10,6 +10,7 @@
 
 #include "layers/core/atomic_file.h"
 #include "layers/core/error.h"
+#include "layers/data/run_layout.h"
 #include "layers/geometry/subdivide.h"
 #include "layers/train/checkpoint.h"
 #include "layers/train/frame_loss.h"
@@ -167,7 +168,7 @@ BenchReport run_bench(const ExperimentConfig& config, const zoo::Registry& regis
     report.rows.push_back(row);
   }
 
-  report.out = options.out.empty() ? (std::filesystem::path(config.run.output) / "bench.json").string() : options.out;
+  report.out = options.out.empty() ? (std::filesystem::path(config.run.output) / data::run_layout::kBench).string() : options.out;
   nlohmann::ordered_json rows = nlohmann::ordered_json::array();
   for (const BenchRow& r : report.rows) {
     rows.push_back({{"level", r.level}, {"far_body", r.far_body}, {"garment_vertices", r.garment_vertices},

@@ -12,6 +12,7 @@
 #include "layers/core/atomic_file.h"
 #include "layers/core/error.h"
 #include "layers/core/progress.h"
+#include "layers/data/run_layout.h"
 #include "layers/data/shard_writer.h"
 #include "layers/train/checkpoint.h"
 #include "layers/train/session.h"
@@ -128,7 +129,7 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
   const int horizon = options.horizon >= 0 ? options.horizon : config.eval.horizon;
   report.out_dir = !options.out_dir.empty()
                        ? options.out_dir
-                       : (std::filesystem::path(config.run.output) / ("eval-" + report.split)).string();
+                       : (std::filesystem::path(config.run.output) / data::run_layout::eval_folder(report.split)).string();
   std::filesystem::create_directories(report.out_dir);
   const std::vector<std::string> ids =
       options.sequences.empty() ? select_sequences(s.dataset, report.split, config.data.subsets) : options.sequences;
@@ -137,7 +138,7 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
 
   std::unique_ptr<data::ShardWriter> writer;
   if (config.eval.save_predictions)
-    writer = std::make_unique<data::ShardWriter>((std::filesystem::path(report.out_dir) / "predictions.h5").string());
+    writer = std::make_unique<data::ShardWriter>((std::filesystem::path(report.out_dir) / data::run_layout::kPredictions).string());
   Values overall, truth;
   std::map<std::string, Values> per_type;
   std::vector<std::vector<double>> step_error, step_h, step_l;  // [step][sequence]
@@ -242,8 +243,8 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
               {"per_type", types},
               {"by_step", by_step},
               {"per_sequence", sequences}};
-  write_text_atomic((std::filesystem::path(report.out_dir) / "metrics.json").string(), doc.dump(2) + "\n");
-  write_text_atomic((std::filesystem::path(report.out_dir) / "sequences.csv").string(), csv.str());
+  write_text_atomic((std::filesystem::path(report.out_dir) / data::run_layout::kMetrics).string(), doc.dump(2) + "\n");
+  write_text_atomic((std::filesystem::path(report.out_dir) / data::run_layout::kSequences).string(), csv.str());
   return report;
 }
 

@@ -13,6 +13,7 @@
 
 #include "layers/core/error.h"
 #include "layers/core/progress.h"
+#include "layers/data/run_layout.h"
 #include "layers/train/checkpoint.h"
 #include "layers/train/frame_loss.h"
 #include "layers/train/session.h"
@@ -97,7 +98,7 @@ double validate(Session& s) {
 }  // namespace
 
 std::string checkpoint_path(const ExperimentConfig& config, const std::string& which) {
-  return (std::filesystem::path(config.run.output) / ("checkpoint-" + which + ".pt")).string();
+  return (std::filesystem::path(config.run.output) / data::run_layout::checkpoint(which)).string();
 }
 
 TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& registry, const TrainOptions& options) {

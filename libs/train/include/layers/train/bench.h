@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "layers/core/config.h"
 #include "layers/train/experiment_config.h"
 
 namespace layers::zoo {
@@ -19,6 +20,10 @@ class Registry;
 
 namespace layers::train {
 
+// The defaults are those of `layers bench`; a study's `bench:` section
+// starts from its own (layers/study/config.h, study_bench()). The keys of
+// visit() are what a study file may set; sequence and out are set by
+// `layers bench` flags only (a study writes <run>/bench.json).
 struct BenchOptions {
   std::string sequence;     // default: the first sequence of eval's split
   int levels = 2;           // subdivision levels 0..levels
@@ -26,6 +31,14 @@ struct BenchOptions {
   bool train = true;        // also time a training step (forward + losses + backward)
   double min_time = 0.5;    // seconds per measurement
   std::string out;          // JSON file (default <run.output>/bench.json)
+
+  template <class V>
+  void visit(V& v) {
+    v("levels", levels, cfg::opt().range(0, 4).help("subdivision levels 0..n"));
+    v("min_time", min_time, cfg::opt().range(0.01, 60).help("seconds per measurement"));
+    v("train", train, cfg::opt().help("also time a training step"));
+    v("far_body", far_body, cfg::opt().help("also time with a far-away body copy"));
+  }
 };
 
 struct BenchRow {

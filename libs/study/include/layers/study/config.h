@@ -1,6 +1,6 @@
-// layers/train/study.h -- `layers run <study.yaml>`: one command for a whole
-// study (a dataset, a list of experiments, the steps to run on each),
-// skipping every step whose outputs are current (docs/studies.md).
+// layers/study/config.h -- the study file of `layers run` (docs/studies.md):
+// its typed sections and load_study(), which checks names, steps and
+// files.
 //
 //   name: compare_tiny
 //   output: runs/compare_tiny          # study folder; run <name> -> <output>/<name>
@@ -21,30 +21,16 @@
 // File references (requires, dataset.config, experiments[].file) are
 // relative to the study file, like `include:`; folders (output,
 // dataset.folder, checkpoint) are relative to the working directory, like
-// an experiment's data.dataset. Every experiment gets run.output =
-// <output>/<name> and data.dataset = dataset.folder (after its own `set:`).
-//
-// Skipping: each step records in <run>/steps.yaml (the report in
-// <output>/steps.yaml) a fingerprint of its inputs -- the resolved
-// experiment text, the dataset's files, the checkpoint it used (size and
-// modification time) -- and its output files. A step is current when its
-// record says done, the inputs' fingerprint is the same and every output
-// exists. A train step that was interrupted (record "started" with the same
-// inputs) resumes from checkpoint-last.pt.
-//
-// The work itself is done by StudyActions (apps/layers/verb_run.cpp binds
-// them to layers::generate, run_training, run_evaluation, run_bench and
-// layers::report), so this part is torch-free and testable on its own.
+// an experiment's data.dataset.
 #pragma once
 
-#include <functional>
 #include <string>
 #include <vector>
 
 #include "layers/core/config.h"
-#include "layers/train/experiment_config.h"
+#include "layers/train/bench.h"
 
-namespace layers::train {
+namespace layers::study {
 
 struct StudyDataset {
   std::string config;             // generator config (configs/data/*.yaml), relative to the study file;
@@ -91,21 +77,6 @@ struct StudyEval {
   }
 };
 
-struct StudyBench {
-  int levels = 1;
-  double min_time = 0.3;
-  bool train = true;
-  bool far_body = false;
-
-  template <class V>
-  void visit(V& v) {
-    v("levels", levels, cfg::opt().range(0, 4).help("subdivision levels 0..n"));
-    v("min_time", min_time, cfg::opt().range(0.01, 60).help("seconds per measurement"));
-    v("train", train, cfg::opt().help("also time a training step"));
-    v("far_body", far_body, cfg::opt().help("also time with a far-away body copy"));
-  }
-};
-
 struct StudyReport {
   std::string title;     // default: the study name
   std::string split;     // eval-<split> to report (default: the report's own choice)
@@ -123,6 +94,10 @@ struct StudyReport {
   }
 };
 
+// A study's bench defaults, lighter than `layers bench`'s (a study times
+// every run): levels 1, min_time 0.3 s, train true, far_body false.
+train::BenchOptions study_bench();
+
 struct StudyConfig {
   std::string name;                       // default: the file's stem
   std::string output;                     // default: runs/<name>
@@ -131,7 +106,7 @@ struct StudyConfig {
   std::vector<std::string> steps{"train", "eval", "report"};
   std::vector<std::string> set;
   StudyEval eval;
-  StudyBench bench;
+  train::BenchOptions bench = study_bench();
   StudyReport report;
   std::vector<StudyExperiment> experiments;
   std::string source;  // the study file (not a key)
@@ -157,66 +132,4 @@ struct StudyConfig {
 // file and key).
 StudyConfig load_study(const std::string& path, const std::vector<std::string>& sets = {});
 
-// One experiment of a study, resolved.
-struct StudyRun {
-  std::string name, dir;          // dir = <output>/<name>
-  ExperimentConfig config;        // with run.output = dir, data.dataset = the study's folder
-  std::string config_yaml;        // the resolved experiment (saved as <dir>/experiment.yaml)
-  std::vector<std::string> steps; // train, eval, bench (report is the study's)
-  std::vector<std::string> eval_splits;
-  std::string checkpoint;         // the checkpoint file eval and bench use
-  bool external_checkpoint = false;  // from StudyExperiment::checkpoint (no train step)
-};
-
-// Reads every experiment of the study (InputError for a bad file or set).
-std::vector<StudyRun> resolve_runs(const StudyConfig& study);
-
-// The work of each step; the study decides only what to run.
-struct StudyActions {
-  // Makes dataset.folder complete (generating what is missing); returns
-  // true when it generated anything. `config` is the resolved path.
-  std::function<bool(const StudyDataset& dataset)> dataset;
-  std::function<void(const StudyRun& run, bool resume)> train;
-  std::function<void(const StudyRun& run, const std::string& split)> eval;  // -> <dir>/eval-<split>/
-  std::function<void(const StudyRun& run, const StudyBench& bench)> bench;  // -> <dir>/bench.json
-  std::function<void(const StudyConfig& study, const std::vector<std::string>& run_dirs, const std::string& out)>
-      report;  // -> <out>/report.md
-};
-
-struct StudyOptions {
-  std::vector<std::string> only;  // run only these experiments (the report step is then left out)
-  bool force = false;             // rerun every selected step
-  bool dry_run = false;           // print what would run, run nothing
-};
-
-enum class StepStatus { Ran, Current, WouldRun, Failed, Blocked };
-
-struct StepOutcome {
-  std::string study, run, step;  // run is empty for the dataset and report steps
-  StepStatus status = StepStatus::Ran;
-  double seconds = 0;
-  std::string message;  // why it ran, or the error
-};
-
-struct StudyResult {
-  std::vector<StepOutcome> steps;  // required studies' steps first
-  std::string report;              // <output>/report/report.md when the report step ran or was current
-  bool ok() const;
-  std::size_t count(StepStatus status) const;
-};
-
-// Runs the study file (after the studies it requires, each once), one step
-// at a time, printing one line per step ("<run> <step>: current, skipped").
-// A failing step is reported and blocks only what depends on it; the other
-// runs go on. `sets` apply to this file only.
-StudyResult run_study(const std::string& path, const std::vector<std::string>& sets, const StudyActions& actions,
-                      const StudyOptions& options);
-
-// Fingerprints (64-bit FNV-1a, 16 hex digits) used in steps.yaml.
-std::string fingerprint_text(const std::string& text);
-// "<size>:<mtime in ns>" of a file; "missing" when it does not exist.
-std::string file_stamp(const std::string& path);
-// The dataset folder's dataset.yaml, splits.yaml, stats.h5 and shards.
-std::string dataset_fingerprint(const std::string& folder);
-
-}  // namespace layers::train
+}  // namespace layers::study

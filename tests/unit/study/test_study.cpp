@@ -1,4 +1,4 @@
-// The scheduling of `layers run` (layers/train/study.h) with actions that
+// The scheduling of `layers run` (layers/study/study.h) with actions that
 // write the files the real steps write: what runs, what is current, what a
 // deleted checkpoint, a changed override, a failure or an interrupted
 // training reruns, dry runs, required studies and bad study files.
@@ -11,12 +11,12 @@
 
 #include "layers/core/error.h"
 #include "layers/core/text_file.h"
-#include "layers/train/study.h"
+#include "layers/study/study.h"
 #include "temp_dir.h"
 
 namespace fs = std::filesystem;
 using namespace layers;
-using train::StepStatus;
+using study::StepStatus;
 
 namespace {
 
@@ -25,7 +25,7 @@ class StudyTest : public testing::Test {
   void SetUp() override {
     dir.write("gen.yaml", "name: fixture\n");
     dir.write("exp.yaml", "model: {name: anything, params: {}}\neval: {save_predictions: false}\n");
-    study = write_study("study.yaml", "out", "a", "");
+    study_file = write_study("study.yaml", "out", "a", "");
   }
 
   // A study with runs a and b (b's name and extra lines configurable).
@@ -41,31 +41,31 @@ class StudyTest : public testing::Test {
     std::ofstream(p) << text;
   }
 
-  train::StudyActions actions() {
-    train::StudyActions a;
-    a.dataset = [this](const train::StudyDataset& d) {
+  study::StudyActions actions() {
+    study::StudyActions a;
+    a.dataset = [this](const study::StudyDataset& d) {
       calls["dataset"]++;
       if (fs::exists(fs::path(d.folder) / "dataset.yaml")) return false;
       for (const char* f : {"dataset.yaml", "splits.yaml", "stats.h5", "shard-00000.h5"}) touch(fs::path(d.folder) / f);
       return true;
     };
-    a.train = [this](const train::StudyRun& run, bool resume) {
+    a.train = [this](const study::StudyRun& run, bool resume) {
       calls["train " + run.name]++;
       if (resume) calls["resume " + run.name]++;
       if (fail_train == run.name) throw Error("training diverged");
       touch(fs::path(run.dir) / "checkpoint-last.pt");
       touch(fs::path(run.dir) / "checkpoint-best.pt");
     };
-    a.eval = [this](const train::StudyRun& run, const std::string& split) {
+    a.eval = [this](const study::StudyRun& run, const std::string& split) {
       calls["eval " + run.name]++;
       touch(fs::path(run.dir) / ("eval-" + split) / "metrics.json", "{}");
       touch(fs::path(run.dir) / ("eval-" + split) / "sequences.csv");
     };
-    a.bench = [this](const train::StudyRun& run, const train::StudyBench&) {
+    a.bench = [this](const study::StudyRun& run, const train::BenchOptions&) {
       calls["bench " + run.name]++;
       touch(fs::path(run.dir) / "bench.json", "{}");
     };
-    a.report = [this](const train::StudyConfig&, const std::vector<std::string>& runs, const std::string& out) {
+    a.report = [this](const study::StudyConfig&, const std::vector<std::string>& runs, const std::string& out) {
       calls["report"]++;
       report_runs = runs.size();
       touch(fs::path(out) / "report.md");
@@ -73,12 +73,12 @@ class StudyTest : public testing::Test {
     return a;
   }
 
-  train::StudyResult run(const std::vector<std::string>& sets = {}, train::StudyOptions options = {}) {
-    return train::run_study(study, sets, actions(), options);
+  study::StudyResult run(const std::vector<std::string>& sets = {}, study::StudyOptions options = {}) {
+    return study::run_study(study_file, sets, actions(), options);
   }
 
   // Status of one step ("a train", "report", ...) in a result.
-  static StepStatus status(const train::StudyResult& r, const std::string& who) {
+  static StepStatus status(const study::StudyResult& r, const std::string& who) {
     for (const auto& o : r.steps)
       if ((o.run.empty() ? o.step : o.run + " " + o.step) == who) return o.status;
     ADD_FAILURE() << "no step " << who;
@@ -86,7 +86,7 @@ class StudyTest : public testing::Test {
   }
 
   test::TempDir dir{"layers-study"};
-  std::string study;
+  std::string study_file;
   std::map<std::string, int> calls;
   std::string fail_train;
   std::size_t report_runs = 0;
@@ -186,7 +186,7 @@ TEST_F(StudyTest, InterruptedTrainingResumes) {
 TEST_F(StudyTest, DryRunRunsNothingAndMarksDependents) {
   run();
   fs::remove(dir.file("out/b/checkpoint-last.pt"));
-  train::StudyOptions dry;
+  study::StudyOptions dry;
   dry.dry_run = true;
   const auto r = run({}, dry);
   EXPECT_EQ(status(r, "b train"), StepStatus::WouldRun);
@@ -199,7 +199,7 @@ TEST_F(StudyTest, DryRunRunsNothingAndMarksDependents) {
 
 TEST_F(StudyTest, OnlyAndForce) {
   run();
-  train::StudyOptions o;
+  study::StudyOptions o;
   o.only = {"b"};
   o.force = true;
   const auto r = run({}, o);
@@ -215,7 +215,7 @@ TEST_F(StudyTest, RequiredStudyRunsFirstAndLendsItsCheckpoint) {
       "stability.yaml", "requires: [study.yaml]\noutput: " + dir.file("stab") + "\ndataset: {config: gen.yaml, folder: " +
                             dir.file("data") + "}\nsteps: [train, eval]\nset: [eval.horizon=0]\nexperiments:\n"
                             "  - {name: a, file: exp.yaml, checkpoint: " + dir.file("out/a") + "}\n");
-  const auto r = train::run_study(other, {}, actions(), {});
+  const auto r = study::run_study(other, {}, actions(), {});
   EXPECT_TRUE(r.ok());
   EXPECT_EQ(calls["train a"], 1);  // in the required study only
   EXPECT_EQ(calls["eval a"], 2);
@@ -223,7 +223,7 @@ TEST_F(StudyTest, RequiredStudyRunsFirstAndLendsItsCheckpoint) {
   EXPECT_FALSE(fs::exists(dir.file("stab/a/checkpoint-best.pt")));
   // The lent checkpoint changes: only the evaluation that uses it reruns.
   fs::remove(dir.file("out/a/checkpoint-best.pt"));
-  const auto again = train::run_study(other, {}, actions(), {});
+  const auto again = study::run_study(other, {}, actions(), {});
   EXPECT_EQ(calls["train a"], 2);
   EXPECT_EQ(calls["eval a"], 4);
   EXPECT_EQ(calls["eval b"], 1);
@@ -233,13 +233,13 @@ TEST_F(StudyTest, RequiredCycleAndMissingCheckpointAreReported) {
   dir.write("x.yaml", "requires: [y.yaml]\ndataset: {config: gen.yaml, folder: d}\nexperiments: [{name: a, file: exp.yaml}]\n");
   const std::string y = dir.write(
       "y.yaml", "requires: [x.yaml]\ndataset: {config: gen.yaml, folder: d}\nexperiments: [{name: a, file: exp.yaml}]\n");
-  EXPECT_THROW(train::run_study(y, {}, actions(), {}), InputError);
+  EXPECT_THROW(study::run_study(y, {}, actions(), {}), InputError);
 
   const std::string lone = dir.write("lone.yaml", "output: " + dir.file("lone") + "\ndataset: {config: gen.yaml, folder: " +
                                                       dir.file("data") + "}\nsteps: [eval]\nexperiments:\n"
                                                       "  - {name: a, file: exp.yaml, checkpoint: " + dir.file("nowhere") +
                                                       "}\n");
-  const auto r = train::run_study(lone, {}, actions(), {});
+  const auto r = study::run_study(lone, {}, actions(), {});
   EXPECT_FALSE(r.ok());
   EXPECT_EQ(status(r, "a eval-test"), StepStatus::Blocked);
   for (const auto& o : r.steps) {
@@ -253,7 +253,7 @@ TEST_F(StudyTest, BadStudyFilesNameFileAndKey) {
   auto message = [&](const std::string& text) -> std::string {
     const std::string f = dir.write("bad.yaml", text);
     try {
-      train::load_study(f);
+      study::load_study(f);
     } catch (const InputError& e) {
       return e.what();
     }
@@ -286,16 +286,16 @@ TEST_F(StudyTest, FinishedDatasetWithoutConfig) {
   for (const char* f : {"dataset.yaml", "splits.yaml", "stats.h5", "shard-00000.h5"}) touch(dir.file("fixed/") + f);
   const std::string y = dir.write("fixed.yaml", "output: " + dir.file("out") + "\ndataset: {folder: " + dir.file("fixed") +
                                                     "}\nsteps: [train, eval]\nexperiments: [{name: a, file: exp.yaml}]\n");
-  const train::StudyConfig loaded = train::load_study(y);
+  const study::StudyConfig loaded = study::load_study(y);
   EXPECT_TRUE(loaded.dataset.config.empty());
-  study = y;
-  train::StudyActions a = actions();
-  a.dataset = [this](const train::StudyDataset& d) {
+  study_file = y;
+  study::StudyActions a = actions();
+  a.dataset = [this](const study::StudyDataset& d) {
     calls["dataset"]++;
     EXPECT_TRUE(d.config.empty());
     return false;
   };
-  const train::StudyResult r = train::run_study(study, {}, a, {});
+  const study::StudyResult r = study::run_study(study_file, {}, a, {});
   EXPECT_EQ(status(r, "dataset"), StepStatus::Current);
   EXPECT_EQ(status(r, "a train"), StepStatus::Ran);
   EXPECT_EQ(status(r, "a eval-test"), StepStatus::Ran);
@@ -303,16 +303,16 @@ TEST_F(StudyTest, FinishedDatasetWithoutConfig) {
 
 TEST(StudyFingerprint, StampsAndHashes) {
   test::TempDir dir;
-  EXPECT_EQ(train::fingerprint_text("abc"), train::fingerprint_text("abc"));
-  EXPECT_NE(train::fingerprint_text("abc"), train::fingerprint_text("abd"));
-  EXPECT_EQ(train::fingerprint_text("abc").size(), 16u);
-  EXPECT_EQ(train::file_stamp(dir.file("none")), "missing");
+  EXPECT_EQ(study::fingerprint_text("abc"), study::fingerprint_text("abc"));
+  EXPECT_NE(study::fingerprint_text("abc"), study::fingerprint_text("abd"));
+  EXPECT_EQ(study::fingerprint_text("abc").size(), 16u);
+  EXPECT_EQ(study::file_stamp(dir.file("none")), "missing");
   const std::string f = dir.write("f", "12345");
-  EXPECT_EQ(train::file_stamp(f).substr(0, 2), "5:");
-  const std::string before = train::dataset_fingerprint(dir.path());
+  EXPECT_EQ(study::file_stamp(f).substr(0, 2), "5:");
+  const std::string before = study::dataset_fingerprint(dir.path());
   dir.write("shard-00000.h5", "x");
-  EXPECT_NE(train::dataset_fingerprint(dir.path()), before);
-  EXPECT_EQ(train::dataset_fingerprint(dir.file("nope")), "missing");
+  EXPECT_NE(study::dataset_fingerprint(dir.path()), before);
+  EXPECT_EQ(study::dataset_fingerprint(dir.file("nope")), "missing");
 }
 
 }  // namespace

@@ -1,0 +1,37 @@
+// layers/data/run_layout.h -- the file names of a run folder
+// (<run.output>: what `layers train/eval/bench` write and `layers report`
+// reads) and of a study folder (`layers run`). Every writer and reader
+// names these files through here, as dataset_files.h does for a dataset.
+//
+//   <run>/experiment.yaml            the resolved experiment
+//   <run>/checkpoint-{last,best}.pt  training
+//   <run>/eval-<split>/metrics.json, sequences.csv, predictions.h5
+//   <run>/bench.json                 `layers bench`
+//   <run>/steps.yaml                 `layers run`'s records (also <study>/steps.yaml)
+//   <study>/report/report.md         the study's report
+#pragma once
+
+#include <string>
+
+namespace layers::data::run_layout {
+
+inline constexpr const char* kExperiment = "experiment.yaml";
+inline constexpr const char* kBench = "bench.json";
+inline constexpr const char* kSteps = "steps.yaml";
+inline constexpr const char* kMetrics = "metrics.json";     // in eval-<split>/
+inline constexpr const char* kSequences = "sequences.csv";  // in eval-<split>/
+inline constexpr const char* kPredictions = "predictions.h5";  // in eval-<split>/ (eval.save_predictions)
+inline constexpr const char* kReportFolder = "report";      // in a study folder
+inline constexpr const char* kReport = "report.md";         // in the report folder
+
+// "checkpoint-<which>.pt"; which is last or best.
+std::string checkpoint(const std::string& which);
+// "eval-<split>".
+std::string eval_folder(const std::string& split);
+// Whether a file or folder name is an eval-<split> folder.
+bool is_eval_folder(const std::string& name);
+// Whether a name in a run folder shows a run was made there: a checkpoint,
+// bench.json or an eval-<split> folder.
+bool is_result(const std::string& name);
+
+}  // namespace layers::data::run_layout
