@@ -18,8 +18,11 @@ namespace layers::deepsd {
 
 std::int64_t pose_feature_size(std::int64_t joints, bool wind);
 
-// tpose, frame: [J,3,4] joint transforms; root: the root joint; when `wind`,
-// wind_rotation [4] (w,x,y,z) and wind_strength (one value, 0..400) at f.
+// DeePSD's pose descriptor at frame f; root: the root joint.
+//   tpose          [J,3,4] joint transforms of the T-pose
+//   frame          [J,3,4] joint transforms at f
+//   wind_rotation  [4] (w,x,y,z) at f, read when `wind`
+//   wind_strength  [] or [1] 0..400 at f, read when `wind`
 at::Tensor pose_features(const at::Tensor& tpose, const at::Tensor& frame, std::int64_t root, bool wind,
                          const at::Tensor& wind_rotation, const at::Tensor& wind_strength);
 

@@ -21,8 +21,11 @@ struct BodyContacts {
   at::Tensor nearest_valid;  // [V] bool: nearer than the radius
 };
 
-// body_next [Vb,3], centroids [P,3], vertices [V,3] (any device, any
-// floating type). Results are int64/bool tensors on the CPU.
+// Body senders of each patch and each vertex's nearest body vertex (any
+// device, any floating type); results are int64/bool tensors on the CPU.
+//   body_next  [Vb,3] body vertices at t+1
+//   centroids  [P,3] patch centroids at t
+//   vertices   [V,3] garment vertices at t
 BodyContacts find_body_contacts(const at::Tensor& body_next, const at::Tensor& centroids,
                                 const at::Tensor& vertices, double radius, std::int64_t max_senders);
 

@@ -26,7 +26,10 @@ struct SenderGraph {
 class TieBlock : public torch::nn::Module {
  public:
   TieBlock(std::int64_t width, std::int64_t heads);
-  // patches [P,d], abstract [A,d], body [B,d] -> patches [P,d].
+  // One block over the patch tokens; returns the patches [P,d].
+  //   patches   [P,d] patch tokens (receivers)
+  //   abstract  [A,d] gravity, wind and attribute tokens
+  //   body      [B,d] body sender tokens
   at::Tensor forward(const at::Tensor& patches, const at::Tensor& abstract, const at::Tensor& body,
                      const SenderGraph& graph);
 

@@ -19,8 +19,11 @@ namespace layers::zoo {
 // Mean over vertices of the squared distance |pred - truth|^2, [V,3] each.
 at::Tensor position_mse(const at::Tensor& pred, const at::Tensor& truth);
 
-// Mean over faces of |n_pred - n_truth|^2 for unit face normals; faces [F,3]
-// shared by both meshes. A degenerate (zero-area) face has normal 0.
+// Mean over faces of |n_pred - n_truth|^2 for unit face normals. A
+// degenerate (zero-area) face has normal 0.
+//   pred   [V,3] predicted vertices
+//   truth  [V,3] ground-truth vertices
+//   faces  [F,3] int64 triangles shared by both meshes
 at::Tensor normal_loss(const at::Tensor& pred, const at::Tensor& truth, const at::Tensor& faces);
 
 // Body collision (the paper's collision term; the nearest-vertex test of
@@ -29,13 +32,18 @@ at::Tensor normal_loss(const at::Tensor& pred, const at::Tensor& truth, const at
 // (x - h).n; the loss is the mean of (eps - d)^2 over the vertices with
 // d < eps, and 0 (with a zero gradient) when there are none or the body is
 // empty. eps (metres, e.g. 0.005) must be finite.
-// body: [Vb,3] body vertices at the predicted frame, body_faces [Fb,3].
+//   garment     [V,3] predicted garment vertices
+//   body        [Vb,3] body vertices at the predicted frame
+//   body_faces  [Fb,3] int64 body triangles
 at::Tensor body_collision_loss(const at::Tensor& garment, const at::Tensor& body,
                                const at::Tensor& body_faces, double eps);
 
 // Layer collision: the same term for outer-garment vertices against the
 // inner garment surface (inner vertices and faces; with several inner
 // garments, concatenated). Gradients reach both layers (through h and n).
+//   outer        [Vo,3] outer-garment vertices
+//   inner        [Vi,3] inner-garment vertices
+//   inner_faces  [Fi,3] int64 inner triangles
 at::Tensor layer_collision_loss(const at::Tensor& outer, const at::Tensor& inner,
                                 const at::Tensor& inner_faces, double eps);
 

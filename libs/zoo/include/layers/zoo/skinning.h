@@ -75,6 +75,9 @@ at::Tensor unskin(const at::Tensor& positions, const at::Tensor& skin_index, con
 
 // The smallest |det| of the blended linear parts that unskin inverts;
 // callers refuse a sequence whose blends cannot be inverted.
+//   skin_index   [Vb,4] joint indices
+//   skin_weight  [Vb,4] weights
+//   maps         [J,3,4] T-pose -> frame
 double smallest_blend_determinant(const at::Tensor& skin_index, const at::Tensor& skin_weight,
                                   const at::Tensor& maps);
 

@@ -28,8 +28,10 @@ struct TangentBasis {
   at::Tensor coeff;  // [F,2] float: T_f |det| = coeff0 e1 + coeff1 e2
 };
 
-// From a mesh's faces [F,3], its UV faces [F,3] and UVs [U,2]; on the
-// device of `faces`.
+// A mesh's tangent basis, on the device of `faces`.
+//   faces     [F,3] int64 vertex triangles
+//   uv_faces  [F,3] int64 UV triangles
+//   uv        [U,2] UV coordinates
 TangentBasis tangent_basis(const at::Tensor& faces, const at::Tensor& uv_faces, const at::Tensor& uv,
                            std::int64_t vertices);
 
