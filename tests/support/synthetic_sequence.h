@@ -1,5 +1,5 @@
 // tests/support/synthetic_sequence.h -- test fixtures for layers::data: deterministic synthetic
-// sequences (grid meshes on cylinders moving with a root, random skinning,
+// sequences (grid.h meshes on cylinders moving with a root, random skinning,
 // wind spans), HDF5 tampering helpers to make
 // bad files, and an exact comparison of two sequences.
 #pragma once
@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "grid.h"
 #include "layers/data/sequence.h"
 #include "temp_dir.h"
 
@@ -27,18 +28,6 @@ struct SyntheticSize {
   int joints = 5;
   int garments = 2;
 };
-
-// Faces of a rows x cols vertex grid, two triangles per cell.
-inline std::vector<std::int32_t> grid_faces(int rows, int cols) {
-  std::vector<std::int32_t> faces;
-  for (int r = 0; r + 1 < rows; ++r) {
-    for (int c = 0; c + 1 < cols; ++c) {
-      const int a = r * cols + c, b = a + 1, d = a + cols, e = d + 1;
-      faces.insert(faces.end(), {a, b, e, a, e, d});
-    }
-  }
-  return faces;
-}
 
 // Vertices of the grid wrapped on a cylinder of the given radius and height.
 inline std::vector<float> grid_cylinder(int rows, int cols, float radius, float height) {
@@ -93,7 +82,7 @@ inline SequenceData make_sequence(const std::string& id, std::uint64_t seed, con
     root.insert(root.end(), {0.02f * float(t) + 0.1f * unit(rng), 0.9f, 0.01f * float(t)});
   }
   BodyData& b = seq.body;
-  b.faces = grid_faces(size.body_rows, size.body_cols);
+  b.faces = test::grid_faces<std::int32_t>(size.body_rows, size.body_cols);
   b.positions = animate(grid_cylinder(size.body_rows, size.body_cols, 0.15f, 1.6f), root, T, rng);
   b.root = root;
   b.root_rot = unit_quaternions(T, rng);
@@ -135,7 +124,7 @@ inline SequenceData make_sequence(const std::string& id, std::uint64_t seed, con
     g.name = g.type + (k >= 2 ? std::to_string(k) : "");
     g.layer = k % 2;
     g.attributes = {{"mass", 0.2 + 0.6 * unit(rng)}, {"tension", 15 + 85 * unit(rng)}, {"bending", 15 + 185 * unit(rng)}};
-    g.faces = grid_faces(size.garment_rows, size.garment_cols);
+    g.faces = test::grid_faces<std::int32_t>(size.garment_rows, size.garment_cols);
     g.rest = grid_cylinder(size.garment_rows, size.garment_cols, 0.2f + 0.03f * k, 0.7f);
     for (int r = 0; r < size.garment_rows; ++r) {
       for (int c = 0; c < size.garment_cols; ++c) {

@@ -1,0 +1,9 @@
+// The built "skinned" plugin registers "skinned", and
+// configs/models/skinned.yaml creates it. Torch-free (the model is only
+// created and dropped here).
+#include "model_plugin.h"
+#include "skinned_model.h"
+
+TEST(ReferencePlugins, SkinnedPluginAndConfig) {
+  layers::test::expect_plugin_and_config(layers::reference::kSkinnedName, layers::reference::kSkinnedDescription);
+}
