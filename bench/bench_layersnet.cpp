@@ -6,8 +6,8 @@
 #include <benchmark/benchmark.h>
 
 #include <ATen/core/grad_mode.h>
-#include <cmath>
 #include <torch/optim/adam.h>
+#include <cmath>
 
 #include "layers/core/config_node.h"
 #include "layersnet.h"
@@ -73,7 +73,8 @@ void BM_LayersNetTrainStep(benchmark::State& state) {
   for (auto _ : state) {
     adam.zero_grad();
     const layers::zoo::StepOutput out = f.model->step(f.input);
-    at::Tensor loss = (out.garments[0] - target[0]).pow(2).sum(1).mean() + (out.garments[1] - target[1]).pow(2).sum(1).mean();
+    at::Tensor loss =
+        (out.garments[0] - target[0]).pow(2).sum(1).mean() + (out.garments[1] - target[1]).pow(2).sum(1).mean();
     loss.backward();
     adam.step();
   }
@@ -90,6 +91,11 @@ BENCHMARK(BM_LayersNetInference)
     ->Args({8000, 1})
     ->Unit(benchmark::kMillisecond)
     ->MinTime(2.0);
-BENCHMARK(BM_LayersNetTrainStep)->ArgNames({"vertices"})->Arg(2000)->Arg(8000)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_LayersNetTrainStep)
+    ->ArgNames({"vertices"})
+    ->Arg(2000)
+    ->Arg(8000)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0);
 
 BENCHMARK_MAIN();

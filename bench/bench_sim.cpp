@@ -87,9 +87,27 @@ void BM_GeneratorFrame(benchmark::State& state) {
 
 // Iterations are fixed (frames of the walk to record); wall time, since two
 // threads run at once.
-BENCHMARK(BM_GeneratorFrame)->Args({500, 16})->Iterations(30)->Threads(1)->Threads(2)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_GeneratorFrame)->Args({250, 16})->Iterations(20)->Threads(1)->Threads(2)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_GeneratorFrame)->Args({125, 16})->Iterations(8)->Threads(1)->Threads(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_GeneratorFrame)
+    ->Args({500, 16})
+    ->Iterations(30)
+    ->Threads(1)
+    ->Threads(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_GeneratorFrame)
+    ->Args({250, 16})
+    ->Iterations(20)
+    ->Threads(1)
+    ->Threads(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_GeneratorFrame)
+    ->Args({125, 16})
+    ->Iterations(8)
+    ->Threads(1)
+    ->Threads(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK(BM_GeneratorFrame)->Args({225, 10})->Iterations(20)->Threads(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_GeneratorFrame)->Args({225, 16})->Iterations(20)->Threads(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 

@@ -5,8 +5,8 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <iterator>
 #include <iostream>
+#include <iterator>
 #include <map>
 
 #include "layers/core/error.h"

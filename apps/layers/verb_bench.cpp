@@ -21,7 +21,8 @@ VerbRun register_bench(CLI::App& app, const Global&) {
   add_config_options(*cmd, a->config, /*required=*/true);
   cmd->add_option("--sequence", a->options.sequence, "scene to scale (default: first of the eval split)");
   cmd->add_option("--levels", a->options.levels, "subdivision levels 0..n (x4 garment vertices each)")
-      ->capture_default_str()->check(CLI::Range(0, 4));
+      ->capture_default_str()
+      ->check(CLI::Range(0, 4));
   cmd->add_option("--min-time", a->options.min_time, "seconds per measurement")->capture_default_str();
   cmd->add_option("--out", a->options.out, "JSON output (default <run.output>/bench.json)");
   cmd->add_flag("--no-far-body", a->no_far, "skip the runs with a far-away copy of the body");

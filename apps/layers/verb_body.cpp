@@ -38,8 +38,8 @@ cfg::Node parse_shape(const std::string& text) {
     std::string item = text.substr(begin, comma == std::string::npos ? std::string::npos : comma - begin);
     auto eq = item.find('=');
     if (eq == std::string::npos || eq == 0)
-      throw InputError("--shape", "'" + item + "'", "name=value pairs separated by commas (gender, muscle, weight, height)",
-                       "'" + text + "'");
+      throw InputError("--shape", "'" + item + "'",
+                       "name=value pairs separated by commas (gender, muscle, weight, height)", "'" + text + "'");
     shape.map.emplace_back(item.substr(0, eq), scalar(item.substr(eq + 1), "--shape"));
     if (comma == std::string::npos) break;
     begin = comma + 1;
@@ -60,7 +60,8 @@ VerbRun register_body(CLI::App& app, const Global&) {
   auto a = std::make_shared<Args>();
   cmd->add_option("--shape", a->shape, "shape parameters in 0..1, e.g. gender=0.3,muscle=0.5,weight=0.6,height=0.45");
   cmd->add_option("--motion", a->motion, "procedural:<kind>, bvh:<path> or a .bvh file")->capture_default_str();
-  cmd->add_option("--frames", a->frames, "frames at 30 fps, transition included; 0 = whole clip")->capture_default_str();
+  cmd->add_option("--frames", a->frames, "frames at 30 fps, transition included; 0 = whole clip")
+      ->capture_default_str();
   cmd->add_option("--transition", a->transition, "frames blending in from the T-pose")->capture_default_str();
   cmd->add_option("--seed", a->seed, "randomises procedural speed and amplitude")->capture_default_str();
   cmd->add_option("--on-intersection", a->on_intersection, "longest_run, drop or keep")->capture_default_str();
@@ -70,7 +71,8 @@ VerbRun register_body(CLI::App& app, const Global&) {
   cmd->add_option("--export-dir", a->export_dir, "folder for --export (default <out>_export)");
   return [a]() {
     // The flags checked in their own names (the motion's checks name config keys).
-    if (a->frames < 0) throw UsageError("--frames: expected 0 (the whole clip) or more, got " + std::to_string(a->frames));
+    if (a->frames < 0)
+      throw UsageError("--frames: expected 0 (the whole clip) or more, got " + std::to_string(a->frames));
     if (a->transition < 0) throw UsageError("--transition: expected 0 or more, got " + std::to_string(a->transition));
     if (a->frames > 0 && a->transition >= a->frames)
       throw UsageError("--transition: expected fewer frames than --frames (" + std::to_string(a->frames) + "), got " +
@@ -110,16 +112,18 @@ VerbRun register_body(CLI::App& app, const Global&) {
                 static_cast<long long>(seq.n_frames), seq.motion.c_str(), generated.sequence.num_vertices,
                 generated.sequence.num_joints, generated.body.stature());
     std::printf("generation: %.2f s (%.1f frames/s)\n", seconds, seconds > 0 ? seq.n_frames / seconds : 0.0);
-    std::printf("self-intersection: %d of %d frames (%.1f%%) deeper than %.1f mm before repair, worst %.1f mm; "
-                "%d resolved, %d remaining (worst %.1f mm), %d dropped\n",
-                report.intersecting, report.frames, 100.0 * report.share_intersecting(),
-                config.intersection_tolerance_mm, 1000.0 * report.worst_before, report.resolved, report.remaining,
-                1000.0 * report.worst_after, report.dropped);
+    std::printf(
+        "self-intersection: %d of %d frames (%.1f%%) deeper than %.1f mm before repair, worst %.1f mm; "
+        "%d resolved, %d remaining (worst %.1f mm), %d dropped\n",
+        report.intersecting, report.frames, 100.0 * report.share_intersecting(), config.intersection_tolerance_mm,
+        1000.0 * report.worst_before, report.resolved, report.remaining, 1000.0 * report.worst_after, report.dropped);
 
     if (!a->export_format.empty()) {
-      std::string dir = a->export_dir.empty() ? (fs::path(a->out).replace_extension("").string() + "_export") : a->export_dir;
+      std::string dir =
+          a->export_dir.empty() ? (fs::path(a->out).replace_extension("").string() + "_export") : a->export_dir;
       data::Dataset ds = data::Dataset::open(a->out);
-      auto files = data::export_sequence(ds, seq.id, data::parse_export_format(a->export_format, "--export"), 0, -1, dir);
+      auto files =
+          data::export_sequence(ds, seq.id, data::parse_export_format(a->export_format, "--export"), 0, -1, dir);
       std::printf("exported %zu files to %s\n", files.size(), dir.c_str());
     }
     return static_cast<int>(kOk);

@@ -31,9 +31,9 @@ ConfigKind kind_of(const cfg::Node& tree) {
 }  // namespace
 
 VerbRun register_config(CLI::App& app, const Global&) {
-  auto* cmd = app.add_subcommand(
-      "config", "Check a config file -- an experiment, a generator config (configs/data) or a study "
-                "(configs/studies) -- and print it resolved (includes and --set applied)");
+  auto* cmd = app.add_subcommand("config",
+                                 "Check a config file -- an experiment, a generator config (configs/data) or a study "
+                                 "(configs/studies) -- and print it resolved (includes and --set applied)");
   struct Args {
     ConfigArgs config;
     std::string out;

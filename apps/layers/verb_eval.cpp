@@ -32,7 +32,8 @@ VerbRun register_eval(CLI::App& app, const Global&) {
   auto a = std::make_shared<Args>();
   add_config_options(*cmd, a->config, /*required=*/true);
   cmd->add_option("--checkpoint", a->options.checkpoint, "best, last, or a checkpoint file")->capture_default_str();
-  cmd->add_option("--split", a->options.split, "split or subset to evaluate (default eval.split, then data.test_split)");
+  cmd->add_option("--split", a->options.split,
+                  "split or subset to evaluate (default eval.split, then data.test_split)");
   cmd->add_option("--horizon", a->options.horizon, "rollout frames (0 = whole sequences; default eval.horizon)")
       ->check(CLI::Range(0, 1000000));
   cmd->add_option("--out", a->options.out_dir, "output folder (default <run.output>/eval-<split>)");

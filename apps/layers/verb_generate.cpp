@@ -21,11 +21,15 @@ VerbRun register_generate(CLI::App& app, const Global&) {
     bool quiet = false, print_config = false;
   };
   auto a = std::make_shared<Args>();
-  cmd->add_option("--config", a->config, "generator config (configs/data/<name>.yaml)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--config", a->config, "generator config (configs/data/<name>.yaml)")
+      ->required()
+      ->check(CLI::ExistingFile);
   cmd->add_option("--set", a->sets, "override a config value: --set key.path=value (repeatable)");
   cmd->add_option("--out", a->out, "dataset folder (default data/<name>)");
   cmd->add_option("--shard", a->shard, "generate only shards j with j % n == k: k/n")->capture_default_str();
-  cmd->add_option("--threads", a->threads, "scenes simulated in parallel")->capture_default_str()->check(CLI::Range(1, 256));
+  cmd->add_option("--threads", a->threads, "scenes simulated in parallel")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 256));
   cmd->add_flag("--quiet", a->quiet, "no progress line");
   cmd->add_flag("--print-config", a->print_config, "print the resolved config (it is always saved as generator.yaml)");
   return [a]() {
@@ -45,8 +49,8 @@ VerbRun register_generate(CLI::App& app, const Global&) {
     std::fflush(stdout);
     auto report = generate::generate_dataset(config, resolved, options);
     std::printf("%s: %d scenes in shard %s: %d simulated now (%d written, %d skipped), %d finished before\n",
-                options.out.c_str(), report.scenes, a->shard.c_str(), report.simulated, report.written,
-                report.skipped, report.reused);
+                options.out.c_str(), report.scenes, a->shard.c_str(), report.simulated, report.written, report.skipped,
+                report.reused);
     if (report.simulated_frames > 0)
       std::printf("simulation: %d frames, %.3f s per frame (per thread; %.3f s CPU), wall %.1f s\n",
                   report.simulated_frames, report.simulate_seconds / report.simulated_frames,

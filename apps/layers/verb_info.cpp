@@ -18,16 +18,14 @@ std::string join(const std::vector<std::string>& items, const char* sep = ",") {
 void print_sequence(const data::SequenceInfo& s, bool garments) {
   std::int64_t garment_vertices = 0;
   for (const auto& g : s.garments) garment_vertices += g.n_vertices;
-  std::printf("  %-24s %6lld frames  motion %-22s tags %-8s body %6lld v  garments %zu (%lld v)\n",
-              s.id.c_str(), static_cast<long long>(s.n_frames), s.motion.c_str(),
-              s.tags.empty() ? "-" : join(s.tags).c_str(), static_cast<long long>(s.body_vertices),
-              s.garments.size(), static_cast<long long>(garment_vertices));
+  std::printf("  %-24s %6lld frames  motion %-22s tags %-8s body %6lld v  garments %zu (%lld v)\n", s.id.c_str(),
+              static_cast<long long>(s.n_frames), s.motion.c_str(), s.tags.empty() ? "-" : join(s.tags).c_str(),
+              static_cast<long long>(s.body_vertices), s.garments.size(), static_cast<long long>(garment_vertices));
   if (!garments) return;
   for (const auto& g : s.garments)
-    std::printf("      garment %-3s %-14s type %-12s layer %d  %6lld vertices %6lld faces %6lld uv\n",
-                g.group.c_str(), g.name.c_str(), g.type.c_str(), g.layer,
-                static_cast<long long>(g.n_vertices), static_cast<long long>(g.n_faces),
-                static_cast<long long>(g.n_uv));
+    std::printf("      garment %-3s %-14s type %-12s layer %d  %6lld vertices %6lld faces %6lld uv\n", g.group.c_str(),
+                g.name.c_str(), g.type.c_str(), g.layer, static_cast<long long>(g.n_vertices),
+                static_cast<long long>(g.n_faces), static_cast<long long>(g.n_uv));
 }
 
 }  // namespace
@@ -60,12 +58,10 @@ VerbRun register_info(CLI::App& app, const Global&) {
                 static_cast<long long>(garments));
     std::printf("splits   ");
     if (ds.splits().empty()) std::printf(" (none)");
-    for (const auto& name : ds.splits().names())
-      std::printf(" %s=%zu", name.c_str(), ds.splits().get(name).size());
+    for (const auto& name : ds.splits().names()) std::printf(" %s=%zu", name.c_str(), ds.splits().get(name).size());
     std::printf("\nsequences:\n");
     for (std::size_t i = 0; i < ids.size() && i < args->max_rows; ++i) print_sequence(ds.info(ids[i]), false);
-    if (ids.size() > args->max_rows)
-      std::printf("  ... %zu more (--max-rows)\n", ids.size() - args->max_rows);
+    if (ids.size() > args->max_rows) std::printf("  ... %zu more (--max-rows)\n", ids.size() - args->max_rows);
     return static_cast<int>(kOk);
   };
 }

@@ -19,8 +19,7 @@ VerbRun register_models(CLI::App& app, const Global&) {
     auto entries = plugins.registry.entries();
     std::printf("%zu model%s registered:\n", entries.size(), entries.size() == 1 ? "" : "s");
     for (const auto& e : entries)
-      std::printf("  %-24s %s\n  %-24s   from %s\n", e.name.c_str(), e.description.c_str(), "",
-                  e.plugin_path.c_str());
+      std::printf("  %-24s %s\n  %-24s   from %s\n", e.name.c_str(), e.description.c_str(), "", e.plugin_path.c_str());
     if (!plugins.report.problems.empty()) {
       std::printf("%zu plugin%s refused:\n", plugins.report.problems.size(),
                   plugins.report.problems.size() == 1 ? "" : "s");

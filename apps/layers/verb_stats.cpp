@@ -10,8 +10,8 @@
 namespace layers::app {
 namespace {
 void print_moments(const char* name, const data::Moments& m) {
-  std::printf("  %-22s mean % .6f % .6f % .6f   std %.6f %.6f %.6f\n", name, m.mean[0], m.mean[1], m.mean[2],
-              m.std[0], m.std[1], m.std[2]);
+  std::printf("  %-22s mean % .6f % .6f % .6f   std %.6f %.6f %.6f\n", name, m.mean[0], m.mean[1], m.mean[2], m.std[0],
+              m.std[1], m.std[2]);
 }
 }  // namespace
 
@@ -32,8 +32,7 @@ VerbRun register_stats(CLI::App& app, const Global&) {
     options.split = args->split;
     data::NormStats stats = data::compute_stats(ds, options);
     std::printf("statistics of split '%s': %lld sequences, %lld frames (root-relative, per frame)\n",
-                stats.split.c_str(), static_cast<long long>(stats.n_sequences),
-                static_cast<long long>(stats.n_frames));
+                stats.split.c_str(), static_cast<long long>(stats.n_sequences), static_cast<long long>(stats.n_frames));
     std::printf("  (positions in m, velocities in m/frame, accelerations in m/frame^2)\n");
     data::for_each_quantity(stats, print_moments);
     if (!args->dry_run) {

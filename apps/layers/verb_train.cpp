@@ -96,8 +96,8 @@ VerbRun register_train(CLI::App& app, const Global&) {
     std::printf("trained %d epochs (%lld steps), %lld trainable parameters\n", r.epochs_done,
                 static_cast<long long>(r.steps), static_cast<long long>(r.trainable_parameters));
     for (const auto& e : r.epochs)
-      std::printf("  epoch %d: loss %.5g  val error %.2f mm  %.1f frames/s  %.1f s\n", e.epoch, e.loss,
-                  e.val_error_mm, e.frames_per_second, e.seconds);
+      std::printf("  epoch %d: loss %.5g  val error %.2f mm  %.1f frames/s  %.1f s\n", e.epoch, e.loss, e.val_error_mm,
+                  e.frames_per_second, e.seconds);
     std::printf("checkpoints: %s, %s\n", r.last_checkpoint.c_str(), r.best_checkpoint.c_str());
     return static_cast<int>(kOk);
   };

@@ -76,7 +76,8 @@ int check_physics(const std::string& path, const sim::ValidationConfig& limits) 
 }  // namespace
 
 VerbRun register_validate(CLI::App& app, const Global&) {
-  auto* cmd = app.add_subcommand("validate", "Check a dataset folder or shard file against LAYERS-H5 v1; exit 1 on any problem");
+  auto* cmd = app.add_subcommand("validate",
+                                 "Check a dataset folder or shard file against LAYERS-H5 v1; exit 1 on any problem");
   auto path = std::make_shared<std::string>();
   auto physics = std::make_shared<bool>(false);
   auto limits = std::make_shared<sim::ValidationConfig>();

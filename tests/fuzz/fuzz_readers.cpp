@@ -40,9 +40,7 @@ namespace {
 
 using test::read_bytes;
 
-void write_file(const std::string& path, const std::string& bytes) {
-  std::ofstream(path, std::ios::binary) << bytes;
-}
+void write_file(const std::string& path, const std::string& bytes) { std::ofstream(path, std::ios::binary) << bytes; }
 
 // One reader: parse `bytes` (stored at `path`) as a user's file would be.
 void parse_bvh(const std::string& bytes, const std::string&) {
@@ -67,8 +65,9 @@ void parse_h5(const std::string&, const std::string& path) {
 }
 
 // Numbers a mutation may put in place of a number of the text.
-const char* kExtremes[] = {"1e300", "-1e300", "1e30", "nan", "inf", "-1", "0", "2147483648", "-2147483649",
-                           "99999999999999999999", "1e-320", "0x7fffffff", ""};
+const char* kExtremes[] = {
+    "1e300",  "-1e300",     "1e30", "nan", "inf", "-1", "0", "2147483648", "-2147483649", "99999999999999999999",
+    "1e-320", "0x7fffffff", ""};
 
 std::string mutate(const std::string& seed, std::mt19937_64& rng, bool text) {
   std::string s = seed;
@@ -120,14 +119,17 @@ std::string mutate(const std::string& seed, std::mt19937_64& rng, bool text) {
 
 int main(int argc, char** argv) {
   if (argc < 6) {
-    std::fprintf(stderr, "usage: layers_fuzz <bvh|yaml|h5> <seed file> <iterations> <rng seed> <work dir> [regressions...]\n");
+    std::fprintf(stderr,
+                 "usage: layers_fuzz <bvh|yaml|h5> <seed file> <iterations> <rng seed> <work dir> [regressions...]\n");
     return 2;
   }
   const std::string kind = argv[1], seed_file = argv[2], work = argv[5];
   const long iterations = std::atol(argv[3]);
   std::mt19937_64 rng(std::strtoull(argv[4], nullptr, 10));
-  void (*parse)(const std::string&, const std::string&) =
-      kind == "bvh" ? parse_bvh : kind == "yaml" ? parse_yaml : kind == "h5" ? parse_h5 : nullptr;
+  void (*parse)(const std::string&, const std::string&) = kind == "bvh"    ? parse_bvh
+                                                          : kind == "yaml" ? parse_yaml
+                                                          : kind == "h5"   ? parse_h5
+                                                                           : nullptr;
   if (!parse) {
     std::fprintf(stderr, "layers_fuzz: unknown reader '%s' (bvh, yaml or h5)\n", kind.c_str());
     return 2;
@@ -161,9 +163,10 @@ int main(int argc, char** argv) {
     } catch (const std::exception& e) {
       const std::string finding = work + "/finding." + kind;
       write_file(finding, bytes);
-      std::printf("layers_fuzz %s: input %ld: %s: %s (saved as %s)\n", kind.c_str(), i,
-                  dynamic_cast<const std::bad_alloc*>(&e) ? "allocation beyond the memory limit" : "unexpected exception",
-                  e.what(), finding.c_str());
+      std::printf(
+          "layers_fuzz %s: input %ld: %s: %s (saved as %s)\n", kind.c_str(), i,
+          dynamic_cast<const std::bad_alloc*>(&e) ? "allocation beyond the memory limit" : "unexpected exception",
+          e.what(), finding.c_str());
       return 1;
     } catch (...) {  // e.g. an HDF5 exception that escaped its translation
       const std::string finding = work + "/finding." + kind;
@@ -174,8 +177,9 @@ int main(int argc, char** argv) {
     }
   }
   fs::remove(current);
-  std::printf("layers_fuzz %s: %zu regression inputs and %ld mutants of %s: %ld refused with an error, %ld accepted, "
-              "no crash\n",
-              kind.c_str(), regressions, iterations, seed_file.c_str(), refused, accepted);
+  std::printf(
+      "layers_fuzz %s: %zu regression inputs and %ld mutants of %s: %ld refused with an error, %ld accepted, "
+      "no crash\n",
+      kind.c_str(), regressions, iterations, seed_file.c_str(), refused, accepted);
   return 0;
 }

@@ -14,8 +14,9 @@ using test::run_command;
 TEST(CliBody, ProceduralWalkToShardValidatesAndExports) {
   test::TempDir dir;
   std::string out = dir.file("walk/body.h5");
-  auto r = run_command(test::layers_bin() + " body --shape gender=0.2,height=0.6 --motion procedural:walk --frames 24 " +
-                       "--transition 6 --seed 3 --out " + out + " --export obj");
+  auto r =
+      run_command(test::layers_bin() + " body --shape gender=0.2,height=0.6 --motion procedural:walk --frames 24 " +
+                  "--transition 6 --seed 3 --out " + out + " --export obj");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("24 frames of procedural:walk"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("13380 body vertices, 31 joints"), std::string::npos) << r.output;
@@ -57,8 +58,9 @@ TEST(CliBody, BadInputNamesTheProblem) {
       << transition.output;
   auto missing = run_command(test::layers_bin() + " info " + dir.file("no-such-dataset"));
   EXPECT_EQ(missing.exit_code, 1) << missing.output;
-  EXPECT_NE(missing.output.find(dir.file("no-such-dataset") + ": expected an existing dataset folder or HDF5 file, got nothing "
-                                                             "(no such file or folder)"),
+  EXPECT_NE(missing.output.find(dir.file("no-such-dataset") +
+                                ": expected an existing dataset folder or HDF5 file, got nothing "
+                                "(no such file or folder)"),
             std::string::npos)
       << missing.output;
 }

@@ -53,7 +53,8 @@ TEST(CliConfig, ChecksGeneratorConfigsStudiesAndEmptyExperiments) {
   EXPECT_EQ(e.exit_code, 1) << e.output;
   EXPECT_NE(e.output.find(empty + ": model: expected an experiment with a model section"), std::string::npos)
       << e.output;
-  auto unset = run_command(layers_bin() + " config " + src + "/configs/experiments/layersnet_tiny.yaml --set train.epochs=");
+  auto unset =
+      run_command(layers_bin() + " config " + src + "/configs/experiments/layersnet_tiny.yaml --set train.epochs=");
   EXPECT_EQ(unset.exit_code, 1) << unset.output;
   EXPECT_NE(unset.output.find("train.epochs: expected a value after '='"), std::string::npos) << unset.output;
   auto level = run_command(layers_bin() + " --log-level bogus models");
@@ -65,8 +66,7 @@ TEST(CliConfig, BadConfigExitsOneWithPreciseMessage) {
   std::string bad = dir.write("bad.yaml", "run:\n  threads: 1000\n");
   auto r = run_command(layers_bin() + " config " + bad);
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.output.find("bad.yaml:2: run.threads: expected an integer in [0, 256], got '1000'"),
-            std::string::npos)
+  EXPECT_NE(r.output.find("bad.yaml:2: run.threads: expected an integer in [0, 256], got '1000'"), std::string::npos)
       << r.output;
   std::string malformed = dir.write("malformed.yaml", "run: {seed: 1\n");
   auto m = run_command(layers_bin() + " config " + malformed);

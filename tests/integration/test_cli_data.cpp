@@ -6,8 +6,8 @@
 
 #include "layers/data/dataset.h"
 #include "layers/data/dataset_writer.h"
-#include "layers/data/stats.h"
 #include "layers/data/pc2.h"
+#include "layers/data/stats.h"
 #include "run_command.h"
 #include "synthetic_sequence.h"
 #include "temp_dir.h"
@@ -107,7 +107,7 @@ TEST(CliData, ExportObjAndPc2) {
   EXPECT_NE(bad_format.output.find("--format"), std::string::npos) << bad_format.output;
   auto bad_range = run_command(test::layers_bin() + " export " + dir.file("ds") + " b --frames 5:2");
   EXPECT_EQ(bad_range.exit_code, 1) << bad_range.output;
-  auto past_end = run_command(test::layers_bin() + " export " + dir.file("ds") + " b --frames 10:40 --out " +
-                              dir.file("x"));
+  auto past_end =
+      run_command(test::layers_bin() + " export " + dir.file("ds") + " b --frames 10:40 --out " + dir.file("x"));
   EXPECT_EQ(past_end.exit_code, 1) << past_end.output;
 }

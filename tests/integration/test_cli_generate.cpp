@@ -22,7 +22,8 @@ std::string generate(const std::string& out, const std::string& extra = "") {
          " --quiet --set sequences=3 --set frames=6 --set drape_frames=3 --set body.transition_frames=3"
          " --set sequences_per_shard=2 --set garments.fit.edge_length=0.08"
          " --set sim.validation.max_l_penetration=1 --set sim.validation.max_h_penetration=1"
-         " --set sim.validation.max_stretch=100 " + extra;
+         " --set sim.validation.max_stretch=100 " +
+         extra;
 }
 
 std::string bytes(const std::string& path) {
@@ -120,8 +121,8 @@ TEST(CliRun, StudyGeneratesItsDatasetOnceThenReusesIt) {
   const std::string src = test::source_dir();
   const std::string study = dir.write(
       "study.yaml",
-      "name: st\noutput: " + dir.file("runs") + "\ndataset:\n  config: " + src + "/configs/data/tiny.yaml\n  folder: " +
-          dir.file("data") +
+      "name: st\noutput: " + dir.file("runs") + "\ndataset:\n  config: " + src +
+          "/configs/data/tiny.yaml\n  folder: " + dir.file("data") +
           "\n  set: [sequences=3, frames=4, drape_frames=2, body.transition_frames=2, sequences_per_shard=3,"
           " garments.fit.edge_length=0.1, sim.validation.max_l_penetration=1, sim.validation.max_h_penetration=1,"
           " sim.validation.max_stretch=100]\nsteps: [train, eval]\nexperiments:\n  - {name: static, file: " +

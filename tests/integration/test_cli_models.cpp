@@ -53,8 +53,7 @@ TEST(CliModels, ConfigChecksModelNameAndParameters) {
   std::string unknown = dir.write("unknown.yaml", "run: {seed: 1}\nmodel:\n  name: layersnet_typo\n");
   auto u = run_command(with_test_plugins("config " + unknown));
   EXPECT_EQ(u.exit_code, 1) << u.output;
-  EXPECT_NE(u.output.find("unknown.yaml:3: model.name: unknown model 'layersnet_typo'"), std::string::npos)
-      << u.output;
+  EXPECT_NE(u.output.find("unknown.yaml:3: model.name: unknown model 'layersnet_typo'"), std::string::npos) << u.output;
   EXPECT_NE(u.output.find("registered models: "), std::string::npos) << u.output;
   EXPECT_NE(u.output.find("test_constant_velocity ("), std::string::npos) << u.output;
 

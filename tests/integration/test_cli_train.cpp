@@ -31,11 +31,15 @@ TEST(CliTrain, ExistingRunIsNeverOverwrittenOrLost) {
   const std::string data = regression::unpack_fixture(dir.path());
   ASSERT_FALSE(data.empty());
   const std::string run = dir.file("run");
-  const std::string experiment = dir.write(
-      "exp.yaml", "model: {name: test_constant_velocity, params: {damping: 0.6}}\n"
-                  "data: {dataset: " + data + "}\n"
-                  "train: {epochs: 1, batch_size: 2, windows_per_epoch: 4, val_horizon: 2, val_sequences: 1}\n"
-                  "run: {output: " + run + ", threads: 1, seed: 0}\n");
+  const std::string experiment =
+      dir.write("exp.yaml",
+                "model: {name: test_constant_velocity, params: {damping: 0.6}}\n"
+                "data: {dataset: " +
+                    data +
+                    "}\n"
+                    "train: {epochs: 1, batch_size: 2, windows_per_epoch: 4, val_horizon: 2, val_sequences: 1}\n"
+                    "run: {output: " +
+                    run + ", threads: 1, seed: 0}\n");
   auto first = train(experiment);
   ASSERT_EQ(first.exit_code, 0) << first.output;
   const std::string checkpoint = read_bytes(run + "/checkpoint-last.pt");
@@ -45,9 +49,10 @@ TEST(CliTrain, ExistingRunIsNeverOverwrittenOrLost) {
   // Again without --resume: refused with one line, nothing touched.
   auto again = train(experiment, "--set train.lr=0.5");
   EXPECT_EQ(again.exit_code, 1) << again.output;
-  EXPECT_NE(again.output.find(run + ": run.output: expected a new or empty run folder (--resume continues the run "
-                                    "there, --force moves it aside), got a folder holding a run (checkpoint-best.pt, ...)"),
-            std::string::npos)
+  EXPECT_NE(
+      again.output.find(run + ": run.output: expected a new or empty run folder (--resume continues the run "
+                              "there, --force moves it aside), got a folder holding a run (checkpoint-best.pt, ...)"),
+      std::string::npos)
       << again.output;
   EXPECT_EQ(read_bytes(run + "/checkpoint-last.pt"), checkpoint);
   EXPECT_EQ(read_bytes(run + "/experiment.yaml"), resolved);
@@ -87,8 +92,10 @@ TEST(CliTrain, BadHorizonAndMissingDatasetAreNamed) {
   auto missing = train(experiment);
   EXPECT_EQ(missing.exit_code, 1) << missing.output;
   EXPECT_FALSE(fs::exists(dir.file("run"))) << "a failing train made its run folder";
-  EXPECT_NE(missing.output.find(experiment + ": data.dataset: expected a dataset folder (made by `layers generate`) "
-                                              "or shard file, got '" + dir.file("nothing") + "' (no such folder or file)"),
+  EXPECT_NE(missing.output.find(experiment +
+                                ": data.dataset: expected a dataset folder (made by `layers generate`) "
+                                "or shard file, got '" +
+                                dir.file("nothing") + "' (no such folder or file)"),
             std::string::npos)
       << missing.output;
 }

@@ -98,8 +98,9 @@ std::string golden_json(const Golden& golden) {
   for (const auto& [name, value] : golden.metrics) metrics[name] = std::isfinite(value) ? json(value) : json(nullptr);
   json doc = {{"run", golden.run},
               {"model", golden.model},
-              {"note", "golden metrics of the CI regression (tests/regression); update on purpose with "
-                       "LAYERS_UPDATE_GOLDENS=1 (docs/studies.md)"},
+              {"note",
+               "golden metrics of the CI regression (tests/regression); update on purpose with "
+               "LAYERS_UPDATE_GOLDENS=1 (docs/studies.md)"},
               {"metrics", metrics}};
   return doc.dump(2) + "\n";
 }
@@ -128,8 +129,8 @@ std::vector<std::string> compare(const Golden& golden, const Metrics& now, const
       std::snprintf(buf, sizeof buf, " moved: golden %.6g, new %.6g, difference %+.4g (%+.1f%%), allowed +-%.4g",
                     expected, value, diff, 100.0 * diff / std::fabs(expected), allowed);
     else
-      std::snprintf(buf, sizeof buf, " moved: golden %.6g, new %.6g, difference %+.4g, allowed +-%.4g", expected,
-                    value, diff, allowed);
+      std::snprintf(buf, sizeof buf, " moved: golden %.6g, new %.6g, difference %+.4g, allowed +-%.4g", expected, value,
+                    diff, allowed);
     out.push_back(who + name + buf);
   }
   for (const auto& [name, value] : now)

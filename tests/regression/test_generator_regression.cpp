@@ -100,8 +100,9 @@ TEST(GeneratorRegression, PhysicalMeasuresMatchTheGoldens) {
   const std::string made = regression::sha256_of(out + "/shard-00000.h5");
   const std::string committed = regression::sha256_of(fixture + "/shard-00000.h5");
   std::printf("generated shard sha256 %s\nfixture   shard sha256 %s (%s)\n", made.c_str(), committed.c_str(),
-              made == committed ? "bit-identical to the committed fixture"
-                                : "differs from the committed fixture: another machine or libm, or the generator changed");
+              made == committed
+                  ? "bit-identical to the committed fixture"
+                  : "differs from the committed fixture: another machine or libm, or the generator changed");
 
   const regression::Metrics now = physical_measures(out);
   for (const auto& [name, value] : now) std::printf("  %-40s %.6g\n", name.c_str(), value);
@@ -137,9 +138,10 @@ TEST(GeneratorRegression, DegradedSolverFailsTheComparison) {
   const std::string golden_path = regression::golden_file("generator");
   if (!fs::exists(golden_path)) GTEST_SKIP() << "no " << golden_path << " yet";
   const std::string out = dir.file("data");
-  const std::string failed = generate_like_fixture(
-      fixture, out, "--set sim.substeps=3 --set sim.validation.max_h_penetration=1 "
-                    "--set sim.validation.max_l_penetration=1 --set sim.validation.max_stretch=100");
+  const std::string failed =
+      generate_like_fixture(fixture, out,
+                            "--set sim.substeps=3 --set sim.validation.max_h_penetration=1 "
+                            "--set sim.validation.max_l_penetration=1 --set sim.validation.max_stretch=100");
   ASSERT_TRUE(failed.empty()) << failed;
   const regression::Metrics now = physical_measures(out);
   const auto messages = regression::compare(regression::read_golden(golden_path), now,

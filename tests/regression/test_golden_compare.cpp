@@ -16,17 +16,23 @@ namespace {
 
 std::string metrics_json(double error, double h, double jacket_error, int diverged) {
   auto stat = [](double v) { return "{\"mean\": " + std::to_string(v) + ", \"std\": 0.1, \"count\": 3}"; };
-  return "{\"model\": \"m\", \"diverged\": " + std::to_string(diverged) + ", \"overall\": {\"error_mm\": " +
-         stat(error) + ", \"h_collision\": " + stat(h) +
+  return "{\"model\": \"m\", \"diverged\": " + std::to_string(diverged) +
+         ", \"overall\": {\"error_mm\": " + stat(error) + ", \"h_collision\": " + stat(h) +
          ", \"l_collision\": {\"mean\": null, \"std\": null, \"count\": 0}}, \"per_type\": {\"jacket\": "
-         "{\"error_mm\": " + stat(jacket_error) + ", \"h_collision\": " + stat(h) + "}},"
-         " \"error_growth_mm_per_frame\": " + stat(0.5) + "}";
+         "{\"error_mm\": " +
+         stat(jacket_error) + ", \"h_collision\": " + stat(h) +
+         "}},"
+         " \"error_growth_mm_per_frame\": " +
+         stat(0.5) + "}";
 }
 
 regression::Tolerances tolerances() {
   regression::Tolerances t;
-  t.by_kind = {{"error_mm", {0.05, 0.02}}, {"h_collision", {0.002, 0.05}}, {"l_collision", {0.002, 0.05}},
-               {"diverged", {0, 0}}, {"error_growth_mm_per_frame", {0.02, 0.05}}};
+  t.by_kind = {{"error_mm", {0.05, 0.02}},
+               {"h_collision", {0.002, 0.05}},
+               {"l_collision", {0.002, 0.05}},
+               {"diverged", {0, 0}},
+               {"error_growth_mm_per_frame", {0.02, 0.05}}};
   return t;
 }
 
@@ -58,7 +64,8 @@ TEST(GoldenCompare, DegradedMetricsFailWithReadableMessage) {
   const auto worse = regression::metrics_from_json(metrics_json(13.0, 0.05, 12.0, 2), "new");
   const auto messages = regression::compare(golden(), worse, tolerances());
   ASSERT_EQ(messages.size(), 2u);
-  EXPECT_EQ(messages[0], "run 'layersnet' (model layersnet): diverged moved: golden 0, new 2, difference +2, allowed +-0");
+  EXPECT_EQ(messages[0],
+            "run 'layersnet' (model layersnet): diverged moved: golden 0, new 2, difference +2, allowed +-0");
   EXPECT_EQ(messages[1],
             "run 'layersnet' (model layersnet): overall.error_mm moved: golden 10, new 13, difference +3 (+30.0%), "
             "allowed +-0.25");

@@ -52,10 +52,10 @@ std::string layers_command(const std::string& args) {
 // The study run once for every test of this binary.
 struct Regression {
   std::unique_ptr<test::TempDir> temp;
-  std::string work;                       // output and data live here
-  std::string data;                       // the unpacked fixture dataset
+  std::string work;                             // output and data live here
+  std::string data;                             // the unpacked fixture dataset
   std::map<std::string, std::string> model_of;  // run -> model name
-  std::set<std::string> built;            // runs whose model is registered
+  std::set<std::string> built;                  // runs whose model is registered
   test::CommandResult result;
   double seconds = 0;
   std::string setup_error;
@@ -109,12 +109,12 @@ struct Regression {
         std::size_t end = r.result.output.find('\n', start);
         if (end == std::string::npos) end = r.result.output.size();
         const std::string line = r.result.output.substr(start, end - start);
-        if (line.rfind("[regression]", 0) == 0 || line.rfind("  ", 0) == 0 || line.find("steps ran") != std::string::npos)
+        if (line.rfind("[regression]", 0) == 0 || line.rfind("  ", 0) == 0 ||
+            line.find("steps ran") != std::string::npos)
           std::printf("%s\n", line.c_str());
         start = end + 1;
       }
-      std::printf("regression study: %zu runs in %.1f s (working in %s)\n", r.built.size(), r.seconds,
-                  r.work.c_str());
+      std::printf("regression study: %zu runs in %.1f s (working in %s)\n", r.built.size(), r.seconds, r.work.c_str());
     } catch (const std::exception& e) {
       r.setup_error = e.what();
     }
@@ -135,7 +135,8 @@ std::vector<std::string> study_runs() {
 
 std::string test_name(const testing::TestParamInfo<std::string>& info) {
   std::string s;
-  for (char c : info.param) s += c == '+' ? std::string("_plus") : std::string(1, std::isalnum(static_cast<unsigned char>(c)) ? c : '_');
+  for (char c : info.param)
+    s += c == '+' ? std::string("_plus") : std::string(1, std::isalnum(static_cast<unsigned char>(c)) ? c : '_');
   return s;
 }
 
@@ -177,8 +178,8 @@ TEST(RegressionStudy, SecondRunReusesEveryStep) {
   ASSERT_EQ(r.result.exit_code, 0) << r.result.output;
   std::string only;
   for (const std::string& run : r.built) only += " --only '" + run + "'";
-  const auto again = test::run_command(layers_command("run " + study_file() + " --set output=" + r.runs() +
-                                                      " --set dataset.folder=" + r.data + only));
+  const auto again = test::run_command(
+      layers_command("run " + study_file() + " --set output=" + r.runs() + " --set dataset.folder=" + r.data + only));
   ASSERT_EQ(again.exit_code, 0) << again.output;
   EXPECT_NE(again.output.find("0 steps ran"), std::string::npos) << again.output;
   EXPECT_EQ(again.output.find(": running"), std::string::npos) << again.output;
@@ -201,7 +202,8 @@ TEST(RegressionStudy, DegradedModelFailsTheComparison) {
   const std::string experiment = r.runs() + "/" + run + "/experiment.yaml";
   ASSERT_TRUE(fs::exists(experiment)) << r.result.output;
   test::TempDir dir("layers-degraded");
-  const std::string sets = " --set run.output=" + dir.path() + " --set train.epochs=1 --set train.windows_per_epoch=1 "
+  const std::string sets = " --set run.output=" + dir.path() +
+                           " --set train.epochs=1 --set train.windows_per_epoch=1 "
                            "--set train.batch_size=1 --quiet";
   const auto t = test::run_command(layers_command("train " + experiment + sets));
   ASSERT_EQ(t.exit_code, 0) << t.output;
@@ -209,10 +211,9 @@ TEST(RegressionStudy, DegradedModelFailsTheComparison) {
   const auto e = test::run_command(layers_command("eval " + experiment + sets));
   ASSERT_EQ(e.exit_code, 0) << e.output;
   const std::string metrics = dir.path() + "/eval-test/metrics.json";
-  const auto messages =
-      regression::compare(regression::read_golden(golden_file(run)),
-                          regression::metrics_from_json(read_text_file(metrics), metrics),
-                          regression::read_tolerances(regression::tolerances_file()));
+  const auto messages = regression::compare(regression::read_golden(golden_file(run)),
+                                            regression::metrics_from_json(read_text_file(metrics), metrics),
+                                            regression::read_tolerances(regression::tolerances_file()));
   ASSERT_FALSE(messages.empty()) << "a model trained for one step matched the golden of '" << run << "'";
   bool named = false;
   for (const std::string& m : messages) {

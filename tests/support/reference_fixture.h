@@ -28,8 +28,7 @@ inline at::Tensor grid_points(int rows, int cols, double spacing, const Eigen::V
   std::vector<float> v;
   for (int r = 0; r < rows; ++r)
     for (int c = 0; c < cols; ++c)
-      for (int k = 0; k < 3; ++k)
-        v.push_back(float(origin[k] + (k == 0 ? c * spacing : k == 1 ? r * spacing : 0.0)));
+      for (int k = 0; k < 3; ++k) v.push_back(float(origin[k] + (k == 0 ? c * spacing : k == 1 ? r * spacing : 0.0)));
   return at::tensor(v).reshape({rows * cols, 3});
 }
 

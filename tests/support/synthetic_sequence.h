@@ -23,8 +23,8 @@ namespace layers::data::testing {
 
 struct SyntheticSize {
   std::int64_t frames = 12;
-  int body_rows = 10, body_cols = 20;        // 200 body vertices
-  int garment_rows = 8, garment_cols = 16;   // 128 vertices per garment
+  int body_rows = 10, body_cols = 20;       // 200 body vertices
+  int garment_rows = 8, garment_cols = 16;  // 128 vertices per garment
   int joints = 5;
   int garments = 2;
 };
@@ -123,7 +123,8 @@ inline SequenceData make_sequence(const std::string& id, std::uint64_t seed, con
     g.type = types[k % 2];
     g.name = g.type + (k >= 2 ? std::to_string(k) : "");
     g.layer = k % 2;
-    g.attributes = {{"mass", 0.2 + 0.6 * unit(rng)}, {"tension", 15 + 85 * unit(rng)}, {"bending", 15 + 185 * unit(rng)}};
+    g.attributes = {
+        {"mass", 0.2 + 0.6 * unit(rng)}, {"tension", 15 + 85 * unit(rng)}, {"bending", 15 + 185 * unit(rng)}};
     g.faces = test::grid_faces<std::int32_t>(size.garment_rows, size.garment_cols);
     g.rest = grid_cylinder(size.garment_rows, size.garment_cols, 0.2f + 0.03f * k, 0.7f);
     for (int r = 0; r < size.garment_rows; ++r) {

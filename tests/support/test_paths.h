@@ -21,8 +21,6 @@ inline std::string plugin_dir() { return detail::path_setting("LAYERS_TEST_PLUGI
 inline std::string source_dir() { return detail::path_setting("LAYERS_SOURCE_DIR", LAYERS_TEST_SOURCE_DIR); }
 
 // Path of liblayers_plugin_<name>.so in the test plugin folder.
-inline std::string plugin_file(const std::string& name) {
-  return plugin_dir() + "/liblayers_plugin_" + name + ".so";
-}
+inline std::string plugin_file(const std::string& name) { return plugin_dir() + "/liblayers_plugin_" + name + ".so"; }
 
 }  // namespace layers::test

@@ -2,9 +2,9 @@
 #include "layers/body/body_model.h"
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <limits>
-#include <cmath>
 #include <map>
 #include <mutex>
 
@@ -76,7 +76,8 @@ std::vector<int> expand_ranges(const json::Value& ranges, const std::string& fil
   std::vector<int> out;
   for (const json::Value& r : json::array(ranges, file, what)) {
     const auto& pair = json::array(r, file, what);
-    if (pair.size() != 2) throw InputError(file, what, "[first, last] ranges", std::to_string(pair.size()) + " numbers");
+    if (pair.size() != 2)
+      throw InputError(file, what, "[first, last] ranges", std::to_string(pair.size()) + " numbers");
     int a = static_cast<int>(json::number(pair[0], file, what));
     int b = static_cast<int>(json::number(pair[1], file, what));
     for (int i = a; i <= b; ++i) out.push_back(i);
@@ -157,7 +158,8 @@ JointRef read_joint_ref(const json::Value& end, const std::map<std::string, std:
   if (strategy == "CUBE") {
     const std::string& cube = json::string(json::member(end, "cube_name", file), file, what + ".cube_name");
     auto it = groups.find(cube);
-    if (it == groups.end()) throw InputError(file, what + ".cube_name", "a vertex group of the base mesh", "'" + cube + "'");
+    if (it == groups.end())
+      throw InputError(file, what + ".cube_name", "a vertex group of the base mesh", "'" + cube + "'");
     ref.vertices = it->second;
   } else if (strategy == "MEAN") {
     for (const json::Value& v : json::array(json::member(end, "vertex_indices", file), file, what + ".vertex_indices"))
@@ -187,7 +189,8 @@ std::vector<BoneDef> order_bones(std::vector<BoneDef> defs, const std::string& f
   visit("");
   if (out.empty() || std::count_if(defs.begin(), defs.end(), [](const BoneDef& b) { return b.parent.empty(); }) != 1)
     throw InputError(file, "", "exactly one root bone (empty parent)", "none or several");
-  if (out.size() != defs.size()) throw InputError(file, "", "every bone's parent to be a bone of the rig", "unreachable bones");
+  if (out.size() != defs.size())
+    throw InputError(file, "", "every bone's parent to be a bone of the rig", "unreachable bones");
   return out;
 }
 
@@ -221,12 +224,15 @@ std::shared_ptr<const BodyModel> BodyModel::load(const std::string& asset_root) 
   json::Value groups_json = json::parse_file(groups_path);
   if (!groups_json.is_object()) throw InputError(groups_path, "", "an object of vertex groups", "something else");
   std::map<std::string, std::vector<int>> groups;
-  for (const auto& item : groups_json.items()) groups[item.key()] = expand_ranges(item.value(), groups_path, item.key());
+  for (const auto& item : groups_json.items())
+    groups[item.key()] = expand_ranges(item.value(), groups_path, item.key());
   const std::vector<int>& skin = groups["body"];
   for (std::size_t i = 0; i < skin.size(); ++i)
-    if (skin[i] != static_cast<int>(i)) throw InputError(groups_path, "body", "the range [0, n) of skin vertices", "a different layout");
+    if (skin[i] != static_cast<int>(i))
+      throw InputError(groups_path, "body", "the range [0, n) of skin vertices", "a different layout");
   if (skin.empty() || static_cast<int>(skin.size()) > nv)
-    throw InputError(groups_path, "body", "between 1 and " + std::to_string(nv) + " vertices", std::to_string(skin.size()));
+    throw InputError(groups_path, "body", "between 1 and " + std::to_string(nv) + " vertices",
+                     std::to_string(skin.size()));
   impl->num_skin = static_cast<int>(skin.size());
 
   // Skin faces: all vertices on the skin; polygons fanned into triangles
@@ -242,8 +248,7 @@ std::shared_ptr<const BodyModel> BodyModel::load(const std::string& asset_root) 
       double d13 = (impl->base.row(idx[1]) - impl->base.row(idx[3])).norm();
       first = d13 < d02 ? 1 : 0;
     }
-    for (int k = 1; k + 1 < n; ++k)
-      tris.push_back({idx[first], idx[(first + k) % n], idx[(first + k + 1) % n]});
+    for (int k = 1; k + 1 < n; ++k) tris.push_back({idx[first], idx[(first + k) % n], idx[(first + k + 1) % n]});
   }
   impl->faces.resize(static_cast<Eigen::Index>(tris.size()), 3);
   for (std::size_t i = 0; i < tris.size(); ++i)
@@ -274,17 +279,22 @@ std::shared_ptr<const BodyModel> BodyModel::load(const std::string& asset_root) 
   const std::string weights_path = dir + "/weights.cmu_mb.json";
   json::Value weights_json = json::parse_file(weights_path);
   std::vector<std::vector<std::pair<float, int>>> influences(impl->num_skin);
-  for (const auto& item : json::object(json::member(weights_json, "weights", weights_path), weights_path, "weights").items()) {
+  for (const auto& item :
+       json::object(json::member(weights_json, "weights", weights_path), weights_path, "weights").items()) {
     const std::string& bone = item.key();
     const json::Value& list = item.value();
     auto it = bone_index.find(bone);
-    if (it == bone_index.end()) throw InputError(weights_path, "weights." + bone, "a bone of the rig", "'" + bone + "'");
+    if (it == bone_index.end())
+      throw InputError(weights_path, "weights." + bone, "a bone of the rig", "'" + bone + "'");
     for (const json::Value& pair : json::array(list, weights_path, "weights." + bone)) {
       const auto& vw = json::array(pair, weights_path, "weights." + bone);
-      if (vw.size() != 2) throw InputError(weights_path, "weights." + bone, "[vertex, weight] pairs", std::to_string(vw.size()) + " numbers");
+      if (vw.size() != 2)
+        throw InputError(weights_path, "weights." + bone, "[vertex, weight] pairs",
+                         std::to_string(vw.size()) + " numbers");
       int v = static_cast<int>(json::number(vw[0], weights_path, "weights." + bone));
       double w = json::number(vw[1], weights_path, "weights." + bone);
-      if (v < 0 || v >= nv) throw InputError(weights_path, "weights." + bone, "vertex indices of the base mesh", std::to_string(v));
+      if (v < 0 || v >= nv)
+        throw InputError(weights_path, "weights." + bone, "vertex indices of the base mesh", std::to_string(v));
       if (v < impl->num_skin && w > 0.0) influences[v].emplace_back(static_cast<float>(w), it->second);
     }
   }
@@ -310,20 +320,24 @@ std::shared_ptr<const BodyModel> BodyModel::load(const std::string& asset_root) 
     }
   }
   if (unweighted > 0)
-    throw InputError(weights_path, "weights", "a weight for every skin vertex", std::to_string(unweighted) + " skin vertices without one");
+    throw InputError(weights_path, "weights", "a weight for every skin vertex",
+                     std::to_string(unweighted) + " skin vertices without one");
 
   // T-pose: per-bone XYZ Euler angles in Blender bone axes.
   const std::string tpose_path = dir + "/t-pose.cmu_mb.json";
   json::Value tpose = json::parse_file(tpose_path);
   impl->t_pose_euler.assign(impl->bones.size(), Vec3::Zero());
-  for (const auto& item : json::object(json::member(tpose, "bone_rotations", tpose_path), tpose_path, "bone_rotations").items()) {
+  for (const auto& item :
+       json::object(json::member(tpose, "bone_rotations", tpose_path), tpose_path, "bone_rotations").items()) {
     const std::string& bone = item.key();
     const json::Value& angles = item.value();
     auto it = bone_index.find(bone);
-    if (it == bone_index.end()) throw InputError(tpose_path, "bone_rotations." + bone, "a bone of the rig", "'" + bone + "'");
+    if (it == bone_index.end())
+      throw InputError(tpose_path, "bone_rotations." + bone, "a bone of the rig", "'" + bone + "'");
     const auto& a = json::array(angles, tpose_path, "bone_rotations." + bone);
     if (a.size() != 3) throw InputError(tpose_path, "bone_rotations." + bone, "3 angles", std::to_string(a.size()));
-    for (int k = 0; k < 3; ++k) impl->t_pose_euler[it->second][k] = json::number(a[k], tpose_path, "bone_rotations." + bone);
+    for (int k = 0; k < 3; ++k)
+      impl->t_pose_euler[it->second][k] = json::number(a[k], tpose_path, "bone_rotations." + bone);
   }
 
   // Shape targets (parsed once, kept for every build()).
@@ -354,7 +368,8 @@ Body BodyModel::build(const ShapeParams& shape) const {
   const double ground = shaped.topRows(m.num_skin).col(1).minCoeff();
   const Vec3 lift(0.0, -ground, 0.0);
   body.rest.vertices.resize(m.num_skin, 3);
-  for (int v = 0; v < m.num_skin; ++v) body.rest.vertices.row(v) = (shaped.row(v).transpose() + lift).transpose().cast<float>();
+  for (int v = 0; v < m.num_skin; ++v)
+    body.rest.vertices.row(v) = (shaped.row(v).transpose() + lift).transpose().cast<float>();
   body.rest.faces = m.faces;
 
   auto place = [&](const JointRef& ref) {

@@ -45,9 +45,7 @@ Quat same_hemisphere(const Quat& q, const Quat& reference) {
   return q;
 }
 
-Quat slerp(const Quat& a, const Quat& b, double t) {
-  return a.slerp(t, same_hemisphere(b, a)).normalized();
-}
+Quat slerp(const Quat& a, const Quat& b, double t) { return a.slerp(t, same_hemisphere(b, a)).normalized(); }
 
 double angle_of(const Quat& q) {
   double w = std::min(1.0, std::abs(q.normalized().w()));

@@ -45,17 +45,21 @@ int limb(int part) { return part - 1; }
 
 const char* body_part_name(BodyPart part) {
   switch (part) {
-    case BodyPart::torso: return "torso";
-    case BodyPart::left_arm: return "left_arm";
-    case BodyPart::right_arm: return "right_arm";
-    case BodyPart::left_leg: return "left_leg";
-    case BodyPart::right_leg: return "right_leg";
+    case BodyPart::torso:
+      return "torso";
+    case BodyPart::left_arm:
+      return "left_arm";
+    case BodyPart::right_arm:
+      return "right_arm";
+    case BodyPart::left_leg:
+      return "left_leg";
+    case BodyPart::right_leg:
+      return "right_leg";
   }
   return "?";
 }
 
-SelfIntersection::SelfIntersection(const Body& body, IntersectionOptions options)
-    : body_(body), options_(options) {
+SelfIntersection::SelfIntersection(const Body& body, IntersectionOptions options) : body_(body), options_(options) {
   const int nv = body.num_vertices();
   std::vector<int> joint_part(body.skeleton.num_joints());
   for (int j = 0; j < body.skeleton.num_joints(); ++j) joint_part[j] = part_of_joint(body.skeleton.names[j]);
@@ -90,17 +94,18 @@ FrameIntersection SelfIntersection::check(const geometry::Points& posed) const {
     for (int v : members_[p]) box[p].add(posed.row(v));
 
   // Which surfaces each part's vertices are tested against.
-  static const std::vector<std::pair<int, int>> pairs = {
-      {1, 0}, {2, 0}, {1, 3}, {1, 4}, {2, 3}, {2, 4}, {1, 2}, {3, 4}, {3, 0}, {4, 0}};
+  static const std::vector<std::pair<int, int>> pairs = {{1, 0}, {2, 0}, {1, 3}, {1, 4}, {2, 3},
+                                                         {2, 4}, {1, 2}, {3, 4}, {3, 0}, {4, 0}};
   const float gate = static_cast<float>(options_.max_distance);
   std::array<std::unique_ptr<geometry::PointIndex>, kNumBodyParts> index;
   for (const auto& [a, b] : pairs) {
-    const bool apart = (box[a].lo.array() > box[b].hi.array() + gate).any() ||
-                       (box[b].lo.array() > box[a].hi.array() + gate).any();
+    const bool apart =
+        (box[a].lo.array() > box[b].hi.array() + gate).any() || (box[b].lo.array() > box[a].hi.array() + gate).any();
     if (apart) continue;
     if (!index[b]) {
       geometry::Points pts(static_cast<Eigen::Index>(members_[b].size()), 3);
-      for (std::size_t i = 0; i < members_[b].size(); ++i) pts.row(static_cast<Eigen::Index>(i)) = posed.row(members_[b][i]);
+      for (std::size_t i = 0; i < members_[b].size(); ++i)
+        pts.row(static_cast<Eigen::Index>(i)) = posed.row(members_[b][i]);
       index[b] = std::make_unique<geometry::PointIndex>(std::move(pts));
     }
     for (int v : members_[a]) {

@@ -55,9 +55,8 @@ void skin(const geometry::Points& rest, const SkinWeights& weights, const Skelet
   for (int v = 0; v < rest.rows(); ++v) out.row(v) = skin_one(m, weights, rest, v).transpose().cast<float>();
 }
 
-std::vector<Vec3> skin_subset(const geometry::Points& rest, const SkinWeights& weights,
-                              const Skeleton& skeleton, const JointTransforms& transforms,
-                              const std::vector<int>& vertices) {
+std::vector<Vec3> skin_subset(const geometry::Points& rest, const SkinWeights& weights, const Skeleton& skeleton,
+                              const JointTransforms& transforms, const std::vector<int>& vertices) {
   check_sizes(rest, weights);
   std::vector<Affine> m = skinning_matrices(skeleton, transforms);
   std::vector<Vec3> out;

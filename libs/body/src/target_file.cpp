@@ -31,7 +31,8 @@ ShapeTarget read_target(const std::string& path, int num_vertices) {
       d[k] = std::strtof(p, &end);
       ok = end != p;
     }
-    if (!ok) throw InputError(path, "line " + std::to_string(line), "'vertex dx dy dz'", std::string("'") + buffer + "'");
+    if (!ok)
+      throw InputError(path, "line " + std::to_string(line), "'vertex dx dy dz'", std::string("'") + buffer + "'");
     if (index < 0 || index >= num_vertices)
       throw InputError(path, "line " + std::to_string(line),
                        "a vertex index in [0, " + std::to_string(num_vertices) + ")", std::to_string(index));

@@ -49,10 +49,14 @@ std::string Node::where() const {
 
 std::string Node::kind_name() const {
   switch (kind) {
-    case Kind::Null: return "nothing";
-    case Kind::Scalar: return "a scalar";
-    case Kind::Map: return "a mapping";
-    case Kind::Seq: return "a list";
+    case Kind::Null:
+      return "nothing";
+    case Kind::Scalar:
+      return "a scalar";
+    case Kind::Map:
+      return "a mapping";
+    case Kind::Seq:
+      return "a list";
   }
   return "?";
 }
@@ -103,8 +107,7 @@ Node convert(const YAML::Node& y, const std::string& name, Budget& budget) {
       for (const auto& kv : y) {
         std::string key = kv.first.as<std::string>();
         if (out.find(key))
-          throw InputError::message(name + ":" + std::to_string(kv.first.Mark().line + 1), key,
-                                    "duplicate key");
+          throw InputError::message(name + ":" + std::to_string(kv.first.Mark().line + 1), key, "duplicate key");
         out.map.emplace_back(key, convert(kv.second, name, budget));
       }
       break;
@@ -134,8 +137,7 @@ Node load_recursive(const fs::path& path, std::vector<std::string>& stack) {
     paths.push_back(include);
   } else if (include->kind == Node::Kind::Seq) {
     for (const auto& p : include->seq) {
-      if (p.kind != Node::Kind::Scalar)
-        throw InputError(p.where(), "include", "a file path", p.kind_name());
+      if (p.kind != Node::Kind::Scalar) throw InputError(p.where(), "include", "a file path", p.kind_name());
       paths.push_back(&p);
     }
   } else {
@@ -149,14 +151,12 @@ Node load_recursive(const fs::path& path, std::vector<std::string>& stack) {
   for (const Node* p : paths) {
     fs::path target = fs::path(p->scalar);
     if (target.is_relative()) target = path.parent_path() / target;
-    if (!fs::exists(target))
-      throw InputError(p->where(), "include", "an existing file", "'" + target.string() + "'");
+    if (!fs::exists(target)) throw InputError(p->where(), "include", "an existing file", "'" + target.string() + "'");
     merge(result, load_recursive(target, stack));
   }
   stack.pop_back();
   Node rest = own;
-  rest.map.erase(std::remove_if(rest.map.begin(), rest.map.end(),
-                                [](const auto& kv) { return kv.first == "include"; }),
+  rest.map.erase(std::remove_if(rest.map.begin(), rest.map.end(), [](const auto& kv) { return kv.first == "include"; }),
                  rest.map.end());
   merge(result, rest);
   return result;
@@ -164,8 +164,12 @@ Node load_recursive(const fs::path& path, std::vector<std::string>& stack) {
 
 void emit(YAML::Emitter& out, const Node& node) {
   switch (node.kind) {
-    case Node::Kind::Null: out << YAML::Null; break;
-    case Node::Kind::Scalar: out << node.scalar; break;
+    case Node::Kind::Null:
+      out << YAML::Null;
+      break;
+    case Node::Kind::Scalar:
+      out << node.scalar;
+      break;
     case Node::Kind::Seq:
       out << YAML::BeginSeq;
       for (const auto& item : node.seq) emit(out, item);
@@ -196,8 +200,7 @@ Node parse(const std::string& text, const std::string& name) {
                      "nesting beyond the parser's limit");
   } catch (const YAML::Exception& e) {
     std::string where = name;
-    if (e.mark.line >= 0)
-      where += ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1);
+    if (e.mark.line >= 0) where += ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1);
     throw InputError::message(where, "", "malformed YAML: " + e.msg);
   }
 }

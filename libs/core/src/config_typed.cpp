@@ -119,8 +119,7 @@ void Reader::finish() const {
     std::string valid;
     for (const auto& s : seen_) valid += (valid.empty() ? "" : ", ") + s;
     throw InputError(value.where(), detail::join_path(path_, key),
-                     "one of the keys " + (valid.empty() ? std::string("(none)") : valid),
-                     "unknown key '" + key + "'");
+                     "one of the keys " + (valid.empty() ? std::string("(none)") : valid), "unknown key '" + key + "'");
   }
 }
 

@@ -35,10 +35,9 @@ void Progress::print(bool final, const std::string& extra) {
   last_print_ = elapsed;
   double rate = elapsed > 0 ? done_ / elapsed : 0.0;
   double eta = (rate > 0 && total_ > done_) ? (total_ - done_) / rate : 0.0;
-  std::fprintf(stderr, "%s%s  %zu/%zu %s  %.2f/s  %s %s%s%s", tty_ ? "\r\033[K" : "", label_.c_str(),
-               done_, total_, unit_.c_str(), rate, final ? "took" : "ETA",
-               format_duration(final ? elapsed : eta).c_str(), extra.empty() ? "" : "  ",
-               extra.c_str());
+  std::fprintf(stderr, "%s%s  %zu/%zu %s  %.2f/s  %s %s%s%s", tty_ ? "\r\033[K" : "", label_.c_str(), done_, total_,
+               unit_.c_str(), rate, final ? "took" : "ETA", format_duration(final ? elapsed : eta).c_str(),
+               extra.empty() ? "" : "  ", extra.c_str());
   if (!tty_ || final) std::fputc('\n', stderr);
   std::fflush(stderr);
 }

@@ -4,9 +4,9 @@
 #include <cstdint>
 #include <filesystem>
 
+#include "dataset_files.h"
 #include "layers/core/checksum.h"
 #include "layers/data/dataset.h"
-#include "dataset_files.h"
 #include "layers/data/manifest.h"
 
 namespace layers::data {
@@ -88,7 +88,8 @@ void record_content_hashes(const std::string& folder) {
   if (manifest.n_sequences == 0) return;
   const Dataset dataset = Dataset::open(folder);
   manifest.content_hashes.clear();
-  for (const std::string& id : dataset.ids()) manifest.content_hashes[id] = sequence_content_hash(dataset.read_sequence(id));
+  for (const std::string& id : dataset.ids())
+    manifest.content_hashes[id] = sequence_content_hash(dataset.read_sequence(id));
   write_manifest(manifest_path, manifest);
 }
 

@@ -180,10 +180,10 @@ Window Dataset::read_frames(const std::string& id, std::int64_t first, std::int6
   h5::Lock lock;
   const SequenceInfo& info = impl_->info(id);
   if (first < 0 || count < 1 || first + count > info.n_frames) {
-    throw InputError(info.shard, "/seq/" + id,
-                     "frames within [0," + std::to_string(info.n_frames - 1) + "] (n_frames " +
-                         std::to_string(info.n_frames) + ")",
-                     "frames [" + std::to_string(first) + "," + std::to_string(first + count - 1) + "]");
+    throw InputError(
+        info.shard, "/seq/" + id,
+        "frames within [0," + std::to_string(info.n_frames - 1) + "] (n_frames " + std::to_string(info.n_frames) + ")",
+        "frames [" + std::to_string(first) + "," + std::to_string(first + count - 1) + "]");
   }
   Window window;
   window.id = id;

@@ -102,7 +102,8 @@ std::optional<std::vector<std::uint64_t>> DimBinder::infer(const ArraySpec& spec
     for (const auto& dim : spec.dims) {
       if (is_fixed_dim(dim)) continue;
       const auto& b = bound_.at(dim);
-      bound_text += (bound_text.empty() ? "" : ", ") + dim + "=" + std::to_string(b.value) + " (as in " + b.source + ")";
+      bound_text +=
+          (bound_text.empty() ? "" : ", ") + dim + "=" + std::to_string(b.value) + " (as in " + b.source + ")";
     }
     message = "expected " + std::string(dtype_name(spec.dtype)) + " " + spec.shape_text() +
               (bound_text.empty() ? "" : " with " + bound_text) + " = " + std::to_string(known) + " elements, got " +

@@ -73,7 +73,8 @@ std::vector<std::string> export_sequence(const Dataset& dataset, const std::stri
   }
   std::error_code ec;
   fs::create_directories(out_dir, ec);
-  if (!fs::is_directory(out_dir)) throw InputError::message(out_dir, "", "cannot create the output folder: " + ec.message());
+  if (!fs::is_directory(out_dir))
+    throw InputError::message(out_dir, "", "cannot create the output folder: " + ec.message());
 
   const auto statics = dataset.statics(id);
   std::vector<MeshOut> meshes = meshes_of(*statics);
@@ -83,8 +84,8 @@ std::vector<std::string> export_sequence(const Dataset& dataset, const std::stri
   std::vector<std::unique_ptr<Pc2Writer>> caches;
   if (format == ExportFormat::Pc2) {
     for (const auto& mesh : meshes) {
-      const auto n_points = static_cast<std::int32_t>((mesh.garment < 0 ? info.body_vertices
-                                                                        : info.garments[static_cast<std::size_t>(mesh.garment)].n_vertices));
+      const auto n_points = static_cast<std::int32_t>(
+          (mesh.garment < 0 ? info.body_vertices : info.garments[static_cast<std::size_t>(mesh.garment)].n_vertices));
       const Pc2Header header{n_points, static_cast<float>(first), 1.0f, static_cast<std::int32_t>(last - first)};
       caches.push_back(std::make_unique<Pc2Writer>(prefix + mesh.name + ".pc2", header));
     }

@@ -53,9 +53,9 @@ const std::vector<ArraySpec>& wind_arrays() {
 
 const std::vector<ArraySpec>& garment_arrays() {
   static const std::vector<ArraySpec> specs{
-      {"faces", DType::Int32, {"F", "3"}},        {"rest", DType::Float32, {"V", "3"}},
-      {"uv", DType::Float32, {"U", "2"}},         {"uv_faces", DType::Int32, {"F", "3"}},
-      {"panel", DType::Int32, {"F"}},             {"positions", DType::Float32, {"T", "V", "3"}},
+      {"faces", DType::Int32, {"F", "3"}}, {"rest", DType::Float32, {"V", "3"}},
+      {"uv", DType::Float32, {"U", "2"}},  {"uv_faces", DType::Int32, {"F", "3"}},
+      {"panel", DType::Int32, {"F"}},      {"positions", DType::Float32, {"T", "V", "3"}},
   };
   return specs;
 }
@@ -70,8 +70,8 @@ const ArraySpec& array_spec(const std::string& path) {
 }
 
 const std::vector<std::string>& garment_types() {
-  static const std::vector<std::string> types{"jacket", "jacket_hood", "dress", "dress_belt",
-                                              "jumpsuit", "tshirt", "pants", "skirt"};
+  static const std::vector<std::string> types{"jacket",   "jacket_hood", "dress", "dress_belt",
+                                              "jumpsuit", "tshirt",      "pants", "skirt"};
   return types;
 }
 

@@ -69,7 +69,8 @@ H5::StrType fixed_utf8(const std::vector<std::string>& values) {
 std::vector<char> packed(const std::vector<std::string>& values, const H5::StrType& type) {
   const std::size_t len = type.getSize();
   std::vector<char> buffer(values.size() * len, '\0');
-  for (std::size_t i = 0; i < values.size(); ++i) std::copy(values[i].begin(), values[i].end(), buffer.begin() + i * len);
+  for (std::size_t i = 0; i < values.size(); ++i)
+    std::copy(values[i].begin(), values[i].end(), buffer.begin() + i * len);
   return buffer;
 }
 
@@ -154,8 +155,7 @@ bool dtype_matches(const H5::DataType& type, DType expected) {
     case DType::Float64:
       return type.getClass() == H5T_FLOAT && type.getSize() == 8;
     case DType::Int32:
-      return type.getClass() == H5T_INTEGER && type.getSize() == 4 &&
-             H5Tget_sign(type.getId()) == H5T_SGN_2;
+      return type.getClass() == H5T_INTEGER && type.getSize() == 4 && H5Tget_sign(type.getId()) == H5T_SGN_2;
     case DType::String:
       return type.getClass() == H5T_STRING;
   }
@@ -185,13 +185,15 @@ H5::H5File open_read(const std::string& path, const H5::FileAccPropList& fapl) {
   const auto size = fs::file_size(path, ec);
   Lock lock;
   if (H5Fis_hdf5(path.c_str()) <= 0) {
-    throw InputError(path, "", "an HDF5 file", "no HDF5 signature (not an HDF5 file, " + std::to_string(size) + " bytes)");
+    throw InputError(path, "", "an HDF5 file",
+                     "no HDF5 signature (not an HDF5 file, " + std::to_string(size) + " bytes)");
   }
   try {
     return H5::H5File(path, H5F_ACC_RDONLY, H5::FileCreatPropList::DEFAULT, fapl);
   } catch (const H5::Exception& e) {
-    throw InputError::message(path, "", "cannot open the HDF5 file (" + std::to_string(size) +
-                                            " bytes; truncated or damaged?): " + error_text(e));
+    throw InputError::message(
+        path, "",
+        "cannot open the HDF5 file (" + std::to_string(size) + " bytes; truncated or damaged?): " + error_text(e));
   }
 }
 
@@ -237,8 +239,8 @@ std::vector<std::string> member_names(const H5::Group& group) {
   // Creation order where the group tracks it (the writer's groups do),
   // name order otherwise.
   for (hsize_t i = 0; i < n; ++i) {
-    const ssize_t len = H5Lget_name_by_idx(group.getId(), ".", H5_INDEX_CRT_ORDER, H5_ITER_INC, i, nullptr, 0,
-                                           H5P_DEFAULT);
+    const ssize_t len =
+        H5Lget_name_by_idx(group.getId(), ".", H5_INDEX_CRT_ORDER, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
     if (len < 0) {
       H5Eclear2(H5E_DEFAULT);
       names.clear();
@@ -246,8 +248,7 @@ std::vector<std::string> member_names(const H5::Group& group) {
       return names;
     }
     std::string name(static_cast<std::size_t>(len) + 1, '\0');
-    H5Lget_name_by_idx(group.getId(), ".", H5_INDEX_CRT_ORDER, H5_ITER_INC, i, name.data(), name.size(),
-                       H5P_DEFAULT);
+    H5Lget_name_by_idx(group.getId(), ".", H5_INDEX_CRT_ORDER, H5_ITER_INC, i, name.data(), name.size(), H5P_DEFAULT);
     name.resize(static_cast<std::size_t>(len));
     names.push_back(std::move(name));
   }
@@ -288,7 +289,8 @@ H5::DataSet open_checked(const Where& where, const H5::Group& loc, const std::st
                          const Dims& expected) {
   const std::string expected_text = std::string(dtype_name(dtype)) + " " + dims_text(expected);
   return guard(where.file, where.object, [&] {
-    if (!is_dataset(loc, rel)) throw InputError(where.file, where.object, "dataset " + expected_text, "nothing (missing)");
+    if (!is_dataset(loc, rel))
+      throw InputError(where.file, where.object, "dataset " + expected_text, "nothing (missing)");
     H5::DataSet ds = loc.openDataSet(rel);
     const Dims got = dims_of(ds);
     const H5::DataType type = ds.getDataType();
@@ -309,8 +311,8 @@ H5::DataSet open_checked(const Where& where, const H5::Group& loc, const std::st
   const bool checksummed =
       H5Pget_filter_by_id2(plist.getId(), H5Z_FILTER_FLETCHER32, &flags, &n, nullptr, sizeof name, name, &config) >= 0;
   if (checksummed)
-    throw H5::DataSetIException("", "a chunk fails its Fletcher32 checksum or cannot be decoded: the file is damaged (" +
-                                        error_text(e) + ")");
+    throw H5::DataSetIException(
+        "", "a chunk fails its Fletcher32 checksum or cannot be decoded: the file is damaged (" + error_text(e) + ")");
   throw;
 }
 
@@ -382,14 +384,12 @@ std::vector<std::string> read_strings(const H5::DataSet& ds) {
 std::vector<std::string> read_strings(const Where& where, const H5::Group& loc, const std::string& rel,
                                       const Dims& expected) {
   Lock lock;
-  return guard(where.file, where.object, [&] {
-    return read_strings(open_checked(where, loc, rel, DType::String, expected));
-  });
+  return guard(where.file, where.object,
+               [&] { return read_strings(open_checked(where, loc, rel, DType::String, expected)); });
 }
 
 template <class T>
-void write(H5::Group& loc, const std::string& name, const std::vector<T>& data, const Dims& dims,
-           bool chunk_by_frame) {
+void write(H5::Group& loc, const std::string& name, const std::vector<T>& data, const Dims& dims, bool chunk_by_frame) {
   Lock lock;
   H5::DataSpace space(static_cast<int>(dims.size()), dims.data());
   H5::DSetCreatPropList plist;
@@ -527,11 +527,11 @@ double attr_double(const H5::H5Object& obj, const std::string& name) {
   return read_numeric_attr<double>(obj, name, H5::PredType::NATIVE_DOUBLE);
 }
 
-#define LAYERS_H5_INSTANTIATE(T)                                                                       \
-  template std::vector<T> read_all<T>(const Where&, const H5::Group&, const std::string&, const Dims&); \
-  template std::vector<T> read_rows<T>(const Where&, const H5::Group&, const std::string&, const Dims&, \
-                                       hsize_t, hsize_t);                                              \
-  template void read_rows_into<T>(const H5::DataSet&, const Dims&, hsize_t, hsize_t, T*);              \
+#define LAYERS_H5_INSTANTIATE(T)                                                                                 \
+  template std::vector<T> read_all<T>(const Where&, const H5::Group&, const std::string&, const Dims&);          \
+  template std::vector<T> read_rows<T>(const Where&, const H5::Group&, const std::string&, const Dims&, hsize_t, \
+                                       hsize_t);                                                                 \
+  template void read_rows_into<T>(const H5::DataSet&, const Dims&, hsize_t, hsize_t, T*);                        \
   template void write<T>(H5::Group&, const std::string&, const std::vector<T>&, const Dims&, bool);
 LAYERS_H5_INSTANTIATE(float)
 LAYERS_H5_INSTANTIATE(std::int32_t)

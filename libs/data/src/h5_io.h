@@ -52,18 +52,22 @@ std::string dims_text(const Dims& dims);
 std::string dtype_text(const H5::DataType& type);
 bool dtype_matches(const H5::DataType& type, DType expected);
 
-template <class T> struct Native;
-template <> struct Native<float> {
+template <class T>
+struct Native;
+template <>
+struct Native<float> {
   static const H5::PredType& mem() { return H5::PredType::NATIVE_FLOAT; }
   static const H5::PredType& file() { return H5::PredType::IEEE_F32LE; }
   static constexpr DType dtype = DType::Float32;
 };
-template <> struct Native<std::int32_t> {
+template <>
+struct Native<std::int32_t> {
   static const H5::PredType& mem() { return H5::PredType::NATIVE_INT32; }
   static const H5::PredType& file() { return H5::PredType::STD_I32LE; }
   static constexpr DType dtype = DType::Int32;
 };
-template <> struct Native<double> {
+template <>
+struct Native<double> {
   static const H5::PredType& mem() { return H5::PredType::NATIVE_DOUBLE; }
   static const H5::PredType& file() { return H5::PredType::IEEE_F64LE; }
   static constexpr DType dtype = DType::Float64;
@@ -100,16 +104,15 @@ struct Where {
 
 // Opens `rel` below `loc` and checks dtype and shape; InputError
 // "expected float32 [20,300,3], got float64 [20,300,3]" otherwise.
-H5::DataSet open_checked(const Where& where, const H5::Group& loc, const std::string& rel,
-                         DType dtype, const Dims& expected);
+H5::DataSet open_checked(const Where& where, const H5::Group& loc, const std::string& rel, DType dtype,
+                         const Dims& expected);
 
 template <class T>
-std::vector<T> read_all(const Where& where, const H5::Group& loc, const std::string& rel,
-                        const Dims& expected);
+std::vector<T> read_all(const Where& where, const H5::Group& loc, const std::string& rel, const Dims& expected);
 // Rows [first, first + count) along axis 0 of a dataset of shape `expected`.
 template <class T>
-std::vector<T> read_rows(const Where& where, const H5::Group& loc, const std::string& rel,
-                         const Dims& expected, hsize_t first, hsize_t count);
+std::vector<T> read_rows(const Where& where, const H5::Group& loc, const std::string& rel, const Dims& expected,
+                         hsize_t first, hsize_t count);
 // Rows of an already opened dataset (no checks).
 template <class T>
 void read_rows_into(const H5::DataSet& ds, const Dims& dims, hsize_t first, hsize_t count, T* out);

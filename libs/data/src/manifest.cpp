@@ -36,7 +36,8 @@ std::string manifest_to_yaml(const DatasetManifest& m) {
 
 DatasetManifest read_manifest(const std::string& path) {
   const YAML::Node root = load_yaml_file(path);
-  if (!root.IsMap()) throw InputError(yaml_where(path, root), "", "a mapping (name, seed, counts, ...)", "something else");
+  if (!root.IsMap())
+    throw InputError(yaml_where(path, root), "", "a mapping (name, seed, counts, ...)", "something else");
   DatasetManifest m;
   auto required = [&](const char* key) {
     const YAML::Node node = root[key];
@@ -44,7 +45,8 @@ DatasetManifest read_manifest(const std::string& path) {
     return node;
   };
   const auto format = yaml_scalar<std::string>(required("format"), path, "format", "a string");
-  if (format != kFormatName) throw InputError(yaml_where(path, root["format"]), "format", kFormatName, "'" + format + "'");
+  if (format != kFormatName)
+    throw InputError(yaml_where(path, root["format"]), "format", kFormatName, "'" + format + "'");
   m.format_version = yaml_scalar<std::int64_t>(required("format_version"), path, "format_version", "an integer");
   if (m.format_version != kFormatVersion) {
     throw InputError(yaml_where(path, root["format_version"]), "format_version", std::to_string(kFormatVersion),
@@ -58,16 +60,16 @@ DatasetManifest read_manifest(const std::string& path) {
   }
   if (const YAML::Node counts = root["counts"]) {
     if (!counts.IsMap()) throw InputError(yaml_where(path, counts), "counts", "a mapping", "something else");
-    const std::pair<const char*, std::int64_t*> fields[] = {{"sequences", &m.n_sequences},
-                                                            {"frames", &m.n_frames},
-                                                            {"garments", &m.n_garments},
-                                                            {"shards", &m.n_shards}};
+    const std::pair<const char*, std::int64_t*> fields[] = {
+        {"sequences", &m.n_sequences}, {"frames", &m.n_frames}, {"garments", &m.n_garments}, {"shards", &m.n_shards}};
     for (const auto& [key, target] : fields) {
-      if (counts[key]) *target = yaml_scalar<std::int64_t>(counts[key], path, std::string("counts.") + key, "an integer");
+      if (counts[key])
+        *target = yaml_scalar<std::int64_t>(counts[key], path, std::string("counts.") + key, "an integer");
     }
   }
   if (const YAML::Node hashes = root["content_hashes"]) {
-    if (!hashes.IsMap()) throw InputError(yaml_where(path, hashes), "content_hashes", "a mapping id: hash", "something else");
+    if (!hashes.IsMap())
+      throw InputError(yaml_where(path, hashes), "content_hashes", "a mapping id: hash", "something else");
     for (const auto& kv : hashes) {
       const std::string id = kv.first.as<std::string>();
       const std::string hash = yaml_scalar<std::string>(kv.second, path, "content_hashes." + id, "a string");

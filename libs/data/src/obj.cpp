@@ -15,13 +15,16 @@ void check_mesh(const std::string& path, const ObjMesh& mesh) {
   if (mesh.positions.size() % 3 != 0) {
     throw InputError(path, "positions", "a multiple of 3 floats ([V,3])", std::to_string(mesh.positions.size()));
   }
-  if (mesh.faces.size() % 3 != 0) throw InputError(path, "faces", "a multiple of 3 indices ([F,3])", std::to_string(mesh.faces.size()));
-  if (mesh.uv.size() % 2 != 0) throw InputError(path, "uv", "a multiple of 2 floats ([U,2])", std::to_string(mesh.uv.size()));
+  if (mesh.faces.size() % 3 != 0)
+    throw InputError(path, "faces", "a multiple of 3 indices ([F,3])", std::to_string(mesh.faces.size()));
+  if (mesh.uv.size() % 2 != 0)
+    throw InputError(path, "uv", "a multiple of 2 floats ([U,2])", std::to_string(mesh.uv.size()));
   if (!mesh.uv_faces.empty() && mesh.uv_faces.size() != mesh.faces.size()) {
     throw InputError(path, "uv_faces", std::to_string(mesh.faces.size()) + " indices (one per face corner)",
                      std::to_string(mesh.uv_faces.size()));
   }
-  if (auto problem = check_index_range(mesh.faces, 0, mesh.n_vertices(), 3)) throw InputError::message(path, "faces", *problem);
+  if (auto problem = check_index_range(mesh.faces, 0, mesh.n_vertices(), 3))
+    throw InputError::message(path, "faces", *problem);
   if (auto problem = check_index_range(mesh.uv_faces, 0, static_cast<std::int64_t>(mesh.uv.size() / 2), 3)) {
     throw InputError::message(path, "uv_faces", *problem);
   }

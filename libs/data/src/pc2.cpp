@@ -49,7 +49,8 @@ std::uint64_t expected_size(const Pc2Header& h) {
 void check_header_values(const std::string& path, const Pc2Header& h) {
   if (h.n_points < 0) throw InputError(path, "numPoints", "a count >= 0", std::to_string(h.n_points));
   if (h.n_samples < 0) throw InputError(path, "numSamples", "a count >= 0", std::to_string(h.n_samples));
-  if (!std::isfinite(h.start_frame)) throw InputError(path, "startFrame", "a finite number", std::to_string(h.start_frame));
+  if (!std::isfinite(h.start_frame))
+    throw InputError(path, "startFrame", "a finite number", std::to_string(h.start_frame));
   if (!std::isfinite(h.sample_rate) || h.sample_rate <= 0.0f) {
     throw InputError(path, "sampleRate", "a finite number > 0", std::to_string(h.sample_rate));
   }
@@ -127,14 +128,16 @@ void write_pc2(const std::string& path, const Pc2Cache& cache) {
 
 Pc2Header read_pc2_header(const std::string& path) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError::message(path, "", "cannot open the file (missing?)");
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError::message(path, "", "cannot open the file (missing?)");
   const std::uint64_t size = std::filesystem::file_size(path, ec);
   if (size < kHeaderBytes) {
     throw InputError(path, "header", "at least 32 bytes (a POINTCACHE2 header)", std::to_string(size) + " bytes");
   }
   std::ifstream in(path, std::ios::binary);
   unsigned char head[kHeaderBytes];
-  if (!in.read(reinterpret_cast<char*>(head), kHeaderBytes)) throw InputError::message(path, "", "cannot read the header");
+  if (!in.read(reinterpret_cast<char*>(head), kHeaderBytes))
+    throw InputError::message(path, "", "cannot read the header");
   if (std::memcmp(head, kSignature, 12) != 0) {
     std::string got;
     for (int i = 0; i < 11; ++i) got += std::isprint(head[i]) ? static_cast<char>(head[i]) : '?';
@@ -150,8 +153,8 @@ Pc2Header read_pc2_header(const std::string& path) {
   check_header_values(path, h);
   if (size != expected_size(h)) {
     throw InputError(path, "file size",
-                     std::to_string(expected_size(h)) + " bytes (32 + 12 x " + std::to_string(h.n_points) + " points x " +
-                         std::to_string(h.n_samples) + " samples)",
+                     std::to_string(expected_size(h)) + " bytes (32 + 12 x " + std::to_string(h.n_points) +
+                         " points x " + std::to_string(h.n_samples) + " samples)",
                      std::to_string(size) + " bytes");
   }
   return h;
@@ -160,7 +163,8 @@ Pc2Header read_pc2_header(const std::string& path) {
 Pc2Cache read_pc2(const std::string& path) {
   Pc2Cache cache;
   cache.header = read_pc2_header(path);
-  const std::size_t n = static_cast<std::size_t>(cache.header.n_points) * 3 * static_cast<std::size_t>(cache.header.n_samples);
+  const std::size_t n =
+      static_cast<std::size_t>(cache.header.n_points) * 3 * static_cast<std::size_t>(cache.header.n_samples);
   std::vector<unsigned char> bytes(n * 4);
   std::ifstream in(path, std::ios::binary);
   in.seekg(kHeaderBytes);

@@ -74,7 +74,8 @@ SequenceStatic read_static(const std::string& file, const H5::Group& seq, const 
   out.body.skin_weight = body.all<float>("body/skin_weight");
   if (info.has_tpose_joints) out.body.tpose_joints = body.all<float>("body/tpose_joints");
   for (const auto& gi : info.garments) {
-    const H5::Group group = h5::guard(file, garment_path(info, gi), [&] { return seq.openGroup("garments/" + gi.group); });
+    const H5::Group group =
+        h5::guard(file, garment_path(info, gi), [&] { return seq.openGroup("garments/" + gi.group); });
     const GroupReader garment(file, group, garment_path(info, gi), garment_dims(info, gi));
     GarmentStatic g;
     g.name = gi.name;
@@ -104,7 +105,8 @@ void read_frames(const std::string& file, const H5::Group& seq, const SequenceIn
   window.wind.strength = reader.frames("wind/strength", first, count);
   window.garments.clear();
   for (const auto& gi : info.garments) {
-    const H5::Group group = h5::guard(file, garment_path(info, gi), [&] { return seq.openGroup("garments/" + gi.group); });
+    const H5::Group group =
+        h5::guard(file, garment_path(info, gi), [&] { return seq.openGroup("garments/" + gi.group); });
     const GroupReader garment(file, group, garment_path(info, gi), garment_dims(info, gi));
     window.garments.push_back(garment.frames("positions", first, count));
   }

@@ -7,8 +7,8 @@
 
 namespace layers::data {
 
-std::optional<std::string> check_index_range(const std::vector<std::int32_t>& values, std::int64_t lo,
-                                             std::int64_t hi, std::size_t width) {
+std::optional<std::string> check_index_range(const std::vector<std::int32_t>& values, std::int64_t lo, std::int64_t hi,
+                                             std::size_t width) {
   std::size_t bad = 0, first = 0;
   for (std::size_t i = 0; i < values.size(); ++i) {
     if (values[i] < lo || values[i] >= hi) {
@@ -16,8 +16,8 @@ std::optional<std::string> check_index_range(const std::vector<std::int32_t>& va
     }
   }
   if (bad == 0) return std::nullopt;
-  return "expected indices in [" + std::to_string(lo) + "," + std::to_string(hi - 1) + "], got " +
-         std::to_string(bad) + " out of range, first " + std::to_string(values[first]) + " at row " +
+  return "expected indices in [" + std::to_string(lo) + "," + std::to_string(hi - 1) + "], got " + std::to_string(bad) +
+         " out of range, first " + std::to_string(values[first]) + " at row " +
          std::to_string(first / std::max<std::size_t>(width, 1));
 }
 

@@ -12,8 +12,8 @@
 namespace layers::data {
 
 // Every value in [lo, hi); rows of `width` values for the message.
-std::optional<std::string> check_index_range(const std::vector<std::int32_t>& values, std::int64_t lo,
-                                             std::int64_t hi, std::size_t width);
+std::optional<std::string> check_index_range(const std::vector<std::int32_t>& values, std::int64_t lo, std::int64_t hi,
+                                             std::size_t width);
 // Each parent in [-1, J) and not the joint itself.
 std::optional<std::string> check_joint_parents(const std::vector<std::int32_t>& parents);
 std::optional<std::string> check_sequence_id(const std::string& id);

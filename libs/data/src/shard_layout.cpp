@@ -82,8 +82,8 @@ void inspect_array(const std::string& file, const H5::Group& loc, const std::str
 
 std::int64_t dim_or_zero(const DimBinder& dims, const char* symbol) { return dims.get(symbol).value_or(0); }
 
-void inspect_sequence_attrs(const std::string& file, const H5::Group& seq, const std::string& base,
-                            SequenceInfo& info, DimBinder& dims, ProblemSink& sink) {
+void inspect_sequence_attrs(const std::string& file, const H5::Group& seq, const std::string& base, SequenceInfo& info,
+                            DimBinder& dims, ProblemSink& sink) {
   AttrReader attrs(file, seq, base, sink);
   if (attrs.expect("n_frames", h5::AttrKind::Integer)) {
     info.n_frames = h5::attr_int(seq, "n_frames");
@@ -209,8 +209,8 @@ SequenceLayout inspect_sequence(const std::string& file, const H5::Group& seq, c
   std::sort(names.begin(), names.end(),
             [](const std::string& a, const std::string& b) { return std::stol(a) < std::stol(b); });
   for (const auto& name : names) {
-    info.garments.push_back(inspect_garment(file, garments.openGroup(name), name, base, "garments/" + name + "/",
-                                            dims, sink, layout.well_formed));
+    info.garments.push_back(inspect_garment(file, garments.openGroup(name), name, base, "garments/" + name + "/", dims,
+                                            sink, layout.well_formed));
   }
   return layout;
 }

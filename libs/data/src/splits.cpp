@@ -83,13 +83,15 @@ SplitsSource read_splits_source(const std::string& path) {
     std::vector<std::string> ids;
     std::vector<int> lines;
     if (!list.IsNull()) {
-      if (!list.IsSequence()) throw InputError(yaml_where(path, list), name, "a list of sequence ids", "a scalar or mapping");
+      if (!list.IsSequence())
+        throw InputError(yaml_where(path, list), name, "a list of sequence ids", "a scalar or mapping");
       for (const auto& item : list) {
         ids.push_back(yaml_scalar<std::string>(item, path, name, "a sequence id (string)"));
         lines.push_back(item.Mark().is_null() ? 0 : item.Mark().line + 1);
       }
     }
-    if (source.splits.has(name)) throw InputError(yaml_where(path, entry.first), name, "each split once", "a repeated split");
+    if (source.splits.has(name))
+      throw InputError(yaml_where(path, entry.first), name, "each split once", "a repeated split");
     source.splits.set(name, std::move(ids));
     source.lines[name] = std::move(lines);
   }

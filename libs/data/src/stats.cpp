@@ -105,11 +105,13 @@ void accumulate_sequence(const Dataset& dataset, const SequenceInfo& info, Quant
   const std::string base = "/seq/" + info.id;
   std::size_t frame_bytes = static_cast<std::size_t>(info.body_vertices) * 12;
   for (const auto& g : info.garments) frame_bytes += static_cast<std::size_t>(g.n_vertices) * 12;
-  const std::int64_t block = std::max<std::int64_t>(1, static_cast<std::int64_t>(kBlockBytes / std::max<std::size_t>(frame_bytes, 1)));
+  const std::int64_t block =
+      std::max<std::int64_t>(1, static_cast<std::int64_t>(kBlockBytes / std::max<std::size_t>(frame_bytes, 1)));
 
   MeshTrack body_track(body, base + "/body/positions");
   std::vector<MeshTrack> garment_tracks;
-  for (const auto& g : info.garments) garment_tracks.emplace_back(garment, base + "/garments/" + g.group + "/positions");
+  for (const auto& g : info.garments)
+    garment_tracks.emplace_back(garment, base + "/garments/" + g.group + "/positions");
 
   for (std::int64_t first = 0; first < info.n_frames; first += block) {
     const std::int64_t count = std::min(block, info.n_frames - first);
@@ -118,7 +120,8 @@ void accumulate_sequence(const Dataset& dataset, const SequenceInfo& info, Quant
       const std::int64_t t = first + f;
       const float* root = w.body.root.data() + 3 * f;
       if (!std::isfinite(root[0]) || !std::isfinite(root[1]) || !std::isfinite(root[2])) {
-        throw InputError(info.shard, base + "/body/root", "finite values", "a non-finite value at frame " + std::to_string(t));
+        throw InputError(info.shard, base + "/body/root", "finite values",
+                         "a non-finite value at frame " + std::to_string(t));
       }
       const auto nb = static_cast<std::size_t>(info.body_vertices);
       body_track.frame(info, t, w.body.positions.data() + f * nb * 3, nb, root);
@@ -150,13 +153,14 @@ NormStats compute_stats(const Dataset& dataset, const StatsOptions& options) {
     ++stats.n_sequences;
     stats.n_frames += info.n_frames;
   }
-  const std::pair<const char*, const MomentAccumulator*> all[] = {
-      {"garment velocity", &garment.velocity}, {"garment acceleration", &garment.acceleration},
-      {"body velocity", &body.velocity}, {"body acceleration", &body.acceleration}};
+  const std::pair<const char*, const MomentAccumulator*> all[] = {{"garment velocity", &garment.velocity},
+                                                                  {"garment acceleration", &garment.acceleration},
+                                                                  {"body velocity", &body.velocity},
+                                                                  {"body acceleration", &body.acceleration}};
   for (const auto& [name, acc] : all) {
     if (acc->count() == 0) {
-      throw InputError(splits_file, options.split, std::string("data for the ") + name + " (garments and sequences of at least 3 frames)",
-                       "none");
+      throw InputError(splits_file, options.split,
+                       std::string("data for the ") + name + " (garments and sequences of at least 3 frames)", "none");
     }
   }
   stats.garment_position = garment.position.moments(options.std_floor);
@@ -224,7 +228,8 @@ NormStats read_stats(const std::string& path) {
     stats.std_floor = h5::attr_double(root, "std_floor");
     for_each_quantity(stats, [&](const char* name, Moments& m) {
       const std::string object = std::string("/") + name;
-      if (!h5::exists(root, name)) throw InputError(path, object, "a group with mean, std and count", "nothing (missing)");
+      if (!h5::exists(root, name))
+        throw InputError(path, object, "a group with mean, std and count", "nothing (missing)");
       const H5::Group group = root.openGroup(name);
       const auto mean = h5::read_all<double>(h5::Where{path, object + "/mean"}, group, "mean", {3});
       const auto std = h5::read_all<double>(h5::Where{path, object + "/std"}, group, "std", {3});

@@ -37,8 +37,8 @@ constexpr std::size_t kScanBlockBytes = 4u << 20;
 
 Problem problem_from(const InputError& e) {
   std::string message = e.what();
-  const std::string prefix = (e.file().empty() ? std::string("<input>") : e.file()) +
-                             (e.field().empty() ? "" : ": " + e.field()) + ": ";
+  const std::string prefix =
+      (e.file().empty() ? std::string("<input>") : e.file()) + (e.field().empty() ? "" : ": " + e.field()) + ": ";
   if (message.rfind(prefix, 0) == 0) message = message.substr(prefix.size());
   return Problem{e.file(), e.field(), message};
 }
@@ -121,10 +121,10 @@ void scan_floats(const std::string& file, const H5::Group& loc, const std::strin
                           "expected strengths in [0,400], got " + std::to_string(rule_offences.count) +
                               " outside (first " + value_text(rule_offences.value) + " at " + at + ")"});
     } else {
-      sink.report(Problem{file, object,
-                          "expected unit quaternions (|q| within 1e-3 of 1), got " +
-                              std::to_string(rule_offences.count) + " that are not (first |q| = " +
-                              value_text(rule_offences.value) + " at frame " + at + ")"});
+      sink.report(
+          Problem{file, object,
+                  "expected unit quaternions (|q| within 1e-3 of 1), got " + std::to_string(rule_offences.count) +
+                      " that are not (first |q| = " + value_text(rule_offences.value) + " at frame " + at + ")"});
     }
   }
 }
@@ -146,11 +146,10 @@ void check_values(const std::string& file, const H5::Group& seq, const SequenceL
   constexpr std::int64_t kNoMax = std::numeric_limits<std::int32_t>::max();
 
   const std::pair<const char*, ValueRule> body_floats[] = {
-      {"body/positions", ValueRule::Finite}, {"body/root", ValueRule::Finite},
+      {"body/positions", ValueRule::Finite},        {"body/root", ValueRule::Finite},
       {"body/root_rot", ValueRule::UnitQuaternion}, {"body/joints", ValueRule::Finite},
-      {"body/skin_weight", ValueRule::Finite}, {"body/tpose_joints", ValueRule::Finite},
-      {"wind/rotation", ValueRule::UnitQuaternion},
-      {"wind/strength", ValueRule::WindStrength}};
+      {"body/skin_weight", ValueRule::Finite},      {"body/tpose_joints", ValueRule::Finite},
+      {"wind/rotation", ValueRule::UnitQuaternion}, {"wind/strength", ValueRule::WindStrength}};
   for (const auto& [rel, rule] : body_floats) {
     if (ok(rel)) scan_floats(file, seq, rel, base + "/" + rel, rule, sink);
   }
@@ -324,8 +323,9 @@ void check_frame_bounds(const std::string& path, ProblemSink& sink) {
         if (it == recorded.end())
           sink.report(Problem{manifest_path, "content_hashes", "no hash for sequence '" + id + "'"});
         else if (it->second != now)
-          sink.report(Problem{manifest_path, "content_hashes." + id,
-                              "expected " + it->second + ", got " + now + " (the sequence changed since it was written)"});
+          sink.report(
+              Problem{manifest_path, "content_hashes." + id,
+                      "expected " + it->second + ", got " + now + " (the sequence changed since it was written)"});
       } catch (const InputError& e) {
         sink.report(problem_from(e));
       }

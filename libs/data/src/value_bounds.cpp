@@ -31,8 +31,8 @@ struct Checker {
 
   // [n, count, stride] values, all finite, whose elements x, y, z (a
   // position) lie within kMaxDistanceFromRoot of the frame's root.
-  void points(const std::string& array, const std::vector<float>& values, std::int64_t count, int stride,
-              int x, int y, int z, const char* item) const {
+  void points(const std::string& array, const std::vector<float>& values, std::int64_t count, int stride, int x, int y,
+              int z, const char* item) const {
     if (n <= 0 || count <= 0) return;
     for (std::int64_t t = 0; t < n; ++t) {
       const float* r = root(t);
@@ -44,8 +44,8 @@ struct Checker {
         const double dx = p[x] - r[0], dy = p[y] - r[1], dz = p[z] - r[2];
         const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
         if (d > kMaxDistanceFromRoot)
-          fail(array, "positions within " + number(kMaxDistanceFromRoot) + " m of the body root",
-               number(d) + " m away", t, std::string(item) + " " + std::to_string(i));
+          fail(array, "positions within " + number(kMaxDistanceFromRoot) + " m of the body root", number(d) + " m away",
+               t, std::string(item) + " " + std::to_string(i));
       }
     }
   }
@@ -55,9 +55,11 @@ struct Checker {
       const float* r = root(t);
       for (int c = 0; c < 3; ++c)
         if (!std::isfinite(r[c]) || std::fabs(r[c]) > kMaxRootDistance)
-          fail("body/root", "finite values within " + number(kMaxRootDistance) + " m of the origin", number(r[c]), t, "");
+          fail("body/root", "finite values within " + number(kMaxRootDistance) + " m of the origin", number(r[c]), t,
+               "");
       for (int c = 0; c < 4; ++c)
-        if (!std::isfinite(w.body.root_rot[4 * t + c])) fail("body/root_rot", "finite values", number(w.body.root_rot[4 * t + c]), t, "");
+        if (!std::isfinite(w.body.root_rot[4 * t + c]))
+          fail("body/root_rot", "finite values", number(w.body.root_rot[4 * t + c]), t, "");
       const float* rot = &w.wind.rotation[4 * t];
       for (int c = 0; c < 4; ++c)
         if (!std::isfinite(rot[c])) fail("wind/rotation", "finite values", number(rot[c]), t, "");

@@ -26,9 +26,7 @@ YAML::Node parse_yaml_text(const std::string& text, const std::string& name) {
   }
 }
 
-YAML::Node load_yaml_file(const std::string& path) {
-  return parse_yaml_text(read_text_file(path), path);
-}
+YAML::Node load_yaml_file(const std::string& path) { return parse_yaml_text(read_text_file(path), path); }
 
 template <class T>
 T yaml_scalar(const YAML::Node& node, const std::string& path, const std::string& key, const char* expected) {

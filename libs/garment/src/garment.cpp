@@ -9,8 +9,8 @@
 #include <sstream>
 
 #include "layers/core/error.h"
-#include "layers/geometry/normals.h"
 #include "layers/garment/garment_recipes.h"
+#include "layers/geometry/normals.h"
 
 namespace layers::garment {
 namespace {
@@ -96,8 +96,8 @@ void validate(const GarmentParams& p) {
 }
 
 const std::vector<std::string>& garment_types() {
-  static const std::vector<std::string> types = {"jacket", "jacket_hood", "dress", "dress_belt",
-                                                 "jumpsuit", "tshirt", "pants", "skirt"};
+  static const std::vector<std::string> types = {"jacket",   "jacket_hood", "dress", "dress_belt",
+                                                 "jumpsuit", "tshirt",      "pants", "skirt"};
   return types;
 }
 
@@ -139,7 +139,8 @@ GarmentMesh build_garment(const std::string& type, const TPoseBody& body, const 
   return mesh;
 }
 
-GarmentMesh build_garment(const std::string& type, const body::Body& body, const GarmentParams& params, std::uint64_t seed) {
+GarmentMesh build_garment(const std::string& type, const body::Body& body, const GarmentParams& params,
+                          std::uint64_t seed) {
   return build_garment(type, t_pose_body(body), params, seed);
 }
 
@@ -147,7 +148,8 @@ std::vector<GarmentMesh> build_outfit(const std::vector<std::string>& inner, con
                                       const TPoseBody& body, const GarmentParams& params, std::uint64_t seed) {
   for (const auto& t : inner)
     if (garment_layer(t) != 0) throw InputError(kConfig, "inner", "inner garment types", "'" + t + "'");
-  if (!outer.empty() && garment_layer(outer) != 1) throw InputError(kConfig, "outer", "jacket or jacket_hood", "'" + outer + "'");
+  if (!outer.empty() && garment_layer(outer) != 1)
+    throw InputError(kConfig, "outer", "jacket or jacket_hood", "'" + outer + "'");
   std::vector<std::string> order = inner;
   if (inner.size() == 2) {
     const bool top_first = inner[0] == "tshirt";
@@ -157,7 +159,8 @@ std::vector<GarmentMesh> build_outfit(const std::vector<std::string>& inner, con
       throw InputError(kConfig, "inner", "one inner type, or tshirt with pants or skirt", "'" + joined(inner) + "'");
     order = {bottom, top};
   } else if (inner.size() != 1) {
-    throw InputError(kConfig, "inner", "one inner type, or tshirt with pants or skirt", std::to_string(inner.size()) + " types");
+    throw InputError(kConfig, "inner", "one inner type, or tshirt with pants or skirt",
+                     std::to_string(inner.size()) + " types");
   }
   if (!outer.empty()) order.push_back(outer);
   std::vector<GarmentMesh> out;

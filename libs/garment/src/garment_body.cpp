@@ -8,38 +8,61 @@
 #include <limits>
 #include <map>
 
+#include "layers/body/pose_body.h"
 #include "layers/core/error.h"
 #include "layers/geometry/nearest.h"
-#include "layers/body/pose_body.h"
 
 namespace layers::garment {
 namespace {
 
 Part part_of_joint(const std::string& name) {
-  static const std::map<std::string, Part> parts = {
-      {"Head", Part::Head},           {"Neck", Part::Neck},           {"Neck1", Part::Neck},
-      {"LeftArm", Part::LeftArm},     {"LeftForeArm", Part::LeftArm}, {"RightArm", Part::RightArm},
-      {"RightForeArm", Part::RightArm}, {"LeftHand", Part::LeftHand}, {"LThumb", Part::LeftHand},
-      {"LeftFingerBase", Part::LeftHand}, {"LeftHandFinger1", Part::LeftHand},
-      {"RightHand", Part::RightHand}, {"RThumb", Part::RightHand},  {"RightFingerBase", Part::RightHand},
-      {"RightHandFinger1", Part::RightHand}, {"LeftUpLeg", Part::LeftLeg}, {"LeftLeg", Part::LeftLeg},
-      {"RightUpLeg", Part::RightLeg}, {"RightLeg", Part::RightLeg},   {"LeftFoot", Part::LeftFoot},
-      {"LeftToeBase", Part::LeftFoot}, {"RightFoot", Part::RightFoot}, {"RightToeBase", Part::RightFoot}};
+  static const std::map<std::string, Part> parts = {{"Head", Part::Head},
+                                                    {"Neck", Part::Neck},
+                                                    {"Neck1", Part::Neck},
+                                                    {"LeftArm", Part::LeftArm},
+                                                    {"LeftForeArm", Part::LeftArm},
+                                                    {"RightArm", Part::RightArm},
+                                                    {"RightForeArm", Part::RightArm},
+                                                    {"LeftHand", Part::LeftHand},
+                                                    {"LThumb", Part::LeftHand},
+                                                    {"LeftFingerBase", Part::LeftHand},
+                                                    {"LeftHandFinger1", Part::LeftHand},
+                                                    {"RightHand", Part::RightHand},
+                                                    {"RThumb", Part::RightHand},
+                                                    {"RightFingerBase", Part::RightHand},
+                                                    {"RightHandFinger1", Part::RightHand},
+                                                    {"LeftUpLeg", Part::LeftLeg},
+                                                    {"LeftLeg", Part::LeftLeg},
+                                                    {"RightUpLeg", Part::RightLeg},
+                                                    {"RightLeg", Part::RightLeg},
+                                                    {"LeftFoot", Part::LeftFoot},
+                                                    {"LeftToeBase", Part::LeftFoot},
+                                                    {"RightFoot", Part::RightFoot},
+                                                    {"RightToeBase", Part::RightFoot}};
   auto it = parts.find(name);
   return it == parts.end() ? Part::Torso : it->second;
 }
 
 Part mirror_part(Part p) {
   switch (p) {
-    case Part::LeftArm: return Part::RightArm;
-    case Part::RightArm: return Part::LeftArm;
-    case Part::LeftHand: return Part::RightHand;
-    case Part::RightHand: return Part::LeftHand;
-    case Part::LeftLeg: return Part::RightLeg;
-    case Part::RightLeg: return Part::LeftLeg;
-    case Part::LeftFoot: return Part::RightFoot;
-    case Part::RightFoot: return Part::LeftFoot;
-    default: return p;
+    case Part::LeftArm:
+      return Part::RightArm;
+    case Part::RightArm:
+      return Part::LeftArm;
+    case Part::LeftHand:
+      return Part::RightHand;
+    case Part::RightHand:
+      return Part::LeftHand;
+    case Part::LeftLeg:
+      return Part::RightLeg;
+    case Part::RightLeg:
+      return Part::LeftLeg;
+    case Part::LeftFoot:
+      return Part::RightFoot;
+    case Part::RightFoot:
+      return Part::LeftFoot;
+    default:
+      return p;
   }
 }
 
@@ -84,7 +107,8 @@ Landmarks measure(const TPoseBody& body) {
   int head_count = 0;
   for (int v = 0; v < n; ++v) {
     const body::Vec3 p = row(V, v);
-    if (std::abs(p.x()) < 0.004 && p.y() > m.knee + 0.1 && p.y() < m.hip_joint + 0.1) m.crotch = std::min(m.crotch, p.y());
+    if (std::abs(p.x()) < 0.004 && p.y() > m.knee + 0.1 && p.y() < m.hip_joint + 0.1)
+      m.crotch = std::min(m.crotch, p.y());
     if (body.parts[v] == Part::Neck && std::abs(p.y() - m.neck) < 0.02) {
       neck_w = std::max(neck_w, std::abs(p.x()));
       neck_zlo = std::min(neck_zlo, p.z());
@@ -96,7 +120,8 @@ Landmarks measure(const TPoseBody& body) {
       ++head_count;
     }
   }
-  if (!std::isfinite(m.crotch) || head_count == 0 || !(neck_w > 0)) throw Error("T-pose body: cannot find the crotch or the head");
+  if (!std::isfinite(m.crotch) || head_count == 0 || !(neck_w > 0))
+    throw Error("T-pose body: cannot find the crotch or the head");
   m.neck_half_width = neck_w;
   m.neck_half_depth = 0.5 * (neck_zhi - neck_zlo);
   m.neck_z = 0.5 * (neck_zhi + neck_zlo);

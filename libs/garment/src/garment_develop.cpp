@@ -45,8 +45,8 @@ void arap(const std::vector<body::Vec3>& points, const std::vector<std::array<in
           int iterations) {
   const int n = static_cast<int>(points.size());
   struct Local {
-    std::array<Vec2, 3> x;       // the 3D triangle laid flat
-    std::array<double, 3> w;     // weight of the edge opposite corner k
+    std::array<Vec2, 3> x;    // the 3D triangle laid flat
+    std::array<double, 3> w;  // weight of the edge opposite corner k
   };
   std::vector<Local> local(tris.size());
   std::vector<Eigen::Triplet<double>> entries;

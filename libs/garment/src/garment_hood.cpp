@@ -78,8 +78,10 @@ PanelGrid hood_panel(const FitContext& ctx, const HeadShape& head, const std::ve
   for (int j = 0; j <= cols; ++j) {
     const body::Vec3 d0 = (neck[j] - h).normalized(), d1 = (seam[j] - h).normalized();
     const double azimuth = kPi - (kPi - cheek) * static_cast<double>(j) / cols;
-    const double elevation = 0.5 * (std::asin(std::clamp(d0.y(), -1.0, 1.0)) + std::asin(std::clamp(d1.y(), -1.0, 1.0)));
-    const body::Vec3 w(std::cos(elevation) * std::sin(azimuth), std::sin(elevation), std::cos(elevation) * std::cos(azimuth));
+    const double elevation =
+        0.5 * (std::asin(std::clamp(d0.y(), -1.0, 1.0)) + std::asin(std::clamp(d1.y(), -1.0, 1.0)));
+    const body::Vec3 w(std::cos(elevation) * std::sin(azimuth), std::sin(elevation),
+                       std::cos(elevation) * std::cos(azimuth));
     const double r0 = (neck[j] - h).norm();
     for (int k = 0; k <= 48; ++k) {
       const double t = k / 48.0;
@@ -114,9 +116,10 @@ void build_hood(Pattern& pattern, const FitContext& ctx, const Quarters& neck, c
   const HeadShape right_head(flipped, flipped_centre);
 
   int split_l = 0, rows_l = 0, split_r = 0, rows_r = 0;
-  PanelGrid left = hood_panel(ctx, left_head, edge_points(pattern, neck.bl), edge_points(pattern, neck.fl), spec, split_l, rows_l);
-  PanelGrid right = hood_panel(ctx, right_head, mirrored(edge_points(pattern, neck.br)), mirrored(edge_points(pattern, neck.fr)),
-                               spec, split_r, rows_r);
+  PanelGrid left =
+      hood_panel(ctx, left_head, edge_points(pattern, neck.bl), edge_points(pattern, neck.fl), spec, split_l, rows_l);
+  PanelGrid right = hood_panel(ctx, right_head, mirrored(edge_points(pattern, neck.br)),
+                               mirrored(edge_points(pattern, neck.fr)), spec, split_r, rows_r);
   for (body::Vec3& p : right.points) p.x() = -p.x();
   left.name = "hood_left";
   right.name = "hood_right";

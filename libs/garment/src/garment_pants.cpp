@@ -49,8 +49,10 @@ double inseam_angle(const Radial& leg) {
 double midline_angle(const Radial& r, double lo, double hi) {
   for (int it = 0; it < 50; ++it) {
     const double mid = 0.5 * (lo + hi);
-    if (r.point(mid).x() > 0) lo = mid;
-    else hi = mid;
+    if (r.point(mid).x() > 0)
+      lo = mid;
+    else
+      hi = mid;
   }
   return 0.5 * (lo + hi);
 }
@@ -77,8 +79,10 @@ double crotch_point(const Envelope& env, const PantsSpec& spec, double hem, doub
   }
   for (int it = 0; it < 20; ++it) {
     const double mid = 0.5 * (lo + hi);
-    if (min_x(mid) > 0) lo = mid;
-    else hi = mid;
+    if (min_x(mid) > 0)
+      lo = mid;
+    else
+      hi = mid;
   }
   return std::min(lo, top);
 }
@@ -89,8 +93,8 @@ struct LegPanels {
 
 // Front and back panel of the left leg of `env`; `mirror` flips the
 // placed points to the right side.
-LegPanels build_leg(Pattern& pattern, const FitContext& ctx, const Envelope& env, const PantsSpec& spec,
-                    double crotch, double blend_top, bool mirror) {
+LegPanels build_leg(Pattern& pattern, const FitContext& ctx, const Envelope& env, const PantsSpec& spec, double crotch,
+                    double blend_top, bool mirror) {
   std::vector<double> ys = row_heights(spec.hem, crotch, ctx.step);
   const auto upper = row_heights(crotch, spec.waist, ctx.step);
   const int crotch_row = static_cast<int>(ys.size()) - 1;
@@ -140,7 +144,8 @@ LegPanels build_leg(Pattern& pattern, const FitContext& ctx, const Envelope& env
 Quarters build_pants(Pattern& pattern, const FitContext& ctx, const PantsSpec& spec) {
   const Envelope mirrored = ctx.env.mirrored();
   const double limit = std::min(ctx.marks.crotch - 0.01, spec.waist - 4 * ctx.step);
-  const double crotch = std::min(crotch_point(ctx.env, spec, spec.hem, limit), crotch_point(mirrored, spec, spec.hem, limit));
+  const double crotch =
+      std::min(crotch_point(ctx.env, spec, spec.hem, limit), crotch_point(mirrored, spec, spec.hem, limit));
   if (crotch - spec.hem < 3 * ctx.step) throw Error("garment pants: hem too close to the crotch");
   const double blend_top = std::min(spec.waist - ctx.step, std::max(ctx.marks.hip_joint, crotch + 0.1));
   const LegPanels l = build_leg(pattern, ctx, ctx.env, spec, crotch, blend_top, false);
@@ -154,8 +159,10 @@ Quarters build_pants(Pattern& pattern, const FitContext& ctx, const PantsSpec& s
   }
   pattern.sew({l.front, Side::Left, k, top}, {r.front, Side::Left, k, top});  // centre front
   pattern.sew({l.back, Side::Left, k, top}, {r.back, Side::Left, k, top});    // centre back
-  return {{l.front, Side::Top, 0, l.front_cols}, {r.front, Side::Top, 0, r.front_cols},
-          {l.back, Side::Top, 0, l.back_cols}, {r.back, Side::Top, 0, r.back_cols}};
+  return {{l.front, Side::Top, 0, l.front_cols},
+          {r.front, Side::Top, 0, r.front_cols},
+          {l.back, Side::Top, 0, l.back_cols},
+          {r.back, Side::Top, 0, r.back_cols}};
 }
 
 }  // namespace layers::garment

@@ -68,7 +68,8 @@ class Lifter {
         if (worst >= 0) break;
       }
     }
-    if (best == -std::numeric_limits<double>::infinity()) throw Error("garment panel '" + g_.name + "': point outside its grid");
+    if (best == -std::numeric_limits<double>::infinity())
+      throw Error("garment panel '" + g_.name + "': point outside its grid");
     return best_point;
   }
 
@@ -96,10 +97,14 @@ struct Walk {
   int I, J;  // segments per column / per row
   int pos(Side s, int k) const {
     switch (s) {
-      case Side::Bottom: return k;
-      case Side::Right: return J + k;
-      case Side::Top: return J + I + (J - k);
-      default: return 2 * J + I + (I - k);
+      case Side::Bottom:
+        return k;
+      case Side::Right:
+        return J + k;
+      case Side::Top:
+        return J + I + (J - k);
+      default:
+        return 2 * J + I + (I - k);
     }
   }
   std::pair<int, int> cell(int w) const {  // (i, j) of walk position w
@@ -114,11 +119,11 @@ struct Walk {
 struct EdgeSamples {
   int panel = 0, w0 = 0, w1 = 0;  // walk interval
   bool reversed = false;          // `from` is at w1
-  std::vector<body::Vec3> line3;        // grid points in walk order
+  std::vector<body::Vec3> line3;  // grid points in walk order
   std::vector<Vec2> line2;
   double length = 0;
   int segments = 1;
-  std::vector<int> outline;       // outline index of each walk-order sample (segments + 1)
+  std::vector<int> outline;  // outline index of each walk-order sample (segments + 1)
   int index(int k) const { return outline[reversed ? segments - k : k]; }
 };
 
@@ -152,10 +157,14 @@ struct UnionFind {
 
 const char* side_name(Side s) {
   switch (s) {
-    case Side::Bottom: return "bottom";
-    case Side::Right: return "right";
-    case Side::Top: return "top";
-    default: return "left";
+    case Side::Bottom:
+      return "bottom";
+    case Side::Right:
+      return "right";
+    case Side::Top:
+      return "top";
+    default:
+      return "left";
   }
 }
 
@@ -228,7 +237,8 @@ PanelMesh mesh_panel(const PanelGrid& g, const Walk& walk, const std::vector<Vec
   int expect = 0;
   for (const EdgeSamples* e : mine) {
     if (e->w0 != expect)
-      throw Error("garment panel '" + g.name + "': outline not covered exactly once near walk position " + std::to_string(expect));
+      throw Error("garment panel '" + g.name + "': outline not covered exactly once near walk position " +
+                  std::to_string(expect));
     expect = e->w1;
   }
   if (expect != 2 * walk.I + 2 * walk.J) throw Error("garment panel '" + g.name + "': outline not closed by its edges");

@@ -35,9 +35,7 @@ double low_waist(const Landmarks& m, Rng& rng, Style& style) {
 constexpr double kHang = 0.3;
 
 // Ease over the shoulders: a garment rests there, so at most ~1.2 cm.
-double snug(const GarmentParams& p, double ease) {
-  return std::max(p.body_clearance + 0.004, std::min(ease, 0.012));
-}
+double snug(const GarmentParams& p, double ease) { return std::max(p.body_clearance + 0.004, std::min(ease, 0.012)); }
 
 double sleeves(const GarmentParams& p, Rng& rng, Style& style, double p_none, double p_long) {
   if (rng.chance(p_none)) {
@@ -188,15 +186,24 @@ void skirt(const FitContext& ctx, const GarmentParams& p, Rng& rng, Pattern& pat
 
 void make_pattern(const std::string& type, const FitContext& ctx, const GarmentParams& params, Rng& rng,
                   Pattern& pattern, Style& style) {
-  if (type == "tshirt") tshirt(ctx, params, rng, pattern, style);
-  else if (type == "jacket") jacket(ctx, params, rng, pattern, style, false);
-  else if (type == "jacket_hood") jacket(ctx, params, rng, pattern, style, true);
-  else if (type == "dress") dress(ctx, params, rng, pattern, style, false);
-  else if (type == "dress_belt") dress(ctx, params, rng, pattern, style, true);
-  else if (type == "jumpsuit") jumpsuit(ctx, params, rng, pattern, style);
-  else if (type == "pants") pants(ctx, params, rng, pattern, style);
-  else if (type == "skirt") skirt(ctx, params, rng, pattern, style);
-  else throw Error("garment recipe: unknown type '" + type + "'");
+  if (type == "tshirt")
+    tshirt(ctx, params, rng, pattern, style);
+  else if (type == "jacket")
+    jacket(ctx, params, rng, pattern, style, false);
+  else if (type == "jacket_hood")
+    jacket(ctx, params, rng, pattern, style, true);
+  else if (type == "dress")
+    dress(ctx, params, rng, pattern, style, false);
+  else if (type == "dress_belt")
+    dress(ctx, params, rng, pattern, style, true);
+  else if (type == "jumpsuit")
+    jumpsuit(ctx, params, rng, pattern, style);
+  else if (type == "pants")
+    pants(ctx, params, rng, pattern, style);
+  else if (type == "skirt")
+    skirt(ctx, params, rng, pattern, style);
+  else
+    throw Error("garment recipe: unknown type '" + type + "'");
 }
 
 }  // namespace layers::garment

@@ -38,7 +38,8 @@ double ray_exit(const std::vector<Vec2>& hull, const Vec2& c, const Vec2& d) {
 }  // namespace
 
 std::vector<Vec2> convex_hull(std::vector<Vec2> p) {
-  std::sort(p.begin(), p.end(), [](const Vec2& a, const Vec2& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
+  std::sort(p.begin(), p.end(),
+            [](const Vec2& a, const Vec2& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
   if (p.size() < 3) return p;
   std::vector<Vec2> h(2 * p.size());
   std::size_t k = 0;
@@ -65,7 +66,8 @@ std::vector<Vec2> dilate(const std::vector<Vec2>& hull, double d) {
   if (n < 3) {  // a point or a segment: the disk around its hull
     std::vector<Vec2> pts;
     for (const Vec2& q : hull)
-      for (int k = 0; k < kDirections; ++k) pts.push_back(q + d * Vec2(std::cos(2 * kPi * k / kDirections), std::sin(2 * kPi * k / kDirections)));
+      for (int k = 0; k < kDirections; ++k)
+        pts.push_back(q + d * Vec2(std::cos(2 * kPi * k / kDirections), std::sin(2 * kPi * k / kDirections)));
     return convex_hull(std::move(pts));
   }
   // Minkowski sum with a disk: each vertex of the counter-clockwise hull
@@ -116,8 +118,8 @@ std::vector<Vec2> Radial::arc(double a0, double a1) const {
   return out;
 }
 
-Radial radial_of(const std::vector<Vec2>& hull, const Vec2& centre, bool closed, double start, double span,
-                 int samples, int smooth) {
+Radial radial_of(const std::vector<Vec2>& hull, const Vec2& centre, bool closed, double start, double span, int samples,
+                 int smooth) {
   Radial out;
   out.centre = centre;
   out.closed = closed;
@@ -135,8 +137,10 @@ Radial radial_of(const std::vector<Vec2>& hull, const Vec2& centre, bool closed,
     int count = 0;
     for (int d = -smooth; d <= smooth; ++d) {
       int i = k + d;
-      if (closed) i = (i + n) % n;
-      else if (i < 0 || i >= n) continue;
+      if (closed)
+        i = (i + n) % n;
+      else if (i < 0 || i >= n)
+        continue;
       sum += raw[i];
       ++count;
     }
@@ -153,8 +157,10 @@ Radial horizontal_section(const Envelope& env, double y, const SectionSpec& spec
   for (int i : env.slab(1, y - spec.slab, top, spec.parts)) {
     const body::Vec3& p = env.point(i);
     if (spec.side > 0 && p.x() < 0) continue;
-    if (p.y() <= y + spec.slab) pts.emplace_back(p.x(), p.z());
-    else above.emplace_back(Vec2(p.x(), p.z()), p.y() - y - spec.slab);
+    if (p.y() <= y + spec.slab)
+      pts.emplace_back(p.x(), p.z());
+    else
+      above.emplace_back(Vec2(p.x(), p.z()), p.y() - y - spec.slab);
   }
   if (pts.size() < 3) throw Error("garment section: no body points near height " + std::to_string(y));
   if (!above.empty()) {
@@ -206,7 +212,8 @@ std::vector<body::Vec3> resample_at(const std::vector<body::Vec3>& line, const s
   for (double fraction : fractions) {
     const double t = s.back() * std::clamp(fraction, 0.0, 1.0);
     const std::size_t k = std::min<std::size_t>(
-        std::max<std::size_t>(1, static_cast<std::size_t>(std::lower_bound(s.begin(), s.end(), t) - s.begin())), s.size() - 1);
+        std::max<std::size_t>(1, static_cast<std::size_t>(std::lower_bound(s.begin(), s.end(), t) - s.begin())),
+        s.size() - 1);
     const double len = s[k] - s[k - 1];
     const double f = len > 0 ? std::clamp((t - s[k - 1]) / len, 0.0, 1.0) : 0.0;
     out.push_back(line[k - 1] + f * (line[k] - line[k - 1]));

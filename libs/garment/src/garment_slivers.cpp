@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <vector>
 #include <utility>
+#include <vector>
 
 #include "layers/garment/garment_pattern.h"
 
@@ -17,7 +17,7 @@ constexpr double kSliverRatio = 0.1;
 
 double area3(const GarmentMesh& m, int a, int b, int c) {
   const body::Vec3 pa = m.vertices.row(a).cast<double>().transpose(), pb = m.vertices.row(b).cast<double>().transpose(),
-             pc = m.vertices.row(c).cast<double>().transpose();
+                   pc = m.vertices.row(c).cast<double>().transpose();
   return 0.5 * (pb - pa).cross(pc - pa).norm();
 }
 

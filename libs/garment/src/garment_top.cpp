@@ -39,8 +39,10 @@ double angle_at_x(const Radial& r, double x, double lo, double hi) {
   const bool rising = r.point(hi).x() > r.point(lo).x();
   for (int it = 0; it < 60; ++it) {
     const double mid = 0.5 * (lo + hi);
-    if ((r.point(mid).x() < x) == rising) lo = mid;
-    else hi = mid;
+    if ((r.point(mid).x() < x) == rising)
+      lo = mid;
+    else
+      hi = mid;
   }
   return 0.5 * (lo + hi);
 }
@@ -68,9 +70,12 @@ std::vector<body::Vec3> cut_where(std::vector<body::Vec3> line, const F& inside)
 // back point B, centre between them); beyond, from the underarm seam.
 class ShoulderProfile {
  public:
-  ShoulderProfile(const FitContext& ctx, std::vector<body::Vec3> front_top, std::vector<body::Vec3> back_top, double shoulder_ease,
-                  double sleeve_ease)
-      : ctx_(ctx), front_(std::move(front_top)), back_(std::move(back_top)), shoulder_ease_(shoulder_ease),
+  ShoulderProfile(const FitContext& ctx, std::vector<body::Vec3> front_top, std::vector<body::Vec3> back_top,
+                  double shoulder_ease, double sleeve_ease)
+      : ctx_(ctx),
+        front_(std::move(front_top)),
+        back_(std::move(back_top)),
+        shoulder_ease_(shoulder_ease),
         sleeve_ease_(sleeve_ease) {
     a_left_ = front_.back().x();
     a_right_ = -front_.front().x();
@@ -111,7 +116,9 @@ class ShoulderProfile {
     return r;
   }
 
-  std::vector<body::Vec3> arc(double x, double psi0, double psi1) const { return at_abscissa(at(x).arc(psi0, psi1), x); }
+  std::vector<body::Vec3> arc(double x, double psi0, double psi1) const {
+    return at_abscissa(at(x).arc(psi0, psi1), x);
+  }
 
  private:
   // Snug over the shoulders and at the armhole, looser along the arm.
@@ -191,8 +198,9 @@ struct Neckline {
 // The shoulder part of a bodice panel: a column per foot (the armpit row's
 // points) up to the shoulder seam or the neckline, resampled to a common
 // number of rows (the foot itself excluded).
-std::vector<std::vector<body::Vec3>> shoulder_rows(const FitContext& ctx, const ShoulderProfile& profile, const Neckline& neck,
-                                             const std::vector<body::Vec3>& base, bool front) {
+std::vector<std::vector<body::Vec3>> shoulder_rows(const FitContext& ctx, const ShoulderProfile& profile,
+                                                   const Neckline& neck, const std::vector<body::Vec3>& base,
+                                                   bool front) {
   std::vector<std::vector<body::Vec3>> cols;
   int n = 2;
   for (const body::Vec3& foot : base) {
@@ -235,10 +243,10 @@ void add_sleeve(Pattern& pattern, const FitContext& ctx, const ShoulderProfile& 
     loop[i].insert(loop[i].end(), b.rbegin() + 1, b.rend());
   }
   const int sleeve = pattern.add(grid_of(side > 0 ? "sleeve_left" : "sleeve_right", loop));
-  pattern.sew({sleeve, Side::Bottom, 0, m}, front_hole);          // cap, armpit -> shoulder, front half
-  pattern.sew({sleeve, Side::Bottom, 2 * m, m}, back_hole);       // and back half
+  pattern.sew({sleeve, Side::Bottom, 0, m}, front_hole);     // cap, armpit -> shoulder, front half
+  pattern.sew({sleeve, Side::Bottom, 2 * m, m}, back_hole);  // and back half
   pattern.sew({sleeve, Side::Left, 0, n_rows}, {sleeve, Side::Right, 0, n_rows});  // underarm
-  pattern.open({sleeve, Side::Top, 0, 2 * m});                     // cuff
+  pattern.open({sleeve, Side::Top, 0, 2 * m});                                     // cuff
 }
 
 // Columns of the full front, possibly split into two panels at the centre.
@@ -292,7 +300,9 @@ TopQuarters build_top(Pattern& pattern, const FitContext& ctx, const TopSpec& sp
     right = left = {pattern.add(grid_of("front", front_rows)), 0};
   }
   const int back = pattern.add(grid_of("back", back_rows));
-  auto front_edge = [](const FrontHalf& h, Side side, int j0, int j1) { return Edge{h.panel, side, j0 - h.offset, j1 - h.offset}; };
+  auto front_edge = [](const FrontHalf& h, Side side, int j0, int j1) {
+    return Edge{h.panel, side, j0 - h.offset, j1 - h.offset};
+  };
 
   // Side seams, shoulder seams.
   pattern.sew({right.panel, Side::Left, 0, n_a}, {back, Side::Right, 0, n_a});
@@ -302,7 +312,8 @@ TopQuarters build_top(Pattern& pattern, const FitContext& ctx, const TopSpec& sp
 
   // Armholes: sleeves or openings. side +1 = left arm (+x).
   for (int side : {+1, -1}) {
-    const Edge front_hole = side > 0 ? Edge{left.panel, Side::Right, n_a, top_f} : Edge{right.panel, Side::Left, n_a, top_f};
+    const Edge front_hole =
+        side > 0 ? Edge{left.panel, Side::Right, n_a, top_f} : Edge{right.panel, Side::Left, n_a, top_f};
     const Edge back_hole = side > 0 ? Edge{back, Side::Left, n_a, top_b} : Edge{back, Side::Right, n_a, top_b};
     if (spec.sleeve <= 0) {
       pattern.open(front_hole);
@@ -313,10 +324,14 @@ TopQuarters build_top(Pattern& pattern, const FitContext& ctx, const TopSpec& sp
   }
 
   TopQuarters q;
-  q.hem = {front_edge(left, Side::Bottom, kf[2], kf[4]), front_edge(right, Side::Bottom, kf[2], kf[0]),
-           {back, Side::Bottom, kb[2], kb[0]}, {back, Side::Bottom, kb[2], kb[4]}};
-  q.neck = {front_edge(left, Side::Top, kf[2], kf[3]), front_edge(right, Side::Top, kf[2], kf[1]),
-            {back, Side::Top, kb[2], kb[1]}, {back, Side::Top, kb[2], kb[3]}};
+  q.hem = {front_edge(left, Side::Bottom, kf[2], kf[4]),
+           front_edge(right, Side::Bottom, kf[2], kf[0]),
+           {back, Side::Bottom, kb[2], kb[0]},
+           {back, Side::Bottom, kb[2], kb[4]}};
+  q.neck = {front_edge(left, Side::Top, kf[2], kf[3]),
+            front_edge(right, Side::Top, kf[2], kf[1]),
+            {back, Side::Top, kb[2], kb[1]},
+            {back, Side::Top, kb[2], kb[3]}};
   return q;
 }
 

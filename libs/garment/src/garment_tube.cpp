@@ -29,10 +29,18 @@ std::vector<body::Vec3> edge_points(const Pattern& pattern, const Edge& e) {
   const int step = e.to >= e.from ? 1 : -1;
   for (int k = e.from;; k += step) {
     switch (e.side) {
-      case Side::Bottom: out.push_back(g.at(0, k)); break;
-      case Side::Top: out.push_back(g.at(g.rows - 1, k)); break;
-      case Side::Left: out.push_back(g.at(k, 0)); break;
-      case Side::Right: out.push_back(g.at(k, g.cols - 1)); break;
+      case Side::Bottom:
+        out.push_back(g.at(0, k));
+        break;
+      case Side::Top:
+        out.push_back(g.at(g.rows - 1, k));
+        break;
+      case Side::Left:
+        out.push_back(g.at(k, 0));
+        break;
+      case Side::Right:
+        out.push_back(g.at(k, g.cols - 1));
+        break;
     }
     if (k == e.to) break;
   }
@@ -101,7 +109,8 @@ TubeRows tube_rows(const FitContext& ctx, const std::vector<double>& heights, co
   TubeRows out;
   std::vector<Radial> sections;
   for (double y : heights) sections.push_back(horizontal_section(ctx.env, y, torso_section(y, ease, hang)));
-  auto build = [&](const std::vector<double>& knots, std::vector<std::vector<body::Vec3>>& rows, std::vector<int>& cols) {
+  auto build = [&](const std::vector<double>& knots, std::vector<std::vector<body::Vec3>>& rows,
+                   std::vector<int>& cols) {
     const int segs = static_cast<int>(knots.size()) - 1;
     std::vector<int> count(segs, 1);
     std::vector<std::vector<std::vector<body::Vec3>>> arcs(heights.size());
@@ -143,8 +152,8 @@ PanelGrid grid_of(const std::string& name, const std::vector<std::vector<body::V
 TubeQuarters build_tube(Pattern& pattern, const FitContext& ctx, const std::string& name, double y0, double y1,
                         const EaseProfile& ease, const EaseProfile& hang) {
   constexpr double kPi = 3.14159265358979323846;
-  const TubeRows rows = tube_rows(ctx, row_heights(y0, y1, ctx.step), ease, hang, {kPi, kPi / 2, 0.0},
-                                  {2 * kPi, 1.5 * kPi, kPi});
+  const TubeRows rows =
+      tube_rows(ctx, row_heights(y0, y1, ctx.step), ease, hang, {kPi, kPi / 2, 0.0}, {2 * kPi, 1.5 * kPi, kPi});
   const int front = pattern.add(grid_of(name + "_front", rows.front));
   const int back = pattern.add(grid_of(name + "_back", rows.back));
   const int jf = rows.front_knot_cols[1], Jf = rows.front_knot_cols.back();
@@ -154,7 +163,10 @@ TubeQuarters build_tube(Pattern& pattern, const FitContext& ctx, const std::stri
   pattern.sew({front, Side::Left, 0, top}, {back, Side::Right, 0, top});
   pattern.sew({front, Side::Right, 0, top}, {back, Side::Left, 0, top});
   TubeQuarters q;
-  q.bottom = {{front, Side::Bottom, jf, Jf}, {front, Side::Bottom, jf, 0}, {back, Side::Bottom, jb, 0}, {back, Side::Bottom, jb, Jb}};
+  q.bottom = {{front, Side::Bottom, jf, Jf},
+              {front, Side::Bottom, jf, 0},
+              {back, Side::Bottom, jb, 0},
+              {back, Side::Bottom, jb, Jb}};
   q.top = {{front, Side::Top, jf, Jf}, {front, Side::Top, jf, 0}, {back, Side::Top, jb, 0}, {back, Side::Top, jb, Jb}};
   return q;
 }

@@ -37,7 +37,8 @@ void fill_body(data::SequenceData& seq, const motion::GeneratedBody& generated, 
   b.joint_parents.assign(arrays.joint_parents.begin(), arrays.joint_parents.end());
   b.skin_index.assign(arrays.skin_index.begin(), arrays.skin_index.end());
   b.skin_weight = arrays.skin_weight;
-  const std::size_t vertices = static_cast<std::size_t>(s.num_vertices), joints = static_cast<std::size_t>(s.num_joints);
+  const std::size_t vertices = static_cast<std::size_t>(s.num_vertices),
+                    joints = static_cast<std::size_t>(s.num_joints);
   b.positions = frames(s.positions, vertices * 3, first, count);
   b.root = frames(s.root, 3, first, count);
   b.root_rot = frames(s.root_rot, 4, first, count);

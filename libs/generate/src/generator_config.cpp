@@ -12,8 +12,8 @@ namespace {
 template <class T>
 void check_pair(const std::vector<T>& range, const std::string& file, const std::string& path) {
   if (range.size() != 2 || range[0] > range[1])
-    throw InputError(file, path, "a range [lo, hi] with lo <= hi", std::to_string(range.size()) + " values" +
-                                                                      (range.size() == 2 ? " with lo > hi" : ""));
+    throw InputError(file, path, "a range [lo, hi] with lo <= hi",
+                     std::to_string(range.size()) + " values" + (range.size() == 2 ? " with lo > hi" : ""));
 }
 
 bool is_outer(const std::string& type) { return type == "jacket" || type == "jacket_hood"; }
@@ -82,8 +82,8 @@ void check(const GeneratorConfig& c, const std::string& file) {
     if (o.inner.empty()) throw InputError(file, path + ".inner", "at least one inner garment type", "an empty list");
     for (const auto& t : o.inner) {
       if (std::find(types.begin(), types.end(), t) == types.end() || is_outer(t))
-        throw InputError(file, path + ".inner", "inner garment types (dress, dress_belt, jumpsuit, tshirt, pants, skirt)",
-                         "'" + t + "'");
+        throw InputError(file, path + ".inner",
+                         "inner garment types (dress, dress_belt, jumpsuit, tshirt, pants, skirt)", "'" + t + "'");
     }
   }
   if (total <= 0) throw InputError(file, "garments.outfits", "at least one outfit with a positive weight", "all zero");

@@ -113,7 +113,8 @@ SceneSpec sample_scene(const GeneratorConfig& config, int index) {
   std::vector<double> weights;
   for (const auto& o : config.garments.outfits) weights.push_back(o.weight);
   const OutfitConfig& outfit = config.garments.outfits.at(rng.pick(weights));
-  for (const auto& type : outfit.inner) s.garments.push_back({type, 0, sample_attributes(config.garments.attributes, rng)});
+  for (const auto& type : outfit.inner)
+    s.garments.push_back({type, 0, sample_attributes(config.garments.attributes, rng)});
   if (outfit.outer != "none")
     s.garments.push_back({outfit.outer, 1, sample_attributes(config.garments.attributes, rng)});
 

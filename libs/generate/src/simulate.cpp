@@ -9,12 +9,12 @@
 #include <cmath>
 #include <ctime>
 
+#include "layers/body/body_arrays.h"
+#include "layers/body/pose_body.h"
 #include "layers/core/error.h"
 #include "layers/core/progress.h"
 #include "layers/generate/body_data.h"
 #include "layers/generate/outfit.h"
-#include "layers/body/body_arrays.h"
-#include "layers/body/pose_body.h"
 #include "layers/motion/body_sequence.h"
 #include "layers/motion/motion.h"
 #include "layers/sim/measures.h"
@@ -178,7 +178,8 @@ SceneResult simulate_scene(const GeneratorConfig& config, const SceneSpec& spec,
     if (observer) observer("record", r, solver);
     for (std::size_t k = 0; k < garments.size(); ++k) {
       geometry::Points p = solver.cloth(static_cast<int>(k)).positions();
-      std::copy(p.data(), p.data() + p.size(), garments[k].positions.begin() + static_cast<std::ptrdiff_t>(r) * p.size());
+      std::copy(p.data(), p.data() + p.size(),
+                garments[k].positions.begin() + static_cast<std::ptrdiff_t>(r) * p.size());
     }
     const sim::Wind wind = scene.wind().at(r);
     const Eigen::Vector4d q = wind.rotation();

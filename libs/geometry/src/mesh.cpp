@@ -11,14 +11,13 @@ void validate(const Faces& faces, int num_vertices, const std::string& what) {
       int v = faces(f, c);
       if (v < 0 || v >= num_vertices) {
         throw InputError(what, "faces[" + std::to_string(f) + "][" + std::to_string(c) + "]",
-                         "a vertex index in [0, " + std::to_string(num_vertices) + ")",
-                         std::to_string(v));
+                         "a vertex index in [0, " + std::to_string(num_vertices) + ")", std::to_string(v));
       }
     }
     if (faces(f, 0) == faces(f, 1) || faces(f, 1) == faces(f, 2) || faces(f, 0) == faces(f, 2)) {
-      throw InputError(what, "faces[" + std::to_string(f) + "]", "three distinct vertices",
-                       std::to_string(faces(f, 0)) + ", " + std::to_string(faces(f, 1)) + ", " +
-                           std::to_string(faces(f, 2)));
+      throw InputError(
+          what, "faces[" + std::to_string(f) + "]", "three distinct vertices",
+          std::to_string(faces(f, 0)) + ", " + std::to_string(faces(f, 1)) + ", " + std::to_string(faces(f, 2)));
     }
   }
 }

@@ -27,8 +27,8 @@ struct PointsAdaptor {
   }
 };
 
-using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, PointsAdaptor>,
-                                                 PointsAdaptor, 3, std::uint32_t>;
+using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, PointsAdaptor>, PointsAdaptor, 3,
+                                                 std::uint32_t>;
 
 bool finite(const Eigen::RowVector3f& q) { return q.allFinite(); }
 
@@ -40,8 +40,7 @@ struct PointIndex::Impl {
   Tree tree;
 
   explicit Impl(Points p)
-      : points(std::move(p)),
-        tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(/*leaf_max_size=*/16)) {}
+      : points(std::move(p)), tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(/*leaf_max_size=*/16)) {}
 };
 
 PointIndex::PointIndex() : PointIndex(Points(0, 3)) {}
@@ -49,8 +48,7 @@ PointIndex::PointIndex() : PointIndex(Points(0, 3)) {}
 PointIndex::PointIndex(Points points) {
   for (Eigen::Index i = 0; i < points.rows(); ++i) {
     if (!points.row(i).allFinite()) {
-      throw Error("PointIndex: point " + std::to_string(i) + " of " + std::to_string(points.rows()) +
-                  " is not finite");
+      throw Error("PointIndex: point " + std::to_string(i) + " of " + std::to_string(points.rows()) + " is not finite");
     }
   }
   // Impl's constructor builds the tree over its own copy of the points, so

@@ -40,13 +40,15 @@ void read_numbers(std::istringstream& in, const std::string& path, int line, con
   std::size_t n = 0;
   while (in >> token) {
     double value = 0.0;
-    if (!parse_number(token, value)) fail(path, line, std::string("expected a number after '") + keyword + "', got '" + token + "'");
+    if (!parse_number(token, value))
+      fail(path, line, std::string("expected a number after '") + keyword + "', got '" + token + "'");
     if (n < count) out.push_back(value);
     ++n;
   }
   if (n < count || n > max_count) {
-    fail(path, line, std::string("expected ") + std::to_string(count) + " numbers after '" + keyword + "', got " +
-                         std::to_string(n));
+    fail(path, line,
+         std::string("expected ") + std::to_string(count) + " numbers after '" + keyword + "', got " +
+             std::to_string(n));
   }
 }
 
@@ -59,7 +61,8 @@ struct Corner {
 long resolve(long index, std::size_t count, const std::string& path, int line, const std::string& token) {
   if (index == 0) fail(path, line, "expected a non-zero index in '" + token + "', got 0 (OBJ indices start at 1)");
   const long resolved = index > 0 ? index - 1 : static_cast<long>(count) + index;
-  if (resolved < 0) fail(path, line, "index " + std::to_string(index) + " in '" + token + "' points before the first element");
+  if (resolved < 0)
+    fail(path, line, "index " + std::to_string(index) + " in '" + token + "' points before the first element");
   return resolved;
 }
 
@@ -73,7 +76,8 @@ Corner parse_corner(const std::string& token, std::size_t n_v, std::size_t n_vt,
     start = slash + 1;
   }
   long v = 0, vt = 0, vn = 0;
-  const bool ok = parts.size() <= 3 && parse_index(parts[0], v) && (parts.size() < 2 || parts[1].empty() || parse_index(parts[1], vt)) &&
+  const bool ok = parts.size() <= 3 && parse_index(parts[0], v) &&
+                  (parts.size() < 2 || parts[1].empty() || parse_index(parts[1], vt)) &&
                   (parts.size() < 3 || parse_index(parts[2], vn));
   if (!ok) fail(path, line, "expected a face vertex v, v/vt, v//vn or v/vt/vn, got '" + token + "'");
   Corner c;
@@ -105,11 +109,14 @@ ObjPolygons read_obj_polygons(const std::string& path) {
     } else if (keyword == "f") {
       std::vector<Corner> corners;
       std::string token;
-      while (in >> token) corners.push_back(parse_corner(token, obj.positions.size() / 3, obj.uv.size() / 2, path, line));
-      if (corners.size() < 3) fail(path, line, "expected a face of at least 3 vertices, got " + std::to_string(corners.size()));
+      while (in >> token)
+        corners.push_back(parse_corner(token, obj.positions.size() / 3, obj.uv.size() / 2, path, line));
+      if (corners.size() < 3)
+        fail(path, line, "expected a face of at least 3 vertices, got " + std::to_string(corners.size()));
       std::size_t with_uv = 0;
       for (const auto& c : corners) with_uv += c.vt >= 0;
-      if (with_uv != 0 && with_uv != corners.size()) fail(path, line, "expected texture coordinates on all or none of the face's vertices");
+      if (with_uv != 0 && with_uv != corners.size())
+        fail(path, line, "expected texture coordinates on all or none of the face's vertices");
       int& first = with_uv ? first_with_uv : first_without_uv;
       if (first == 0) first = line;
       for (const Corner& c : corners) {
@@ -131,12 +138,14 @@ ObjPolygons read_obj_polygons(const std::string& path) {
   for (int f = 0; f < obj.num_faces(); ++f) {
     for (int i = obj.face_start[f]; i < obj.face_start[f + 1]; ++i) {
       if (obj.indices[i] >= n_v) {
-        fail(path, obj.face_line[f], "vertex index " + std::to_string(obj.indices[i] + 1) + " out of range (the file has " +
-                                         std::to_string(n_v) + " vertices)");
+        fail(path, obj.face_line[f],
+             "vertex index " + std::to_string(obj.indices[i] + 1) + " out of range (the file has " +
+                 std::to_string(n_v) + " vertices)");
       }
       if (!obj.uv_indices.empty() && obj.uv_indices[i] >= n_vt) {
-        fail(path, obj.face_line[f], "texture coordinate index " + std::to_string(obj.uv_indices[i] + 1) +
-                                         " out of range (the file has " + std::to_string(n_vt) + ")");
+        fail(path, obj.face_line[f],
+             "texture coordinate index " + std::to_string(obj.uv_indices[i] + 1) + " out of range (the file has " +
+                 std::to_string(n_vt) + ")");
       }
     }
   }

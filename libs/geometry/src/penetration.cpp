@@ -12,8 +12,8 @@ namespace layers::geometry {
 
 Surface::Surface(Points vertices, Points normals) : normals_(std::move(normals)) {
   if (normals_.rows() != vertices.rows()) {
-    throw Error("Surface: " + std::to_string(vertices.rows()) + " vertices but " +
-                std::to_string(normals_.rows()) + " normals");
+    throw Error("Surface: " + std::to_string(vertices.rows()) + " vertices but " + std::to_string(normals_.rows()) +
+                " normals");
   }
   index_ = PointIndex(std::move(vertices));
 }
@@ -38,9 +38,7 @@ Eigen::VectorXf Surface::offsets(const Points& x) const {
   return out;
 }
 
-Eigen::Array<bool, Eigen::Dynamic, 1> Surface::behind(const Points& x) const {
-  return offsets(x).array() < 0.0f;
-}
+Eigen::Array<bool, Eigen::Dynamic, 1> Surface::behind(const Points& x) const { return offsets(x).array() < 0.0f; }
 
 Eigen::Index Surface::count_behind(const Points& x) const { return behind(x).count(); }
 

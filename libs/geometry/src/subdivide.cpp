@@ -22,8 +22,7 @@ Subdivision subdivide(const std::vector<std::int32_t>& faces, std::int64_t verti
     const std::int32_t a = faces[f], b = faces[f + 1], c = faces[f + 2];
     for (std::int32_t v : {a, b, c})
       if (v < 0 || v >= vertices)
-        throw InputError("subdivide", "faces", "indices in [0, " + std::to_string(vertices) + ")",
-                         std::to_string(v));
+        throw InputError("subdivide", "faces", "indices in [0, " + std::to_string(vertices) + ")", std::to_string(v));
     const std::int32_t ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
     s.faces.insert(s.faces.end(), {a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca});
   }

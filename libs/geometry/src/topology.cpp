@@ -49,7 +49,8 @@ std::vector<char> boundary_vertices(const Faces& faces, int num_vertices) {
   for (std::size_t i = 0; i < pairs.size();) {
     std::size_t j = i;
     while (j < pairs.size() && pairs[j] == pairs[i]) ++j;
-    if (j - i == 1) out.at(static_cast<std::size_t>(pairs[i].first)) = out.at(static_cast<std::size_t>(pairs[i].second)) = 1;
+    if (j - i == 1)
+      out.at(static_cast<std::size_t>(pairs[i].first)) = out.at(static_cast<std::size_t>(pairs[i].second)) = 1;
     i = j;
   }
   return out;

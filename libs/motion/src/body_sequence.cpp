@@ -5,9 +5,9 @@
 #include <cmath>
 
 #include "intersection_repair.h"
-#include "layers/core/error.h"
 #include "layers/body/pose_body.h"
 #include "layers/body/skinning.h"
+#include "layers/core/error.h"
 
 namespace layers::motion {
 namespace {
@@ -20,7 +20,8 @@ body::FrameIntersection check_pose(const body::Body& body, const body::SelfInter
 
 }  // namespace
 
-BodySequence generate_body_sequence(const body::Body& body, const MotionSource& motion, const SequenceOptions& options) {
+BodySequence generate_body_sequence(const body::Body& body, const MotionSource& motion,
+                                    const SequenceOptions& options) {
   const std::string& policy = options.on_intersection;
   if (policy != "longest_run" && policy != "drop" && policy != "keep")
     throw InputError("body", "on_intersection", "longest_run, drop or keep", "'" + policy + "'");

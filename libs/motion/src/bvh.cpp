@@ -3,8 +3,8 @@
 
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <istream>
 #include <sstream>
@@ -119,7 +119,8 @@ void parse_joint(Tokens& t, BvhClip& clip, const std::string& name, int parent, 
   joint.offset = read_offset(t);
   t.expect("CHANNELS");
   double count = t.number("a channel count");
-  if (count < 0 || count > 6 || count != std::floor(count)) t.fail("a channel count from 0 to 6", std::to_string(count));
+  if (count < 0 || count > 6 || count != std::floor(count))
+    t.fail("a channel count from 0 to 6", std::to_string(count));
   const std::string names = t.rest_of_line();
   std::istringstream ss(names);
   std::string word;
@@ -160,12 +161,24 @@ body::Vec3 apply_channels(const BvhJoint& joint, const double* values, body::Qua
   for (std::size_t c = 0; c < joint.channels.size(); ++c) {
     const double v = values[joint.first_channel + static_cast<int>(c)];
     switch (joint.channels[c]) {
-      case BvhChannel::Xposition: translation.x() += v; break;
-      case BvhChannel::Yposition: translation.y() += v; break;
-      case BvhChannel::Zposition: translation.z() += v; break;
-      case BvhChannel::Xrotation: rotation = rotation * body::rot_x(v * deg); break;
-      case BvhChannel::Yrotation: rotation = rotation * body::rot_y(v * deg); break;
-      case BvhChannel::Zrotation: rotation = rotation * body::rot_z(v * deg); break;
+      case BvhChannel::Xposition:
+        translation.x() += v;
+        break;
+      case BvhChannel::Yposition:
+        translation.y() += v;
+        break;
+      case BvhChannel::Zposition:
+        translation.z() += v;
+        break;
+      case BvhChannel::Xrotation:
+        rotation = rotation * body::rot_x(v * deg);
+        break;
+      case BvhChannel::Yrotation:
+        rotation = rotation * body::rot_y(v * deg);
+        break;
+      case BvhChannel::Zrotation:
+        rotation = rotation * body::rot_z(v * deg);
+        break;
     }
   }
   rotation.normalize();
@@ -214,7 +227,8 @@ BvhClip parse_bvh(std::istream& in, const std::string& name) {
     while (*p == ' ' || *p == '\t' || *p == '\r') ++p;
     if (*p == '\0') continue;  // blank lines are allowed
     if (read == n)
-      t.fail("no more data after " + std::to_string(n) + " frames (Frames: " + std::to_string(n) + ")", "another frame line");
+      t.fail("no more data after " + std::to_string(n) + " frames (Frames: " + std::to_string(n) + ")",
+             "another frame line");
     int count = 0;
     while (true) {
       while (*p == ' ' || *p == '\t' || *p == '\r') ++p;
@@ -225,7 +239,8 @@ BvhClip parse_bvh(std::istream& in, const std::string& name) {
       char* end = nullptr;
       double v = std::strtod(token.c_str(), &end);
       if (end == token.c_str() || *end != '\0' || !std::isfinite(v) || std::fabs(v) > kMaxBvhValue)
-        t.fail("a number within +-1e+06 (value " + std::to_string(count + 1) + " of frame " + std::to_string(read + 1) + ")",
+        t.fail("a number within +-1e+06 (value " + std::to_string(count + 1) + " of frame " + std::to_string(read + 1) +
+                   ")",
                "'" + token + "'");
       if (count < channels) values[count] = v;
       ++count;
@@ -234,12 +249,15 @@ BvhClip parse_bvh(std::istream& in, const std::string& name) {
       t.fail(std::to_string(channels) + " values per frame (the channels of the hierarchy)", std::to_string(count));
     std::vector<body::Quat> rot(clip.joints.size());
     std::vector<body::Vec3> trans(clip.joints.size());
-    for (std::size_t j = 0; j < clip.joints.size(); ++j) trans[j] = apply_channels(clip.joints[j], values.data(), rot[j]);
+    for (std::size_t j = 0; j < clip.joints.size(); ++j)
+      trans[j] = apply_channels(clip.joints[j], values.data(), rot[j]);
     clip.rotation.push_back(std::move(rot));
     clip.translation.push_back(std::move(trans));
     ++read;
   }
-  if (read != n) t.fail(std::to_string(n) + " frames (Frames: " + std::to_string(n) + ")", std::to_string(read) + " frames before the end of file");
+  if (read != n)
+    t.fail(std::to_string(n) + " frames (Frames: " + std::to_string(n) + ")",
+           std::to_string(read) + " frames before the end of file");
   return clip;
 }
 

@@ -65,9 +65,9 @@ FootState foot_at(const std::vector<Stance>& plan, double t, const SwingStyle& s
   return f;
 }
 
-std::vector<Stance> plan_steps(const std::function<body::Vec3(double)>& position, const std::function<double(double)>& yaw,
-                               double period, double duty, double phase, double duration, const body::Vec3& offset,
-                               double toe_out) {
+std::vector<Stance> plan_steps(const std::function<body::Vec3(double)>& position,
+                               const std::function<double(double)>& yaw, double period, double duty, double phase,
+                               double duration, const body::Vec3& offset, double toe_out) {
   std::vector<Stance> plan;
   for (int k = -2;; ++k) {
     Stance s;

@@ -13,10 +13,10 @@
 namespace layers::motion {
 
 struct Stance {
-  double start = 0.0, end = 0.0;  // seconds
-  body::Vec3 ball = body::Vec3::Zero();       // planted ball of the foot (y = ground height)
+  double start = 0.0, end = 0.0;         // seconds
+  body::Vec3 ball = body::Vec3::Zero();  // planted ball of the foot (y = ground height)
   double yaw = 0.0;
-  double min_lift = 0.0;          // the swing into this stance lifts at least this share of a full step
+  double min_lift = 0.0;  // the swing into this stance lifts at least this share of a full step
 };
 
 struct SwingStyle {
@@ -34,9 +34,9 @@ FootState foot_at(const std::vector<Stance>& plan, double t, const SwingStyle& s
 // [(k + phase) T, (k + phase + duty) T]; its ball is planted at the path
 // position at mid-stance plus `offset` (in the path's heading frame), with
 // the path heading plus `toe_out`. Covers [0, duration].
-std::vector<Stance> plan_steps(const std::function<body::Vec3(double)>& position, const std::function<double(double)>& yaw,
-                               double period, double duty, double phase, double duration, const body::Vec3& offset,
-                               double toe_out);
+std::vector<Stance> plan_steps(const std::function<body::Vec3(double)>& position,
+                               const std::function<double(double)>& yaw, double period, double duty, double phase,
+                               double duration, const body::Vec3& offset, double toe_out);
 
 // A C1 bump on [0, 1]: 0 at both ends with zero slope, 1 at 0.5.
 double bump(double s);

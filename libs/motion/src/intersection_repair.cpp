@@ -10,10 +10,10 @@
 namespace layers::motion {
 namespace {
 
-constexpr double kStep = 0.05;         // rad per search step
-constexpr double kSpreadSigma = 2.0;   // frames: corrections spread over about 3 sigma each side
-constexpr int kRounds = 3;             // search / spread rounds
-constexpr int kRunGap = 12;            // frames: affected frames closer than this share one way
+constexpr double kStep = 0.05;        // rad per search step
+constexpr double kSpreadSigma = 2.0;  // frames: corrections spread over about 3 sigma each side
+constexpr int kRounds = 3;            // search / spread rounds
+constexpr int kRunGap = 12;           // frames: affected frames closer than this share one way
 
 // Limb roots (left arm, right arm, left leg, right leg) and the joint whose
 // axes the corrections turn about (chest for arms, pelvis for legs).
@@ -59,7 +59,8 @@ body::Pose corrected(const body::Skeleton& sk, const Limbs& limbs, const body::P
 
 class Repair {
  public:
-  Repair(const body::Body& body, const body::SelfIntersection& si, const RepairLimits& limits, const std::vector<body::Pose>& original)
+  Repair(const body::Body& body, const body::SelfIntersection& si, const RepairLimits& limits,
+         const std::vector<body::Pose>& original)
       : body_(body), si_(si), limits_(limits), limbs_(body.skeleton), original_(original) {}
 
   body::FrameIntersection check(int f, const Corrections& c) const {
@@ -106,8 +107,10 @@ std::vector<std::pair<int, int>> runs(const std::vector<char>& affected) {
   const int n = static_cast<int>(affected.size());
   for (int f = 0; f < n; ++f) {
     if (!affected[f]) continue;
-    if (!out.empty() && f - out.back().second <= kRunGap) out.back().second = f;
-    else out.emplace_back(f, f);
+    if (!out.empty() && f - out.back().second <= kRunGap)
+      out.back().second = f;
+    else
+      out.emplace_back(f, f);
   }
   return out;
 }

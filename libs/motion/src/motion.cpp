@@ -4,9 +4,9 @@
 #include <cmath>
 #include <filesystem>
 
-#include "layers/core/error.h"
 #include "layers/body/assets.h"
 #include "layers/body/body_model.h"
+#include "layers/core/error.h"
 #include "layers/motion/bvh.h"
 #include "layers/motion/procedural.h"
 #include "layers/motion/retarget.h"
@@ -91,7 +91,8 @@ body::Pose PoseTrack::pose(int frame) const {
   return poses_[frame];
 }
 
-std::unique_ptr<MotionSource> with_t_pose_transition(std::unique_ptr<MotionSource> motion, const body::Body& body, int frames) {
+std::unique_ptr<MotionSource> with_t_pose_transition(std::unique_ptr<MotionSource> motion, const body::Body& body,
+                                                     int frames) {
   if (frames <= 0) return motion;
   if (motion->num_frames() == 0) throw Error("T-pose transition into an empty motion");
   return std::make_unique<TransitionMotion>(std::move(motion), body, frames);
@@ -117,8 +118,9 @@ std::unique_ptr<MotionSource> make_motion(const MotionSpec& spec, const body::Bo
     const auto track = retarget(resample(read_bvh(path), kFramesPerSecond), body);
     motion = std::make_unique<PoseTrack>(track->poses(), "bvh:" + body::asset_relative_name(path, spec.asset_root));
     if (body_frames > motion->num_frames())
-      throw InputError(path, "frames", "at most " + std::to_string(motion->num_frames() + spec.transition_frames) +
-                                           " frames (the clip at 30 fps plus the transition)",
+      throw InputError(path, "frames",
+                       "at most " + std::to_string(motion->num_frames() + spec.transition_frames) +
+                           " frames (the clip at 30 fps plus the transition)",
                        std::to_string(spec.frames));
     if (body_frames > 0) motion = std::make_unique<Truncated>(std::move(motion), body_frames);
   } else {

@@ -35,8 +35,8 @@ struct FootState {
 };
 
 struct PoseTargets {
-  body::Vec3 pelvis = body::Vec3::Zero();  // world position of the root joint
-  double yaw = 0.0, pitch = 0.0, roll = 0.0;  // pelvis heading, forward tilt, side tilt
+  body::Vec3 pelvis = body::Vec3::Zero();                        // world position of the root joint
+  double yaw = 0.0, pitch = 0.0, roll = 0.0;                     // pelvis heading, forward tilt, side tilt
   double spine_flex = 0.0, spine_twist = 0.0, spine_bend = 0.0;  // totals over the three spine joints
   double head_pitch = 0.0, head_yaw = 0.0;
   std::array<ArmAngles, 2> arms;  // left, right
@@ -73,7 +73,7 @@ class PoseSolver {
   struct Arm {
     int clavicle, upper, fore;
     body::Vec3 upper_dir, elbow_axis;  // rest
-    double rest_elbow;           // rest angle between upper arm and forearm
+    double rest_elbow;                 // rest angle between upper arm and forearm
   };
   const body::Body& body_;
   std::array<Leg, 2> leg_;

@@ -122,7 +122,8 @@ struct Context {
 };
 
 // Feet planted side by side for the whole motion.
-std::array<std::vector<Stance>, 2> planted(const Context& c, const body::Vec3& at, double yaw, double width, double toe_out) {
+std::array<std::vector<Stance>, 2> planted(const Context& c, const body::Vec3& at, double yaw, double width,
+                                           double toe_out) {
   std::array<std::vector<Stance>, 2> plan;
   for (int s = 0; s < 2; ++s) {
     Stance st;
@@ -518,8 +519,9 @@ std::vector<PoseTargets> squat(Context& c) {
 using Generator = std::vector<PoseTargets> (*)(Context&);
 const std::vector<std::pair<std::string, Generator>>& generators() {
   static const std::vector<std::pair<std::string, Generator>> g = {
-      {"walk", walk}, {"run", run},       {"turn", turn},           {"spin", spin},   {"jump", jump},
-      {"step_down", step_down}, {"arm_raise", arm_raise}, {"wave", wave}, {"squat", squat}};
+      {"walk", walk},           {"run", run},   {"turn", turn},
+      {"spin", spin},           {"jump", jump}, {"step_down", step_down},
+      {"arm_raise", arm_raise}, {"wave", wave}, {"squat", squat}};
   return g;
 }
 
@@ -562,7 +564,8 @@ std::unique_ptr<PoseTrack> make_procedural(const ProceduralParams& params, const
   if (!gen) {
     std::string list;
     for (const std::string& k : procedural_kinds()) list += (list.empty() ? "" : ", ") + k;
-    throw InputError("motion", "procedural:" + params.kind, "one of procedural:{" + list + "}", "'" + params.kind + "'");
+    throw InputError("motion", "procedural:" + params.kind, "one of procedural:{" + list + "}",
+                     "'" + params.kind + "'");
   }
   if (params.frames < 1) throw InputError("motion", "frames", "at least 1", std::to_string(params.frames));
   if (!(params.speed > 0.2 && params.speed < 3.0) || !(params.amplitude > 0.0 && params.amplitude < 3.0))
@@ -576,7 +579,8 @@ std::unique_ptr<PoseTrack> make_procedural(const ProceduralParams& params, const
   for (const PoseTargets& t : targets) {
     body::Pose p = c.solver.solve(t);
     if (!poses.empty())
-      for (std::size_t j = 0; j < p.local.size(); ++j) p.local[j] = body::same_hemisphere(p.local[j], poses.back().local[j]);
+      for (std::size_t j = 0; j < p.local.size(); ++j)
+        p.local[j] = body::same_hemisphere(p.local[j], poses.back().local[j]);
     poses.push_back(std::move(p));
   }
   return std::make_unique<PoseTrack>(std::move(poses), "procedural:" + params.kind);

@@ -7,9 +7,9 @@
 #include <cmath>
 #include <limits>
 
-#include "layers/core/error.h"
 #include "layers/body/body_model.h"
 #include "layers/body/skinning.h"
+#include "layers/core/error.h"
 #include "smoothing.h"
 
 namespace layers::motion {
@@ -74,7 +74,8 @@ std::array<std::array<int, 3>, 2> leg_chains(const body::Skeleton& sk) {
 
 // Per frame, how far the root must drop so that every planted foot's leg
 // can reach the ground (at 99.5% of its length).
-std::vector<double> root_drop_for_reach(const body::Body& body, const std::vector<body::Pose>& poses, const FootContacts& c) {
+std::vector<double> root_drop_for_reach(const body::Body& body, const std::vector<body::Pose>& poses,
+                                        const FootContacts& c) {
   const body::Skeleton& sk = body.skeleton;
   const auto chains = leg_chains(sk);
   std::vector<double> drop(poses.size(), 0.0);
@@ -98,7 +99,8 @@ std::vector<double> root_drop_for_reach(const body::Body& body, const std::vecto
 // Moves the ankle of joint chain (hip, knee, ankle) by `lift` vertically
 // (two-bone IK keeping the knee's bending plane), keeping the foot's world
 // orientation; updates the world rotations in `world`.
-void lift_ankle(const body::JointTransforms& t, std::vector<body::Quat>& world, int hip, int knee, int ankle, double lift) {
+void lift_ankle(const body::JointTransforms& t, std::vector<body::Quat>& world, int hip, int knee, int ankle,
+                double lift) {
   const body::Vec3 h = t.position[hip], k = t.position[knee], a = t.position[ankle];
   const double l1 = (k - h).norm(), l2 = (a - k).norm();
   const body::Vec3 target = a + body::Vec3(0.0, lift, 0.0);
@@ -107,7 +109,8 @@ void lift_ankle(const body::JointTransforms& t, std::vector<body::Quat>& world, 
   d.normalize();
   // Bending plane: the current knee direction off the hip-ankle line.
   body::Vec3 pole = (k - h) - (k - h).dot(d) * d;
-  if (pole.norm() < 1e-9) pole = (t.rotation[0] * body::Vec3::UnitZ()) - (t.rotation[0] * body::Vec3::UnitZ()).dot(d) * d;
+  if (pole.norm() < 1e-9)
+    pole = (t.rotation[0] * body::Vec3::UnitZ()) - (t.rotation[0] * body::Vec3::UnitZ()).dot(d) * d;
   pole.normalize();
   const double cos_hip = std::clamp((l1 * l1 + dist * dist - l2 * l2) / (2 * l1 * dist), -1.0, 1.0);
   const body::Vec3 new_knee = h + l1 * (cos_hip * d + std::sqrt(1.0 - cos_hip * cos_hip) * pole);
@@ -183,17 +186,35 @@ FootContacts foot_contacts(const body::Body& body, const std::vector<body::Pose>
 const std::map<std::string, std::string>& cmu_3dsmax_names() {
   static const std::map<std::string, std::string> names = {
       {"Hips", "Hips"},
-      {"LHipJoint", "LHipJoint"}, {"LeftHip", "LeftUpLeg"}, {"LeftKnee", "LeftLeg"},
-      {"LeftAnkle", "LeftFoot"}, {"LeftToe", "LeftToeBase"},
-      {"RHipJoint", "RHipJoint"}, {"RightHip", "RightUpLeg"}, {"RightKnee", "RightLeg"},
-      {"RightAnkle", "RightFoot"}, {"RightToe", "RightToeBase"},
-      {"lowerback", "LowerBack"}, {"Chest", "Spine"}, {"Chest2", "Spine1"},
-      {"lowerneck", "Neck"}, {"Neck", "Neck1"}, {"Head", "Head"},
-      {"LeftCollar", "LeftShoulder"}, {"LeftShoulder", "LeftArm"}, {"LeftElbow", "LeftForeArm"},
-      {"LeftWrist", "LeftHand"}, {"lhand", "LeftFingerBase"}, {"LFingers", "LeftHandFinger1"},
+      {"LHipJoint", "LHipJoint"},
+      {"LeftHip", "LeftUpLeg"},
+      {"LeftKnee", "LeftLeg"},
+      {"LeftAnkle", "LeftFoot"},
+      {"LeftToe", "LeftToeBase"},
+      {"RHipJoint", "RHipJoint"},
+      {"RightHip", "RightUpLeg"},
+      {"RightKnee", "RightLeg"},
+      {"RightAnkle", "RightFoot"},
+      {"RightToe", "RightToeBase"},
+      {"lowerback", "LowerBack"},
+      {"Chest", "Spine"},
+      {"Chest2", "Spine1"},
+      {"lowerneck", "Neck"},
+      {"Neck", "Neck1"},
+      {"Head", "Head"},
+      {"LeftCollar", "LeftShoulder"},
+      {"LeftShoulder", "LeftArm"},
+      {"LeftElbow", "LeftForeArm"},
+      {"LeftWrist", "LeftHand"},
+      {"lhand", "LeftFingerBase"},
+      {"LFingers", "LeftHandFinger1"},
       {"LThumb", "LThumb"},
-      {"RightCollar", "RightShoulder"}, {"RightShoulder", "RightArm"}, {"RightElbow", "RightForeArm"},
-      {"RightWrist", "RightHand"}, {"rhand", "RightFingerBase"}, {"RFingers", "RightHandFinger1"},
+      {"RightCollar", "RightShoulder"},
+      {"RightShoulder", "RightArm"},
+      {"RightElbow", "RightForeArm"},
+      {"RightWrist", "RightHand"},
+      {"rhand", "RightFingerBase"},
+      {"RFingers", "RightHandFinger1"},
       {"RThumb", "RThumb"},
   };
   return names;
@@ -254,7 +275,8 @@ std::unique_ptr<PoseTrack> retarget(const BvhClip& clip, const body::Body& body,
   auto bvh_anchor = [&](const BvhWorld& w) {
     return bl >= 0 && br >= 0 ? body::Vec3(0.5 * (w.position[bl] + w.position[br])) : w.position[to_bvh[0]];
   };
-  const body::Vec3 rig_anchor = bl >= 0 && br >= 0 ? body::Vec3(0.5 * (sk.rest_head[lh] + sk.rest_head[rh])) : sk.rest_head[0];
+  const body::Vec3 rig_anchor =
+      bl >= 0 && br >= 0 ? body::Vec3(0.5 * (sk.rest_head[lh] + sk.rest_head[rh])) : sk.rest_head[0];
   const body::Vec3 anchor_offset = rig_anchor - sk.rest_head[0];
 
   std::vector<body::Pose> poses;
@@ -264,8 +286,10 @@ std::unique_ptr<PoseTrack> retarget(const BvhClip& clip, const body::Body& body,
     const BvhWorld w = bvh_world(clip, f);
     std::vector<body::Quat> world(nr);
     for (int r = 0; r < nr; ++r) {
-      if (to_bvh[r] >= 0) world[r] = (w.rotation[to_bvh[r]] * align[r]).normalized();
-      else world[r] = r == 0 ? body::Quat::Identity() : world[sk.parents[r]];
+      if (to_bvh[r] >= 0)
+        world[r] = (w.rotation[to_bvh[r]] * align[r]).normalized();
+      else
+        world[r] = r == 0 ? body::Quat::Identity() : world[sk.parents[r]];
     }
     body::Vec3 root = scale * bvh_anchor(w) - world[0] * anchor_offset;
     if (options.start_at_origin) {

@@ -170,8 +170,8 @@ Chart frames_picture(const Gnuplot& gp, const std::string& dir, const std::vecto
     << "set yrange [" << exact(bounds.ymin - pad) << ":" << exact(bounds.ymax + pad) << "]\n"
     << "set multiplot layout " << rows.size() << "," << frames.size() << " title "
     << gnuplot_string("Sequence " + sequence + ": ground truth and predictions, seen from the front") << " margins "
-    << exact(static_cast<double>(label_w) / width) << "," << exact(1.0 - 10.0 / width) << ","
-    << exact(10.0 / height) << "," << exact(1.0 - static_cast<double>(title_h) / height) << " spacing 0,0\n";
+    << exact(static_cast<double>(label_w) / width) << "," << exact(1.0 - 10.0 / width) << "," << exact(10.0 / height)
+    << "," << exact(1.0 - static_cast<double>(title_h) / height) << " spacing 0,0\n";
   for (std::size_t r = 0; r < rows.size(); ++r) {
     for (std::size_t c = 0; c < frames.size(); ++c) {
       s << (r == 0 ? "set title " + gnuplot_string("frame " + std::to_string(frames[c])) : "unset title") << "\n"

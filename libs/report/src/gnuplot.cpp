@@ -78,8 +78,8 @@ std::string Gnuplot::plot(const std::string& dir_in, const std::string& name, co
   const std::string temp_name = fs::path(image.temp()).filename().string();
   const fs::path log = fs::path(image.temp() + ".log");
   const std::string command = "cd " + shell_word(dir) + " && " + shell_word(program_) + " -e " +
-                              shell_word("out = " + gnuplot_string(temp_name)) + " " + shell_word(name + ".gp") +
-                              " >" + shell_word(log.string()) + " 2>&1";
+                              shell_word("out = " + gnuplot_string(temp_name)) + " " + shell_word(name + ".gp") + " >" +
+                              shell_word(log.string()) + " 2>&1";
   const int status = shell(command);
   std::string messages;
   {

@@ -178,8 +178,10 @@ std::string report_markdown(const ReportContent& c) {
      << "- `per_type.csv`: one row per run and garment type\n"
      << "- `by_step.csv`: one row per run and rollout step\n"
      << "- `bench.csv`: one row per run and benchmarked scene size\n"
-     << "- `" << c.charts_dir << "/`: the PNG charts with their gnuplot scripts (`*.gp`) and data (`*.dat`); "
-        "redraw one with `cd " << c.charts_dir << " && gnuplot <name>.gp`\n";
+     << "- `" << c.charts_dir
+     << "/`: the PNG charts with their gnuplot scripts (`*.gp`) and data (`*.dat`); "
+        "redraw one with `cd "
+     << c.charts_dir << " && gnuplot <name>.gp`\n";
   return md.str();
 }
 

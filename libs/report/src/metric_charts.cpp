@@ -69,11 +69,11 @@ Chart speed_accuracy_chart(const Gnuplot& gp, const std::string& dir, const std:
     if (rows == 0) continue;
     bench << "\n\n";
     bench_plots << ", \\\n     " << gnuplot_string(name + "_bench.dat") << " index " << bench_blocks
-                << " using 1:2 with linespoints pt 4 ps 1.2 dt 3 lc rgb " << gnuplot_string(run_color(i))
-                << " title " << gnuplot_string(r.name + ": benchmarked sizes") << ", \\\n     "
+                << " using 1:2 with linespoints pt 4 ps 1.2 dt 3 lc rgb " << gnuplot_string(run_color(i)) << " title "
+                << gnuplot_string(r.name + ": benchmarked sizes") << ", \\\n     "
                 << gnuplot_string(name + "_bench.dat") << " index " << bench_blocks
-                << " using 1:2:3 with labels rotate by -35 left offset char 0.2,-0.8 font ',8' tc rgb " << gnuplot_string(run_color(i))
-                << " notitle";
+                << " using 1:2:3 with labels rotate by -35 left offset char 0.2,-0.8 font ',8' tc rgb "
+                << gnuplot_string(run_color(i)) << " notitle";
     ++bench_blocks;
   }
   if (blocks == 0) throw Error("no run has both an error and a measured ms per frame: nothing to place on the chart");
@@ -81,7 +81,8 @@ Chart speed_accuracy_chart(const Gnuplot& gp, const std::string& dir, const std:
     front_data << datum(runs[i].eval->ms_per_frame) << ' ' << datum(runs[i].eval->overall.error_mm.mean) << '\n';
   write_data(dir, name + "_runs.dat", "# ms_per_frame error_mm label; one block per run\n" + points.str());
   write_data(dir, name + "_front.dat", "# the Pareto front, fastest first: ms_per_frame error_mm\n" + front_data.str());
-  if (bench_blocks) write_data(dir, name + "_bench.dat", "# ms_per_frame error_mm label; one block per run\n" + bench.str());
+  if (bench_blocks)
+    write_data(dir, name + "_bench.dat", "# ms_per_frame error_mm label; one block per run\n" + bench.str());
 
   std::ostringstream s;
   s << gp.preamble(name, 900, 600) << "set title 'Accuracy against speed'\n"
@@ -103,9 +104,10 @@ Chart speed_accuracy_chart(const Gnuplot& gp, const std::string& dir, const std:
       "Runs circled in red and marked [front] are on the Pareto front: no other run is at least as fast "
       "and as accurate while better in one of the two; the dashed staircase bounds the region they dominate.";
   if (bench_blocks)
-    caption += " Dotted lines: the same run's `layers bench` timings on larger scenes (garments subdivided, "
-               "labelled with their vertex count), plotted at the run's evaluated error -- they show how its "
-               "cost grows with the scene, not a new accuracy.";
+    caption +=
+        " Dotted lines: the same run's `layers bench` timings on larger scenes (garments subdivided, "
+        "labelled with their vertex count), plotted at the run's evaluated error -- they show how its "
+        "cost grows with the scene, not a new accuracy.";
   if (!unmeasured.empty()) {
     caption += " Left out (no measured speed or error):";
     for (const std::string& n : unmeasured) caption += " " + n;
@@ -126,8 +128,8 @@ std::vector<Chart> by_step_charts(const Gnuplot& gp, const std::string& dir, con
       {"by_step_error", "Error against rollout step", "mean Euclidean error (mm)", &StepMetrics::error_mm, 1.0},
       {"by_step_h_collision", "H-collision against rollout step", "garment vertices behind the body (%)",
        &StepMetrics::h_collision, 100.0},
-      {"by_step_l_collision", "L-collision against rollout step",
-       "outer-garment vertices behind the inner garment (%)", &StepMetrics::l_collision, 100.0}};
+      {"by_step_l_collision", "L-collision against rollout step", "outer-garment vertices behind the inner garment (%)",
+       &StepMetrics::l_collision, 100.0}};
 
   // One data file for all metrics: a block per run with steps.
   std::ostringstream data;
@@ -168,8 +170,7 @@ std::vector<Chart> by_step_charts(const Gnuplot& gp, const std::string& dir, con
       s << "set arrow from " << step << ", graph 0 to " << step << ", graph 1 nohead dt 2 lw 1.5 lc rgb "
         << gnuplot_string(run_color(i)) << "\n"
         << "set label " << gnuplot_string(runs[i].name + " diverges (step " + std::to_string(step) + ")") << " at "
-        << step << ", graph 0.98 right rotate by 90 offset char -1.2,0 tc rgb " << gnuplot_string(run_color(i))
-        << "\n";
+        << step << ", graph 0.98 right rotate by 90 offset char -1.2,0 tc rgb " << gnuplot_string(run_color(i)) << "\n";
     }
     // The ground truth's own collision rate (mean over sequences) for reference.
     double truth = kAbsent;
@@ -181,13 +182,13 @@ std::vector<Chart> by_step_charts(const Gnuplot& gp, const std::string& dir, con
       s << exact(100.0 * truth) << " with lines dt 3 lw 1.5 lc rgb '#555555' title 'ground truth', \\\n     ";
     for (std::size_t k = 0; k < plotted.size(); ++k) {
       const std::size_t i = plotted[k];
-      s << (k ? ", \\\n     " : "") << "'by_step.dat' index " << k << " using 1:" << m + 2
-        << " with lines lw 2 lc rgb " << gnuplot_string(run_color(i)) << " title " << gnuplot_string(runs[i].name);
+      s << (k ? ", \\\n     " : "") << "'by_step.dat' index " << k << " using 1:" << m + 2 << " with lines lw 2 lc rgb "
+        << gnuplot_string(run_color(i)) << " title " << gnuplot_string(runs[i].name);
     }
     s << "\n";
     gp.plot(dir, metric.name, s.str());
     std::string caption = std::string("Mean over the test sequences of ") +
-                          (m == 0 ? "the Euclidean error (mm)"
+                          (m == 0   ? "the Euclidean error (mm)"
                            : m == 1 ? "the share of garment vertices behind the body surface (H-collision, %)"
                                     : "the share of outer-garment vertices behind the inner garment (L-collision, %)") +
                           " at each rollout step: the model's own predictions are fed back, the body and wind "
@@ -196,9 +197,10 @@ std::vector<Chart> by_step_charts(const Gnuplot& gp, const std::string& dir, con
                                    "run's sequences): the simulator's data is not collision-free either."
                                  : "");
     if (diverged)
-      caption += " A dashed vertical line marks the first step at which any sequence of that run diverged "
-                 "(non-finite or above the error bound); from there its error counts as the bound" +
-                 std::string(m == 0 ? " (log y axis)." : " and its collision rates are left out.");
+      caption +=
+          " A dashed vertical line marks the first step at which any sequence of that run diverged "
+          "(non-finite or above the error bound); from there its error counts as the bound" +
+          std::string(m == 0 ? " (log y axis)." : " and its collision rates are left out.");
     charts.push_back({std::string(metric.name) + ".png", metric.title, caption});
   }
   return charts;

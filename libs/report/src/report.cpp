@@ -37,8 +37,7 @@ ReportResult write_report(const ReportInputs& inputs, const std::string& out_dir
   return write_report(runs, inputs, out_dir);
 }
 
-ReportResult write_report(const std::vector<RunResults>& runs, const ReportInputs& inputs,
-                          const std::string& out_dir) {
+ReportResult write_report(const std::vector<RunResults>& runs, const ReportInputs& inputs, const std::string& out_dir) {
   std::error_code ec;
   fs::create_directories(out_dir, ec);
   if (!fs::is_directory(out_dir))

@@ -81,8 +81,8 @@ class Reader {
   }
   MetricStats metrics(const json& parent, const std::string& key, const std::string& path, bool require_error) const {
     const json& v = object(parent, key, path);
-    return {stat(v, "error_mm", path + ".error_mm", require_error), stat(v, "h_collision", path + ".h_collision", false),
-            stat(v, "l_collision", path + ".l_collision", false)};
+    return {stat(v, "error_mm", path + ".error_mm", require_error),
+            stat(v, "h_collision", path + ".h_collision", false), stat(v, "l_collision", path + ".l_collision", false)};
   }
 
  private:
@@ -236,10 +236,10 @@ RunResults load_run(const std::string& dir, const std::string& split) {
   const std::string eval_dir = eval_folder(path, split);
   const fs::path metrics = eval_dir.empty() ? fs::path() : fs::path(eval_dir) / run_layout::kMetrics;
   if (eval_dir.empty() || !fs::exists(metrics)) {
-    run.problems.push_back("no evaluation (" +
-                           (eval_dir.empty() ? std::string("no eval-<split>/metrics.json")
-                                             : metrics.string() + " is missing") +
-                           "): run `layers eval <experiment.yaml>` for this run first");
+    run.problems.push_back(
+        "no evaluation (" +
+        (eval_dir.empty() ? std::string("no eval-<split>/metrics.json") : metrics.string() + " is missing") +
+        "): run `layers eval <experiment.yaml>` for this run first");
   } else {
     try {
       run.eval = parse_metrics(read_text_file(metrics.string()), metrics.string());

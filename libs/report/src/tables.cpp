@@ -25,7 +25,8 @@ std::vector<ParetoPoint> speed_points(const std::vector<RunResults>& runs) {
 json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 json to_json(const Stat& s) { return {{"mean", number(s.mean)}, {"std", number(s.std)}, {"count", s.count}}; }
 json to_json(const MetricStats& m) {
-  return {{"error_mm", to_json(m.error_mm)}, {"h_collision", to_json(m.h_collision)},
+  return {{"error_mm", to_json(m.error_mm)},
+          {"h_collision", to_json(m.h_collision)},
           {"l_collision", to_json(m.l_collision)}};
 }
 
@@ -58,9 +59,9 @@ std::string summary_csv(const std::vector<RunResults>& runs) {
         << e.frames << ',' << e.parameters << ',' << exact(e.ms_per_frame) << ',' << exact(e.overall.error_mm.mean)
         << ',' << exact(e.overall.error_mm.std) << ',' << exact(e.overall.h_collision.mean) << ','
         << exact(e.overall.h_collision.std) << ',' << exact(e.overall.l_collision.mean) << ','
-        << exact(e.overall.l_collision.std) << ',' << exact(e.truth_h_collision) << ','
-        << exact(e.truth_l_collision) << ',' << e.diverged << ',' << (div >= 0 ? std::to_string(div) : "") << ','
-        << (front[i] ? "yes" : "no") << '\n';
+        << exact(e.overall.l_collision.std) << ',' << exact(e.truth_h_collision) << ',' << exact(e.truth_l_collision)
+        << ',' << e.diverged << ',' << (div >= 0 ? std::to_string(div) : "") << ',' << (front[i] ? "yes" : "no")
+        << '\n';
   }
   return out.str();
 }
@@ -72,8 +73,8 @@ std::string per_type_csv(const std::vector<RunResults>& runs) {
   for (const RunResults& r : runs) {
     if (!r.eval) continue;
     for (const auto& [type, m] : r.eval->per_type)
-      out << csv_field(r.name) << ',' << csv_field(r.model) << ',' << csv_field(type) << ',' << m.error_mm.count
-          << ',' << exact(m.error_mm.mean) << ',' << exact(m.error_mm.std) << ',' << exact(m.h_collision.mean) << ','
+      out << csv_field(r.name) << ',' << csv_field(r.model) << ',' << csv_field(type) << ',' << m.error_mm.count << ','
+          << exact(m.error_mm.mean) << ',' << exact(m.error_mm.std) << ',' << exact(m.h_collision.mean) << ','
           << exact(m.h_collision.std) << ',' << exact(m.l_collision.mean) << ',' << exact(m.l_collision.std) << '\n';
   }
   return out.str();
@@ -117,36 +118,49 @@ std::string summary_json(const std::string& title, const std::vector<RunResults>
       const std::int64_t div = e.first_divergence_step();
       json types = json::object();
       for (const auto& [type, m] : e.per_type) types[type] = to_json(m);
-      row.update(json{{"split", e.split},
-                      {"sequences", e.sequences},
-                      {"frames", e.frames},
-                      {"parameters", e.parameters},
-                      {"ms_per_frame", number(e.ms_per_frame)},
-                      {"overall", to_json(e.overall)},
-                      {"truth", {{"h_collision", number(e.truth_h_collision)}, {"l_collision", number(e.truth_l_collision)}}},
-                      {"diverged", e.diverged},
-                      {"first_divergence_step", div >= 0 ? json(div) : json(nullptr)},
-                      {"pareto", static_cast<bool>(front[i])},
-                      {"per_type", types}});
+      row.update(
+          json{{"split", e.split},
+               {"sequences", e.sequences},
+               {"frames", e.frames},
+               {"parameters", e.parameters},
+               {"ms_per_frame", number(e.ms_per_frame)},
+               {"overall", to_json(e.overall)},
+               {"truth", {{"h_collision", number(e.truth_h_collision)}, {"l_collision", number(e.truth_l_collision)}}},
+               {"diverged", e.diverged},
+               {"first_divergence_step", div >= 0 ? json(div) : json(nullptr)},
+               {"pareto", static_cast<bool>(front[i])},
+               {"per_type", types}});
     } else {
       row["overall"] = nullptr;
     }
     json bench = json::array();
     if (r.bench)
       for (const BenchPoint& b : r.bench->rows)
-        bench.push_back({{"level", b.level}, {"far_body", b.far_body}, {"garment_vertices", b.garment_vertices},
-                         {"body_vertices", b.body_vertices}, {"ms_per_frame", number(b.ms_per_frame)},
-                         {"train_ms_per_frame", number(b.train_ms_per_frame)}, {"counters", b.counters}});
+        bench.push_back({{"level", b.level},
+                         {"far_body", b.far_body},
+                         {"garment_vertices", b.garment_vertices},
+                         {"body_vertices", b.body_vertices},
+                         {"ms_per_frame", number(b.ms_per_frame)},
+                         {"train_ms_per_frame", number(b.train_ms_per_frame)},
+                         {"counters", b.counters}});
     row["bench"] = bench;
     rows.push_back(row);
   }
   json pareto = json::array();
   for (std::size_t i : runs_front_order(runs))
-    pareto.push_back({{"run", runs[i].name}, {"model", runs[i].model}, {"ms_per_frame", runs[i].eval->ms_per_frame},
+    pareto.push_back({{"run", runs[i].name},
+                      {"model", runs[i].model},
+                      {"ms_per_frame", runs[i].eval->ms_per_frame},
                       {"error_mm", runs[i].eval->overall.error_mm.mean}});
-  const json doc = {{"title", title}, {"units", {{"error", "mm (real world; the paper's mm are 10x)"},
-                                                 {"rates", "share 0..1"}, {"time", "ms per predicted frame"}}},
-                    {"runs", rows}, {"pareto_front", pareto}, {"problems", problems}, {"charts", charts}};
+  const json doc = {{"title", title},
+                    {"units",
+                     {{"error", "mm (real world; the paper's mm are 10x)"},
+                      {"rates", "share 0..1"},
+                      {"time", "ms per predicted frame"}}},
+                    {"runs", rows},
+                    {"pareto_front", pareto},
+                    {"problems", problems},
+                    {"charts", charts}};
   return doc.dump(2) + "\n";
 }
 

@@ -92,8 +92,10 @@ Cloth::Cloth(const geometry::TriMesh& rest, const Material& material, ClothOptio
 
   build_membrane();
   build_bending();
-  if (options_.self_contact) build_two_ring();
-  else two_ring_offsets_.assign(nv + 1, 0);
+  if (options_.self_contact)
+    build_two_ring();
+  else
+    two_ring_offsets_.assign(nv + 1, 0);
   revision_ = next_revision();
 }
 

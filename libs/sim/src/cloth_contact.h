@@ -37,9 +37,9 @@ class LayerContact {
     std::vector<int> inner;              // index of that inner cloth (-1: none)
     std::vector<int> face;               // its face
     std::vector<std::array<double, 3>> bary;
-    std::vector<std::uint8_t> wanted;    // supported this frame
-    std::vector<std::uint8_t> claimed;   // its attachment was aimed at an inner garment this iteration
-    Vec3s target;                        // support target of the current iteration
+    std::vector<std::uint8_t> wanted;   // supported this frame
+    std::vector<std::uint8_t> claimed;  // its attachment was aimed at an inner garment this iteration
+    Vec3s target;                       // support target of the current iteration
     // Nearest vertex of another cloth's surface found last time (warm
     // start of the search), and which cloth that was.
     std::vector<int> near_vertex, near_cloth;
@@ -51,8 +51,8 @@ class LayerContact {
   // records touching in `outer_memory`. Inner vertices flagged in `backed`
   // (held by the body) are not moved: the body behind them takes the push.
   // Normal pushes are added to `inner_push` and `outer_push`.
-  void collide(int inner_index, const Cloth& inner, Cloth::State& inner_state, Memory& inner_memory,
-               int outer_index, const Cloth& outer, Cloth::State& outer_state, Memory& outer_memory,
+  void collide(int inner_index, const Cloth& inner, Cloth::State& inner_state, Memory& inner_memory, int outer_index,
+               const Cloth& outer, Cloth::State& outer_state, Memory& outer_memory,
                const std::vector<std::uint8_t>& backed, double thickness, double mu, Vec3s& inner_push,
                Vec3s& outer_push);
 

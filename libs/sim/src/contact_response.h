@@ -28,8 +28,8 @@ inline Vec3 friction_correction(const Vec3& rel, const Vec3& n, double depth, do
 
 // A vertex against a kinematic surface whose contact point moved by
 // `surface_motion` during the substep; returns true if it slid.
-inline bool resolve_kinematic(Vec3& x, const Vec3& x_start, const Vec3& n, double depth,
-                              const Vec3& surface_motion, double mu) {
+inline bool resolve_kinematic(Vec3& x, const Vec3& x_start, const Vec3& n, double depth, const Vec3& surface_motion,
+                              double mu) {
   bool slid = false;
   x += depth * n;
   x -= friction_correction((x - x_start) - surface_motion, n, depth, mu, &slid);
@@ -46,10 +46,9 @@ struct TriangleRef {
 
 // The normal pushes are also added to `push_p` and `push_t` (see
 // Solver: they move positions without adding velocity).
-inline void resolve_two_way(Vec3s& xp, const Vec3s& xp_start, const std::vector<double>& wp, int p,
-                            Vec3s& xt, const Vec3s& xt_start, const std::vector<double>& wt,
-                            const TriangleRef& tri, const Vec3& n, double depth, double mu, Vec3s& push_p,
-                            Vec3s& push_t) {
+inline void resolve_two_way(Vec3s& xp, const Vec3s& xp_start, const std::vector<double>& wp, int p, Vec3s& xt,
+                            const Vec3s& xt_start, const std::vector<double>& wt, const TriangleRef& tri, const Vec3& n,
+                            double depth, double mu, Vec3s& push_p, Vec3s& push_t) {
   double weight = wp[p];
   for (int k = 0; k < 3; ++k) weight += tri.b[k] * tri.b[k] * wt[tri.v[k]];
   if (!(weight > 0)) return;

@@ -20,9 +20,8 @@ namespace {
 // preferred side are recorded there (for supports).
 void points_against_surface(Cloth::State& points, const std::vector<double>& point_inv_mass, const Cloth& surface,
                             Cloth::State& surface_state, const std::vector<double>& surface_inv_mass,
-                            const SpatialHash& grid, double preferred, double thickness, double mu,
-                            int surface_index, LayerContact::Memory& memory, bool record, Vec3s& point_push,
-                            Vec3s& surface_push) {
+                            const SpatialHash& grid, double preferred, double thickness, double mu, int surface_index,
+                            LayerContact::Memory& memory, bool record, Vec3s& point_push, Vec3s& surface_push) {
   const double radius = grid.cell();
   const ContactTopology& topology = surface.topology();
   for (std::size_t i = 0; i < points.x.size(); ++i) {
@@ -94,11 +93,11 @@ void LayerContact::collide(int inner_index, const Cloth& inner, Cloth::State& in
     if (backed[i]) inner_inv_mass_[i] = 0.0;
   }
   grid_.build(inner_state.x, 1.5 * thickness + inner.topology().reach());
-  points_against_surface(outer_state, outer_state.inv_mass, inner, inner_state, inner_inv_mass_, grid_, +1.0,
-                         thickness, mu, inner_index, outer_memory, true, outer_push, inner_push);
+  points_against_surface(outer_state, outer_state.inv_mass, inner, inner_state, inner_inv_mass_, grid_, +1.0, thickness,
+                         mu, inner_index, outer_memory, true, outer_push, inner_push);
   grid_.build(outer_state.x, 1.5 * thickness + outer.topology().reach());
-  points_against_surface(inner_state, inner_inv_mass_, outer, outer_state, outer_state.inv_mass, grid_, -1.0,
-                         thickness, mu, outer_index, inner_memory, false, inner_push, outer_push);
+  points_against_surface(inner_state, inner_inv_mass_, outer, outer_state, outer_state.inv_mass, grid_, -1.0, thickness,
+                         mu, outer_index, inner_memory, false, inner_push, outer_push);
 }
 
 void LayerContact::settle_outer(int inner_index, const Cloth& inner, Cloth::State& inner_state, const Cloth& outer,
@@ -108,8 +107,8 @@ void LayerContact::settle_outer(int inner_index, const Cloth& inner, Cloth::Stat
   inner_inv_mass_.assign(inner_state.x.size(), 0.0);
   no_push_.assign(inner_state.x.size(), Vec3::Zero());
   grid_.build(inner_state.x, 1.5 * thickness + inner.topology().reach());
-  points_against_surface(outer_state, outer_state.inv_mass, inner, inner_state, inner_inv_mass_, grid_, +1.0,
-                         thickness, mu, inner_index, outer_memory, false, outer_push, no_push_);
+  points_against_surface(outer_state, outer_state.inv_mass, inner, inner_state, inner_inv_mass_, grid_, +1.0, thickness,
+                         mu, inner_index, outer_memory, false, outer_push, no_push_);
 }
 
 void LayerContact::make_supports(const Cloth::State& outer, Memory& memory) {

@@ -187,8 +187,10 @@ FrameMeasures measure_frame(const geometry::TriMesh& body, const std::vector<Mea
   for (const MeasuredGarment& g : garments) {
     out.nonfinite += count_nonfinite(g.positions);
     all.push_back(g.positions);
-    if (g.outer) outer.push_back(g.positions);
-    else inner.push_back({g.positions, g.faces});
+    if (g.outer)
+      outer.push_back(g.positions);
+    else
+      inner.push_back({g.positions, g.faces});
   }
   if (out.nonfinite > 0) {
     out.h_penetration = out.l_penetration = out.max_stretch = kNaN;
@@ -237,10 +239,12 @@ std::vector<std::string> SequenceMeasures::violations(const ValidationConfig& li
   std::vector<std::string> out;
   if (nonfinite_ > 0) out.push_back(std::to_string(nonfinite_) + " non-finite coordinates");
   if (mean_h_penetration() > limits.max_h_penetration) {
-    out.push_back("mean H-penetration " + percent(mean_h_penetration()) + " exceeds " + percent(limits.max_h_penetration));
+    out.push_back("mean H-penetration " + percent(mean_h_penetration()) + " exceeds " +
+                  percent(limits.max_h_penetration));
   }
   if (mean_l_penetration() > limits.max_l_penetration) {
-    out.push_back("mean L-penetration " + percent(mean_l_penetration()) + " exceeds " + percent(limits.max_l_penetration));
+    out.push_back("mean L-penetration " + percent(mean_l_penetration()) + " exceeds " +
+                  percent(limits.max_l_penetration));
   }
   if (max_stretch_ > limits.max_stretch) {
     out.push_back("maximum edge stretch " + percent(max_stretch_) + " exceeds " + percent(limits.max_stretch));

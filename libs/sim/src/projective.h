@@ -87,8 +87,8 @@ class ProjectiveSystem {
 
   Eigen::SparseMatrix<double> base_;  // without attachments
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
-  std::vector<int> permutation_;      // row i of P b is b[permutation_[i]]
-  Eigen::VectorXd inertia_;           // m_i / h^2, or the pin weight for fixed vertices
+  std::vector<int> permutation_;  // row i of P b is b[permutation_[i]]
+  Eigen::VectorXd inertia_;       // m_i / h^2, or the pin weight for fixed vertices
   Eigen::VectorXd diagonal_;
   std::vector<double> attachments_;
   Vec3s y_, rhs_, work_;

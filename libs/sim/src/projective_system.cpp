@@ -8,9 +8,7 @@
 
 namespace layers::sim::detail {
 
-bool ProjectiveSystem::current(const Cloth& cloth, double h) const {
-  return h_ == h && revision_ == cloth.revision();
-}
+bool ProjectiveSystem::current(const Cloth& cloth, double h) const { return h_ == h && revision_ == cloth.revision(); }
 
 void ProjectiveSystem::build(const Cloth& cloth, double h) {
   const int n = cloth.num_vertices();

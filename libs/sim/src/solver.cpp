@@ -32,11 +32,11 @@ struct Solver::Impl {
   std::vector<Vec3s> rhs;        // extra right-hand side of the current iteration
   std::vector<Vec3s> reactions;  // forces from outer garments' supports, previous iteration
   std::vector<Vec3s> next_reactions;
-  std::vector<Vec3s> push;       // cloth-cloth contact pushes of the substep (no velocity)
-  std::vector<int> order;        // cloths by layer, then index
-  std::vector<double> body_push; // largest body push per cloth in the substep
+  std::vector<Vec3s> push;                         // cloth-cloth contact pushes of the substep (no velocity)
+  std::vector<int> order;                          // cloths by layer, then index
+  std::vector<double> body_push;                   // largest body push per cloth in the substep
   std::vector<std::vector<std::uint8_t>> claimed;  // per cloth: attachment aimed this iteration
-  std::vector<std::uint8_t> held;  // scratch: vertices touching the body or an inner layer
+  std::vector<std::uint8_t> held;                  // scratch: vertices touching the body or an inner layer
 
   void add(int n) {
     elastic.push_back(std::make_unique<detail::ProjectiveSystem>());
@@ -63,9 +63,7 @@ double seconds_since(Clock::time_point& t) {
 
 }  // namespace
 
-Solver::Solver(SolverConfig config) : config_(std::move(config)), impl_(std::make_unique<Impl>()) {
-  check(config_);
-}
+Solver::Solver(SolverConfig config) : config_(std::move(config)), impl_(std::make_unique<Impl>()) { check(config_); }
 
 Solver::~Solver() = default;
 Solver::Solver(Solver&&) noexcept = default;
@@ -88,8 +86,8 @@ int Solver::add_cloth(Cloth cloth) {
 
 Cloth& Solver::cloth(int index) {
   if (index < 0 || index >= num_cloths()) {
-    throw Error("Solver::cloth: index " + std::to_string(index) + " out of range [0, " +
-                std::to_string(num_cloths()) + ")");
+    throw Error("Solver::cloth: index " + std::to_string(index) + " out of range [0, " + std::to_string(num_cloths()) +
+                ")");
   }
   return cloths_[index];
 }
@@ -246,8 +244,8 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
     body_push.assign(cloths_.size(), 0.0);
     if (body) {
       for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
-        body_push[ci] = m.body.collide(cloths_[ci].state_, m.body_memory[ci], c.body_thickness,
-                                       cloths_[ci].material().friction, h);
+        body_push[ci] =
+            m.body.collide(cloths_[ci].state_, m.body_memory[ci], c.body_thickness, cloths_[ci].material().friction, h);
       }
     }
     timings_.body_contact += seconds_since(t);
@@ -269,7 +267,8 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
         for (std::size_t i = 0; i < m.held.size(); ++i) {
           m.held[i] = (body && on_body[i]) || on_layer[i];
         }
-        timings_.cap_sweeps += m.limiters[ci].apply(cloths_[ci], cloths_[ci].state_, c.max_strain, c.strain_sweeps, &m.held);
+        timings_.cap_sweeps +=
+            m.limiters[ci].apply(cloths_[ci], cloths_[ci].state_, c.max_strain, c.strain_sweeps, &m.held);
       }
     }
     timings_.strain_cap += seconds_since(t);

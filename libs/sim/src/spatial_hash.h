@@ -39,15 +39,15 @@ class SpatialHash {
  private:
   std::int64_t coord(double v) const { return static_cast<std::int64_t>(std::floor(v * inv_cell_)); }
   std::uint32_t slot(std::int64_t ix, std::int64_t iy, std::int64_t iz) const {
-    const std::uint64_t h = static_cast<std::uint64_t>(ix) * 73856093ULL ^ static_cast<std::uint64_t>(iy) * 19349663ULL ^
-                            static_cast<std::uint64_t>(iz) * 83492791ULL;
+    const std::uint64_t h = static_cast<std::uint64_t>(ix) * 73856093ULL ^
+                            static_cast<std::uint64_t>(iy) * 19349663ULL ^ static_cast<std::uint64_t>(iz) * 83492791ULL;
     return static_cast<std::uint32_t>(h & mask_);
   }
 
   double cell_ = 1, inv_cell_ = 1;
   std::uint64_t mask_ = 0;
-  std::vector<int> start_;          // mask_ + 2 entries
-  std::vector<int> entries_;        // point indices grouped by slot
+  std::vector<int> start_;            // mask_ + 2 entries
+  std::vector<int> entries_;          // point indices grouped by slot
   std::vector<std::uint32_t> slots_;  // scratch: slot per point (mask_ + 1: left out)
 };
 

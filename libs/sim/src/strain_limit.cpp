@@ -66,8 +66,10 @@ int StrainLimiter::apply(const Cloth& cloth, Cloth::State& s, double max_strain,
       const int a = edges(e, 0), b = edges(e, 1);
       double wa = s.inv_mass[a], wb = s.inv_mass[b];
       if (held && (*held)[a] != (*held)[b]) {
-        if ((*held)[a]) wa *= kHeldWeight;
-        else wb *= kHeldWeight;
+        if ((*held)[a])
+          wa *= kHeldWeight;
+        else
+          wb *= kHeldWeight;
       }
       if (wa + wb == 0.0) continue;
       const Vec3 d = s.x[b] - s.x[a];

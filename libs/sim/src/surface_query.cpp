@@ -75,13 +75,27 @@ bool closest_around(const ContactTopology& t, const Vec3s& x, int center, const 
   const auto& v = t.faces[best_face];
   hit.facing = best_point.region == TrianglePoint::Face || std::abs(d.dot(best_normal)) >= 0.7 * dist;
   switch (best_point.region) {
-    case TrianglePoint::Face: hit.on_boundary = false; break;
-    case TrianglePoint::Vertex0: hit.on_boundary = t.boundary_vertex[v[0]] != 0; break;
-    case TrianglePoint::Vertex1: hit.on_boundary = t.boundary_vertex[v[1]] != 0; break;
-    case TrianglePoint::Vertex2: hit.on_boundary = t.boundary_vertex[v[2]] != 0; break;
-    case TrianglePoint::Edge0: hit.on_boundary = (t.boundary_edges[best_face] & 1u) != 0; break;
-    case TrianglePoint::Edge1: hit.on_boundary = (t.boundary_edges[best_face] & 2u) != 0; break;
-    case TrianglePoint::Edge2: hit.on_boundary = (t.boundary_edges[best_face] & 4u) != 0; break;
+    case TrianglePoint::Face:
+      hit.on_boundary = false;
+      break;
+    case TrianglePoint::Vertex0:
+      hit.on_boundary = t.boundary_vertex[v[0]] != 0;
+      break;
+    case TrianglePoint::Vertex1:
+      hit.on_boundary = t.boundary_vertex[v[1]] != 0;
+      break;
+    case TrianglePoint::Vertex2:
+      hit.on_boundary = t.boundary_vertex[v[2]] != 0;
+      break;
+    case TrianglePoint::Edge0:
+      hit.on_boundary = (t.boundary_edges[best_face] & 1u) != 0;
+      break;
+    case TrianglePoint::Edge1:
+      hit.on_boundary = (t.boundary_edges[best_face] & 2u) != 0;
+      break;
+    case TrianglePoint::Edge2:
+      hit.on_boundary = (t.boundary_edges[best_face] & 4u) != 0;
+      break;
   }
   return true;
 }

@@ -29,7 +29,7 @@ struct SurfaceHit {
   // normal when the closest point is inside the face, else the direction
   // from the closest point to p, signed to the face's side.
   Vec3 normal = Vec3::Zero();
-  double offset = 0;         // (p - point) . normal: signed distance
+  double offset = 0;  // (p - point) . normal: signed distance
   // The closest point is inside the face, or p lies mostly along the face
   // normal from it (above or below the surface rather than beside it).
   bool facing = false;

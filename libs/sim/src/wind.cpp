@@ -41,14 +41,16 @@ WindSchedule::WindSchedule(std::vector<WindSpan> spans) : spans_(std::move(spans
     const std::string where = "span [" + std::to_string(s.begin) + ", " + std::to_string(s.end) + ")";
     if (s.end <= s.begin) throw InputError("wind", where, "begin < end", "an empty or reversed span");
     if (std::abs(s.wind.direction.norm() - 1) > 1e-3) {
-      throw InputError("wind", where + " direction", "a unit vector", "length " + std::to_string(s.wind.direction.norm()));
+      throw InputError("wind", where + " direction", "a unit vector",
+                       "length " + std::to_string(s.wind.direction.norm()));
     }
     if (!(s.wind.strength >= 0) || !std::isfinite(s.wind.strength)) {
       throw InputError("wind", where + " strength", "a number >= 0", std::to_string(s.wind.strength));
     }
     if (i > 0 && s.begin < spans_[i - 1].end) {
-      throw InputError("wind", where, "spans that do not overlap",
-                       "overlap with [" + std::to_string(spans_[i - 1].begin) + ", " + std::to_string(spans_[i - 1].end) + ")");
+      throw InputError(
+          "wind", where, "spans that do not overlap",
+          "overlap with [" + std::to_string(spans_[i - 1].begin) + ", " + std::to_string(spans_[i - 1].end) + ")");
     }
   }
 }

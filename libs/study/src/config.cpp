@@ -79,7 +79,8 @@ StudyConfig load_study(const std::string& path, const std::vector<std::string>& 
     if (!valid_run_name(e.name))
       throw InputError(path, key + ".name", "a folder name of letters, digits, _ - + . (not 'report')",
                        "'" + e.name + "'");
-    if (!names.insert(e.name).second) throw InputError(path, key + ".name", "a name used once", "'" + e.name + "' again");
+    if (!names.insert(e.name).second)
+      throw InputError(path, key + ".name", "a name used once", "'" + e.name + "' again");
     e.file = beside(path, e.file);
     if (!fs::is_regular_file(e.file))
       throw InputError(path, key + ".file", "an experiment config (relative to the study file)",

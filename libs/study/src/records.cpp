@@ -72,7 +72,8 @@ void Records::save() const {
   for (const auto& [name, r] : entries_) tree.map.emplace_back(name, cfg::to_node(r));
   write_text_atomic((fs::path(folder_) / data::run_layout::kSteps).string(),
                     "# written by `layers run` (docs/studies.md): the inputs' fingerprint and outputs of each "
-                    "step\n" + cfg::to_yaml(tree) + "\n");
+                    "step\n" +
+                        cfg::to_yaml(tree) + "\n");
 }
 
 Fingerprint& Fingerprint::add(const std::string& key, const std::string& value) {

@@ -23,11 +23,16 @@ std::string now_text() {
 
 std::string status_word(StepStatus s) {
   switch (s) {
-    case StepStatus::Ran: return "done";
-    case StepStatus::Current: return "current, skipped";
-    case StepStatus::WouldRun: return "would run";
-    case StepStatus::Failed: return "FAILED";
-    case StepStatus::Blocked: return "blocked";
+    case StepStatus::Ran:
+      return "done";
+    case StepStatus::Current:
+      return "current, skipped";
+    case StepStatus::WouldRun:
+      return "would run";
+    case StepStatus::Failed:
+      return "FAILED";
+    case StepStatus::Blocked:
+      return "blocked";
   }
   return "";
 }
@@ -47,7 +52,8 @@ void Runner::run(const std::vector<Step>& steps) {
     if (ready == pending.end()) {
       const Step& s = *pending.front();
       for (const std::string& a : s.after)
-        if (!done_.count(a) && std::none_of(pending.begin(), pending.end(), [&](const Step* p) { return p->id() == a; }))
+        if (!done_.count(a) &&
+            std::none_of(pending.begin(), pending.end(), [&](const Step* p) { return p->id() == a; }))
           throw Error("study " + study_ + ": step '" + s.id() + "' comes after '" + a + "', which is no step");
       throw Error("study " + study_ + ": the steps' `after` make a cycle (at '" + s.id() + "')");
     }
@@ -107,7 +113,7 @@ void Runner::run_recorded(const Step& step, bool upstream_changed) {
     say(add(step, StepStatus::Current));
     return;
   }
-  const std::string why = options_.force    ? "forced"
+  const std::string why = options_.force     ? "forced"
                           : upstream_changed ? "inputs change"
                                              : records.reason(step.name, inputs);
   if (options_.dry_run) {

@@ -127,8 +127,8 @@ std::vector<Step> run_steps(const StudyConfig& study, const StudyRun& run, const
 std::string report_inputs(const StudyConfig& study, const std::vector<StudyRun>& runs, const std::string& dataset_fp) {
   Fingerprint f;
   const StudyReport& r = study.report;
-  f.add("options", r.title + "|" + r.split + "|" + std::to_string(r.charts) + "|" + std::to_string(r.frames) + "|" +
-                       r.sequence);
+  f.add("options",
+        r.title + "|" + r.split + "|" + std::to_string(r.charts) + "|" + std::to_string(r.frames) + "|" + r.sequence);
   f.add("dataset", dataset_fp);
   for (const StudyRun& run : runs) {
     const fs::path dir(run.dir);
@@ -188,9 +188,9 @@ class StudyOrder {
       for (const StudyRun& r : runs) names.push_back(r.name);
       for (const std::string& o : options_.only)
         if (!contains(names, o)) throw InputError(study.source, "--only " + o, "one of " + join(names), "'" + o + "'");
-      runs.erase(std::remove_if(runs.begin(), runs.end(),
-                                [&](const StudyRun& r) { return !contains(options_.only, r.name); }),
-                 runs.end());
+      runs.erase(
+          std::remove_if(runs.begin(), runs.end(), [&](const StudyRun& r) { return !contains(options_.only, r.name); }),
+          runs.end());
     }
     const bool report = contains(study.steps, "report") && !only;
 

@@ -3,8 +3,8 @@
 
 #include <ATen/Parallel.h>
 #include <benchmark/benchmark.h>
-#include <nlohmann/json.hpp>
 #include <torch/csrc/autograd/grad_mode.h>
+#include <nlohmann/json.hpp>
 
 #include <filesystem>
 
@@ -87,7 +87,8 @@ BenchReport run_bench(const ExperimentConfig& config, const zoo::Registry& regis
   report.sequence = options.sequence;
   if (report.sequence.empty()) {
     const std::vector<std::string> ids = select_sequences(s.dataset, split, config.data.subsets);
-    if (ids.empty()) throw InputError(config.data.dataset + "/splits.yaml", split, "a sequence to benchmark on", "none");
+    if (ids.empty())
+      throw InputError(config.data.dataset + "/splits.yaml", split, "a sequence to benchmark on", "none");
     report.sequence = ids.front();
   }
   if (!s.dataset.contains(report.sequence))
@@ -117,36 +118,47 @@ BenchReport run_bench(const ExperimentConfig& config, const zoo::Registry& regis
   }
 
   const bool trainable = [&] {
-    for (const at::Tensor& p : s.model->parameters()) if (p.requires_grad()) return true;
+    for (const at::Tensor& p : s.model->parameters())
+      if (p.requires_grad()) return true;
     return false;
   }();
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const std::string name = cases[i].first;
     auto& [statics, frames] = scenes[i];
     zoo::Model& model = *s.model;
-    benchmark::RegisterBenchmark((name + "/infer").c_str(), [&model, &statics = statics, &frames = frames](benchmark::State& st) {
-      model.train(false);
-      model.prepare(statics);
-      torch::NoGradGuard no_grad;
-      for (auto _ : st) {
-        zoo::StepOutput out = model.step(step_input(frames, 1, true_states(frames, 1)));
-        benchmark::DoNotOptimize(out.garments.front().data_ptr());
-      }
-    })->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(options.min_time);
+    benchmark::RegisterBenchmark((name + "/infer").c_str(),
+                                 [&model, &statics = statics, &frames = frames](benchmark::State& st) {
+                                   model.train(false);
+                                   model.prepare(statics);
+                                   torch::NoGradGuard no_grad;
+                                   for (auto _ : st) {
+                                     zoo::StepOutput out = model.step(step_input(frames, 1, true_states(frames, 1)));
+                                     benchmark::DoNotOptimize(out.garments.front().data_ptr());
+                                   }
+                                 })
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime()
+        ->MinTime(options.min_time);
     if (options.train && trainable) {
-      benchmark::RegisterBenchmark((name + "/train").c_str(), [&, &statics = statics, &frames = frames](benchmark::State& st) {
-        model.train(true);
-        model.prepare(statics);
-        for (auto _ : st) {
-          zoo::StepOutput out = model.step(step_input(frames, 1, true_states(frames, 1)));
-          std::vector<at::Tensor> truth;
-          for (const at::Tensor& g : frames.garments) truth.push_back(g[2]);
-          LossSum loss = frame_loss(model.sequence(), out.garments, truth, frames.body[2], config.loss);
-          loss.total.backward();
-          for (at::Tensor p : model.parameters()) if (p.grad().defined()) p.mutable_grad().zero_();
-        }
-        model.train(false);
-      })->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(options.min_time);
+      benchmark::RegisterBenchmark((name + "/train").c_str(),
+                                   [&, &statics = statics, &frames = frames](benchmark::State& st) {
+                                     model.train(true);
+                                     model.prepare(statics);
+                                     for (auto _ : st) {
+                                       zoo::StepOutput out = model.step(step_input(frames, 1, true_states(frames, 1)));
+                                       std::vector<at::Tensor> truth;
+                                       for (const at::Tensor& g : frames.garments) truth.push_back(g[2]);
+                                       LossSum loss = frame_loss(model.sequence(), out.garments, truth, frames.body[2],
+                                                                 config.loss);
+                                       loss.total.backward();
+                                       for (at::Tensor p : model.parameters())
+                                         if (p.grad().defined()) p.mutable_grad().zero_();
+                                     }
+                                     model.train(false);
+                                   })
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime()
+          ->MinTime(options.min_time);
     }
   }
   Collector collector;
@@ -168,16 +180,24 @@ BenchReport run_bench(const ExperimentConfig& config, const zoo::Registry& regis
     report.rows.push_back(row);
   }
 
-  report.out = options.out.empty() ? (std::filesystem::path(config.run.output) / data::run_layout::kBench).string() : options.out;
+  report.out = options.out.empty() ? (std::filesystem::path(config.run.output) / data::run_layout::kBench).string()
+                                   : options.out;
   nlohmann::ordered_json rows = nlohmann::ordered_json::array();
   for (const BenchRow& r : report.rows) {
-    rows.push_back({{"level", r.level}, {"far_body", r.far_body}, {"garment_vertices", r.garment_vertices},
-                    {"body_vertices", r.body_vertices}, {"counters", r.counters}, {"ms_per_frame", r.ms_per_frame},
+    rows.push_back({{"level", r.level},
+                    {"far_body", r.far_body},
+                    {"garment_vertices", r.garment_vertices},
+                    {"body_vertices", r.body_vertices},
+                    {"counters", r.counters},
+                    {"ms_per_frame", r.ms_per_frame},
                     {"train_ms_per_frame", r.train_ms_per_frame}});
   }
-  nlohmann::ordered_json doc = {{"model", report.model},       {"parameters", report.parameters},
-                                {"threads", report.threads},   {"sequence", report.sequence},
-                                {"dataset", config.data.dataset}, {"experiment", config.source},
+  nlohmann::ordered_json doc = {{"model", report.model},
+                                {"parameters", report.parameters},
+                                {"threads", report.threads},
+                                {"sequence", report.sequence},
+                                {"dataset", config.data.dataset},
+                                {"experiment", config.source},
                                 {"rows", rows}};
   std::filesystem::create_directories(std::filesystem::path(report.out).parent_path().empty()
                                           ? std::filesystem::path(".")

@@ -132,7 +132,8 @@ CheckpointState load_checkpoint(const std::string& path, zoo::Model& model, torc
   CheckpointState state;
   state.checksum = checksum;
   const at::Tensor name = read_tensor(in, "model_name", path);
-  for (std::int64_t i = 0; i < name.numel(); ++i) state.model_name.push_back(static_cast<char>(name[i].item<std::int64_t>()));
+  for (std::int64_t i = 0; i < name.numel(); ++i)
+    state.model_name.push_back(static_cast<char>(name[i].item<std::int64_t>()));
   if (state.model_name != model.name())
     throw InputError(path, "model_name", "a checkpoint of model '" + model.name() + "'",
                      "one of model '" + state.model_name + "'");

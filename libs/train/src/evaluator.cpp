@@ -1,8 +1,8 @@
 // Evaluation of a trained model on a split (see evaluator.h).
 #include "layers/train/evaluator.h"
 
-#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -46,7 +46,8 @@ json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 json to_json(const zoo::MeanStd& m) { return {{"mean", number(m.mean)}, {"std", number(m.std)}, {"count", m.count}}; }
 
 json to_json(const MetricSummary& s) {
-  return {{"error_mm", to_json(s.error_mm)}, {"h_collision", to_json(s.h_collision)},
+  return {{"error_mm", to_json(s.error_mm)},
+          {"h_collision", to_json(s.h_collision)},
           {"l_collision", to_json(s.l_collision)}};
 }
 
@@ -123,13 +124,14 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
   report.checkpoint = resolve_checkpoint(config, options.checkpoint);
   const CheckpointState state = load_checkpoint(report.checkpoint, *s.model, nullptr);
   s.model->train(false);
-  report.split = !options.split.empty() ? options.split
+  report.split = !options.split.empty()       ? options.split
                  : !config.eval.split.empty() ? config.eval.split
                                               : config.data.test_split;
   const int horizon = options.horizon >= 0 ? options.horizon : config.eval.horizon;
-  report.out_dir = !options.out_dir.empty()
-                       ? options.out_dir
-                       : (std::filesystem::path(config.run.output) / data::run_layout::eval_folder(report.split)).string();
+  report.out_dir =
+      !options.out_dir.empty()
+          ? options.out_dir
+          : (std::filesystem::path(config.run.output) / data::run_layout::eval_folder(report.split)).string();
   std::filesystem::create_directories(report.out_dir);
   const std::vector<std::string> ids =
       options.sequences.empty() ? select_sequences(s.dataset, report.split, config.data.subsets) : options.sequences;
@@ -138,7 +140,8 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
 
   std::unique_ptr<data::ShardWriter> writer;
   if (config.eval.save_predictions)
-    writer = std::make_unique<data::ShardWriter>((std::filesystem::path(report.out_dir) / data::run_layout::kPredictions).string());
+    writer = std::make_unique<data::ShardWriter>(
+        (std::filesystem::path(report.out_dir) / data::run_layout::kPredictions).string());
   Values overall, truth;
   std::map<std::string, Values> per_type;
   std::vector<std::vector<double>> step_error, step_h, step_l;  // [step][sequence]
@@ -184,19 +187,29 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
       const double g_l = gs.layer == 1 ? seq_l : kNaN;  // L-collision belongs to the outer garment
       Values& type = per_type[gs.type];
       type.error.push_back(g_error), type.h.push_back(g_h), type.l.push_back(g_l);
-      garments.push_back({{"name", gs.name}, {"type", gs.type}, {"layer", gs.layer}, {"error_mm", number(g_error)},
-                          {"h_collision", number(g_h)}, {"l_collision", number(g_l)}});
+      garments.push_back({{"name", gs.name},
+                          {"type", gs.type},
+                          {"layer", gs.layer},
+                          {"error_mm", number(g_error)},
+                          {"h_collision", number(g_h)},
+                          {"l_collision", number(g_l)}});
       csv << id << ',' << info.motion << ',' << tags << ',' << gs.name << ',' << gs.type << ',' << gs.layer << ','
           << csv_number(g_error) << ',' << csv_number(g_h) << ',' << csv_number(g_l) << ','
           << (res.diverged_at >= 0 ? std::to_string(res.diverged_at) : "") << '\n';
     }
-    sequences.push_back({{"id", id}, {"motion", info.motion}, {"tags", info.tags},
-                         {"frames", res.frames.size()}, {"error_mm", number(seq_error)},
-                         {"h_collision", number(seq_h)}, {"l_collision", number(seq_l)},
-                         {"truth_h_collision", number(truth.h.back())}, {"truth_l_collision", number(truth.l.back())},
+    sequences.push_back({{"id", id},
+                         {"motion", info.motion},
+                         {"tags", info.tags},
+                         {"frames", res.frames.size()},
+                         {"error_mm", number(seq_error)},
+                         {"h_collision", number(seq_h)},
+                         {"l_collision", number(seq_l)},
+                         {"truth_h_collision", number(truth.h.back())},
+                         {"truth_l_collision", number(truth.l.back())},
                          {"diverged_at", res.diverged_at >= 0 ? json(res.diverged_at) : json(nullptr)},
                          {"diverge_reason", res.diverge_reason},
-                         {"error_growth_mm_per_frame", number(growth)}, {"garments", garments}});
+                         {"error_growth_mm_per_frame", number(growth)},
+                         {"garments", garments}});
     if (writer) writer->append(prediction_sequence(s.dataset, r, s.selection));
     char extra[64];
     std::snprintf(extra, sizeof extra, "error %.1f mm", zoo::mean_std(overall.error).mean);
@@ -214,35 +227,38 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
 
   json by_step = json::array();
   for (std::size_t k = 0; k < step_error.size(); ++k) {
-    by_step.push_back({{"step", k + 1}, {"error_mm", number(zoo::mean_std(step_error[k]).mean)},
-                       {"h_collision", number(finite_mean(step_h[k]))}, {"l_collision", number(finite_mean(step_l[k]))},
+    by_step.push_back({{"step", k + 1},
+                       {"error_mm", number(zoo::mean_std(step_error[k]).mean)},
+                       {"h_collision", number(finite_mean(step_h[k]))},
+                       {"l_collision", number(finite_mean(step_l[k]))},
                        {"sequences", step_error[k].size()}});
   }
   json types = json::object();
   for (const auto& [type, summary] : report.per_type) types[type] = to_json(summary);
-  json doc = {{"model", report.model},
-              {"checkpoint", report.checkpoint},
-              // Ties these results to the exact checkpoint bytes they came from.
-              {"checkpoint_fnv1a64", state.checksum},
-              {"trained_epochs", state.epochs_done},
-              {"experiment", config.source},
-              {"dataset", config.data.dataset},
-              {"split", report.split},
-              {"subsets", config.data.subsets},
-              {"inner_only", config.data.inner_only},
-              {"horizon", horizon},
-              {"diverge_mm", config.eval.diverge_mm},
-              {"sequences", report.sequences},
-              {"frames", report.frames},
-              {"diverged", report.diverged},
-              {"ms_per_frame", report.ms_per_frame},
-              {"parameters", s.model->info().parameters},
-              {"overall", to_json(report.overall)},
-              {"error_growth_mm_per_frame", to_json(zoo::mean_std(growth_rates))},
-              {"truth", {{"h_collision", number(report.truth_h_collision)}, {"l_collision", number(report.truth_l_collision)}}},
-              {"per_type", types},
-              {"by_step", by_step},
-              {"per_sequence", sequences}};
+  json doc = {
+      {"model", report.model},
+      {"checkpoint", report.checkpoint},
+      // Ties these results to the exact checkpoint bytes they came from.
+      {"checkpoint_fnv1a64", state.checksum},
+      {"trained_epochs", state.epochs_done},
+      {"experiment", config.source},
+      {"dataset", config.data.dataset},
+      {"split", report.split},
+      {"subsets", config.data.subsets},
+      {"inner_only", config.data.inner_only},
+      {"horizon", horizon},
+      {"diverge_mm", config.eval.diverge_mm},
+      {"sequences", report.sequences},
+      {"frames", report.frames},
+      {"diverged", report.diverged},
+      {"ms_per_frame", report.ms_per_frame},
+      {"parameters", s.model->info().parameters},
+      {"overall", to_json(report.overall)},
+      {"error_growth_mm_per_frame", to_json(zoo::mean_std(growth_rates))},
+      {"truth", {{"h_collision", number(report.truth_h_collision)}, {"l_collision", number(report.truth_l_collision)}}},
+      {"per_type", types},
+      {"by_step", by_step},
+      {"per_sequence", sequences}};
   write_text_atomic((std::filesystem::path(report.out_dir) / data::run_layout::kMetrics).string(), doc.dump(2) + "\n");
   write_text_atomic((std::filesystem::path(report.out_dir) / data::run_layout::kSequences).string(), csv.str());
   return report;

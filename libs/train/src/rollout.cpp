@@ -81,8 +81,7 @@ RolloutResult rollout(zoo::Model& model, const zoo::SequenceStatic& seq, const F
   const std::int64_t steps = options.steps < 0 ? last - options.start : options.steps;
   if (options.start < 1 || steps < 1 || options.start + steps > last)
     throw Error("rollout of sequence '" + seq.id + "': start row " + std::to_string(options.start) + " and " +
-                std::to_string(steps) + " steps do not fit a window of " + std::to_string(frames.frames()) +
-                " frames");
+                std::to_string(steps) + " steps do not fit a window of " + std::to_string(frames.frames()) + " frames");
   torch::NoGradGuard no_grad;
   const geometry::Faces body_faces = faces_of(seq.body_faces);
   RolloutResult result;

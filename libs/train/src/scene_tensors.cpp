@@ -82,7 +82,9 @@ FrameTensors to_frame_tensors(const data::Window& w, const std::vector<data::Gar
   FrameTensors f;
   const std::int64_t n = w.n_frames;
   f.first_frame = w.first_frame;
-  const auto per_frame = [&](std::size_t size) { return static_cast<std::int64_t>(size) / std::max<std::int64_t>(n, 1); };
+  const auto per_frame = [&](std::size_t size) {
+    return static_cast<std::int64_t>(size) / std::max<std::int64_t>(n, 1);
+  };
   f.body = floats(w.body.positions, {n, per_frame(w.body.positions.size()) / 3, 3});
   f.root = floats(w.body.root, {n, 3});
   f.root_rot = floats(w.body.root_rot, {n, 4});

@@ -30,9 +30,7 @@ std::vector<at::Tensor> trainable(zoo::Model& model) {
   return out;
 }
 
-double learning_rate(const TrainConfig& t, int epoch) {
-  return t.lr * std::pow(t.lr_decay, epoch / t.lr_decay_every);
-}
+double learning_rate(const TrainConfig& t, int epoch) { return t.lr * std::pow(t.lr_decay, epoch / t.lr_decay_every); }
 
 void set_learning_rate(torch::optim::Adam& optimizer, double lr) {
   for (auto& group : optimizer.param_groups()) static_cast<torch::optim::AdamOptions&>(group.options()).lr(lr);
@@ -161,8 +159,8 @@ TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& re
       const zoo::TrainingContext context{epoch, state.steps};
       double batch_loss = 0;
       for (const Sample& sample : *batch)
-        batch_loss += train_window(s, sample, free_steps, loss_steps, context, static_cast<double>(batch->size()),
-                                   t.noise_std);
+        batch_loss +=
+            train_window(s, sample, free_steps, loss_steps, context, static_cast<double>(batch->size()), t.noise_std);
       batch_loss /= static_cast<double>(batch->size());
       if (t.grad_clip > 0) torch::nn::utils::clip_grad_norm_(params, t.grad_clip);
       optimizer.step();

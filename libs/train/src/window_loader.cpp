@@ -126,10 +126,10 @@ std::size_t WindowLoader::start_epoch(int epoch, std::int64_t horizon) {
   m.halt();
   auto order = m.all_windows(horizon);
   if (order.empty()) {
-    throw InputError(m.dataset.path(), "split '" + m.options.split + "'",
-                     "sequences longer than " + std::to_string(m.options.history + horizon) +
-                         " frames (history + horizon)",
-                     std::to_string(m.ids.size()) + " sequences, none long enough");
+    throw InputError(
+        m.dataset.path(), "split '" + m.options.split + "'",
+        "sequences longer than " + std::to_string(m.options.history + horizon) + " frames (history + horizon)",
+        std::to_string(m.ids.size()) + " sequences, none long enough");
   }
   std::mt19937_64 rng(m.options.seed * 1000003ULL + static_cast<std::uint64_t>(epoch));
   std::shuffle(order.begin(), order.end(), rng);

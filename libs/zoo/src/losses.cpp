@@ -126,9 +126,8 @@ Nearest nearest_on_surface(const char* loss, const char* surface_arg, const at::
 
 // The collision term shared by the body and layer losses: points against
 // the surface of (surface, faces), see losses.h.
-at::Tensor surface_penalty(const char* loss, const char* points_arg, const char* surface_arg,
-                           const char* faces_arg, const at::Tensor& points, const at::Tensor& surface,
-                           const at::Tensor& faces, double eps) {
+at::Tensor surface_penalty(const char* loss, const char* points_arg, const char* surface_arg, const char* faces_arg,
+                           const at::Tensor& points, const at::Tensor& surface, const at::Tensor& faces, double eps) {
   check_points(loss, points_arg, points);
   check_points(loss, surface_arg, surface);
   check_same_device(loss, surface_arg, surface, points);

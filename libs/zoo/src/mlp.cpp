@@ -8,8 +8,7 @@ MlpImpl::MlpImpl(MlpOptions options) : options_(std::move(options)) {
   sizes.push_back(options_.out());
   std::int64_t width = options_.in();
   for (std::size_t i = 0; i < sizes.size(); ++i) {
-    layers_.push_back(
-        register_module(options_.layer_prefix() + std::to_string(i), torch::nn::Linear(width, sizes[i])));
+    layers_.push_back(register_module(options_.layer_prefix() + std::to_string(i), torch::nn::Linear(width, sizes[i])));
     width = sizes[i];
   }
 }

@@ -237,8 +237,8 @@ StepOutput Model::step(const StepInput& in) {
   const SequenceStatic& s = sequence();
   const at::Device dev = device();
   if (current_->device != dev) {
-    throw Error("model '" + name() + "' moved to " + dev.str() + " after prepare() on " +
-                current_->device.str() + "; call prepare() again");
+    throw Error("model '" + name() + "' moved to " + dev.str() + " after prepare() on " + current_->device.str() +
+                "; call prepare() again");
   }
   StepChecker check(name(), dev);
   check.count(in.garments.size(), s.garments.size(), "step input garments");

@@ -7,8 +7,7 @@
 
 namespace layers::zoo {
 
-std::shared_ptr<Model> create_model(const Registry& registry, const cfg::Node& section,
-                                    const std::string& path) {
+std::shared_ptr<Model> create_model(const Registry& registry, const cfg::Node& section, const std::string& path) {
   ModelConfig config = cfg::read<ModelConfig>(section, path);
   if (!registry.contains(config.name))
     throw InputError::message(section.find("name")->where(), path + ".name",

@@ -33,8 +33,8 @@ std::string plugin_abi_mismatch(const PluginAbi& host, const PluginAbi& plugin) 
                     text(host.torch_version));
   }
   if (plugin.cxx11_abi != host.cxx11_abi) {
-    diffs.push_back("built with _GLIBCXX_USE_CXX11_ABI=" + std::to_string(plugin.cxx11_abi) +
-                    ", this layers with " + std::to_string(host.cxx11_abi));
+    diffs.push_back("built with _GLIBCXX_USE_CXX11_ABI=" + std::to_string(plugin.cxx11_abi) + ", this layers with " +
+                    std::to_string(host.cxx11_abi));
   }
   if (plugin.pointer_size != host.pointer_size) {
     diffs.push_back("built with " + std::to_string(plugin.pointer_size * 8) + "-bit pointers, this layers with " +
@@ -45,8 +45,8 @@ std::string plugin_abi_mismatch(const PluginAbi& host, const PluginAbi& plugin) 
     const PluginAbiType& h = host.types[i];
     const PluginAbiType& p = plugin.types[i];
     if (i >= plugin.type_count || i >= host.type_count || text(h.name) != text(p.name)) {
-      diffs.push_back("its list of crossing types differs from this layers' at entry " + std::to_string(i + 1) +
-                      " (" + (i < plugin.type_count ? text(p.name) : std::string("none")) + " vs " +
+      diffs.push_back("its list of crossing types differs from this layers' at entry " + std::to_string(i + 1) + " (" +
+                      (i < plugin.type_count ? text(p.name) : std::string("none")) + " vs " +
                       (i < host.type_count ? text(h.name) : std::string("none")) + ")");
       break;
     }

@@ -149,8 +149,9 @@ std::vector<std::string> register_plugin(Registry& registry, const std::string& 
     failure = "built for zoo API v" + std::to_string(rc) + ", this layers expects v" +
               std::to_string(host.api_version) + "; rebuild the plugin against this layers";
   } else if (rc == kPluginRecordMismatch) {
-    failure = "its plugin ABI record differs in size from this layers' (another plugin protocol); "
-              "rebuild the plugin against this layers";
+    failure =
+        "its plugin ABI record differs in size from this layers' (another plugin protocol); "
+        "rebuild the plugin against this layers";
   } else if (rc == kPluginAbiMismatch) {
     failure = plugin_abi_mismatch(host, plugin);
     if (failure.empty()) failure = "refused the handshake although its ABI record matches this layers'";
@@ -158,8 +159,8 @@ std::vector<std::string> register_plugin(Registry& registry, const std::string& 
     // Errors thrown by Registry::add already start with this plugin's path.
     for (auto& e : errors)
       if (e.rfind(path + ": ", 0) == 0) e.erase(0, path.size() + 2);
-    failure = "registration failed: " +
-              (errors.empty() ? "entry point returned " + std::to_string(rc) : join(errors, "; "));
+    failure =
+        "registration failed: " + (errors.empty() ? "entry point returned " + std::to_string(rc) : join(errors, "; "));
   } else if (models.empty()) {
     failure = "registered no models";
   }

@@ -13,8 +13,8 @@ constexpr const char* kBuiltIn = "<built-in>";
 
 bool valid_name(const std::string& name) {
   return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
-           c == '-' || c == '.';
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' ||
+           c == '.';
   });
 }
 
@@ -69,7 +69,8 @@ std::shared_ptr<Model> Registry::create(const std::string& name, const cfg::Node
 std::string Registry::summary() const {
   if (entries_.empty())
     return "no models registered; check LAYERS_PLUGIN_PATH (plugins are liblayers_plugin_<name>.so files, "
-           "searched in LAYERS_PLUGIN_PATH, then in plugins/ next to the layers binary, then beside it, then in <prefix>/lib/layers/plugins)";
+           "searched in LAYERS_PLUGIN_PATH, then in plugins/ next to the layers binary, then beside it, then in "
+           "<prefix>/lib/layers/plugins)";
   std::string text = "registered models: ";
   const char* sep = "";
   for (const auto& [n, e] : entries_) {

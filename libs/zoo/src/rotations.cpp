@@ -11,7 +11,8 @@ at::Tensor normalized(const at::Tensor& q) { return q / q.norm(2, {-1}, /*keepdi
 // The components w, x, y, z of [...,4] quaternions, each [...].
 struct Parts {
   at::Tensor w, x, y, z;
-  explicit Parts(const at::Tensor& q) : w(q.select(-1, 0)), x(q.select(-1, 1)), y(q.select(-1, 2)), z(q.select(-1, 3)) {}
+  explicit Parts(const at::Tensor& q)
+      : w(q.select(-1, 0)), x(q.select(-1, 1)), y(q.select(-1, 2)), z(q.select(-1, 3)) {}
 };
 
 // Leading dimensions of [...,4] followed by `tail`.
@@ -26,10 +27,10 @@ std::vector<std::int64_t> leading(const at::Tensor& q, std::initializer_list<std
 at::Tensor rotation_matrices(const at::Tensor& quaternions) {
   const Parts p(normalized(quaternions));
   const at::Tensor &w = p.w, &x = p.x, &y = p.y, &z = p.z;
-  const at::Tensor rows = at::stack({1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y),
-                                     2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x),
-                                     2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)},
-                                    -1);
+  const at::Tensor rows = at::stack(
+      {1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y), 2 * (x * y + w * z), 1 - 2 * (x * x + z * z),
+       2 * (y * z - w * x), 2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)},
+      -1);
   return rows.view(leading(quaternions, {3, 3}));
 }
 
@@ -49,8 +50,6 @@ at::Tensor quaternion_multiply(const at::Tensor& a, const at::Tensor& b) {
                    -1);
 }
 
-at::Tensor quaternion_conjugate(const at::Tensor& q) {
-  return q * at::tensor({1.0, -1.0, -1.0, -1.0}, q.options());
-}
+at::Tensor quaternion_conjugate(const at::Tensor& q) { return q * at::tensor({1.0, -1.0, -1.0, -1.0}, q.options()); }
 
 }  // namespace layers::zoo

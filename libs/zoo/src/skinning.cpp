@@ -67,8 +67,7 @@ at::Tensor unskin(const at::Tensor& positions, const at::Tensor& skin_index, con
   return at::linalg_solve(blended.slice(2, 0, 3), rhs).squeeze(-1);
 }
 
-double smallest_blend_determinant(const at::Tensor& skin_index, const at::Tensor& skin_weight,
-                                  const at::Tensor& maps) {
+double smallest_blend_determinant(const at::Tensor& skin_index, const at::Tensor& skin_weight, const at::Tensor& maps) {
   if (skin_index.size(0) == 0) return 1.0;
   return at::linalg_det(blended_maps(skin_index, skin_weight, maps).slice(2, 0, 3)).abs().min().item<double>();
 }

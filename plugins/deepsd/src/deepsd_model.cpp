@@ -10,8 +10,8 @@
 #include "garment_graph.h"
 #include "layers/core/error.h"
 #include "layers/zoo/losses.h"
-#include "pose_features.h"
 #include "layers/zoo/skinning.h"
+#include "pose_features.h"
 
 namespace layers::deepsd {
 namespace {
@@ -49,16 +49,16 @@ struct DeepsdModel::Inputs : Derived {
   at::Tensor rest_rotation;  // [3,3] R_root(T): rest frame -> world
   std::int64_t root = 0;
 
-  mutable std::vector<at::Tensor> prior_targets;  // [V,J] per garment, once made
-  mutable std::vector<GarmentHeads> cached_heads; // made without gradients, at cached_version
+  mutable std::vector<at::Tensor> prior_targets;   // [V,J] per garment, once made
+  mutable std::vector<GarmentHeads> cached_heads;  // made without gradients, at cached_version
   mutable std::int64_t cached_version = -1;
 };
 
 DeepsdModel::DeepsdModel(const DeepsdParams& params) : Model(kDeepsdName), params_(params) {
   std::int64_t width = 6;
   for (std::size_t i = 0; i < params_.graph_widths.size(); ++i) {
-    graph_.push_back(register_module("graph" + std::to_string(i),
-                                     std::make_shared<GraphLayer>(width, params_.graph_widths[i])));
+    graph_.push_back(
+        register_module("graph" + std::to_string(i), std::make_shared<GraphLayer>(width, params_.graph_widths[i])));
     width = params_.graph_widths[i];
   }
   const std::int64_t descriptor = 2 * width + kAttributes;
@@ -67,9 +67,10 @@ DeepsdModel::DeepsdModel(const DeepsdParams& params) : Model(kDeepsdName), param
     return zoo::Mlp(zoo::MlpOptions(in, std::vector<std::int64_t>(hidden.begin(), hidden.end()), out).layer_prefix(""));
   };
   weight_head_ = register_module("weight_head", head(descriptor, params_.weight_head, params_.joints));
-  deformation_head_ = register_module("deformation_head", head(descriptor, params_.deformation_head, 3 * params_.basis));
-  pose_head_ = register_module(
-      "pose_head", head(pose_feature_size(params_.joints, params_.wind), params_.pose_head, params_.basis));
+  deformation_head_ =
+      register_module("deformation_head", head(descriptor, params_.deformation_head, 3 * params_.basis));
+  pose_head_ = register_module("pose_head",
+                               head(pose_feature_size(params_.joints, params_.wind), params_.pose_head, params_.basis));
   // Start as plain skinning: no deformation until trained.
   at::NoGradGuard no_grad;
   deformation_head_->last()->weight.zero_();
@@ -104,7 +105,8 @@ std::shared_ptr<const zoo::Model::Derived> DeepsdModel::derive(const zoo::Sequen
     in.graph = mesh_graph(g.faces, g.rest.size(0));
     const at::Tensor normals = zoo::vertex_normals(g.rest, g.faces);
     // Row vectors: x_rest = R^T (x - o)  <=>  (x - o) R.
-    in.features = at::cat({at::matmul(g.rest - origin, out->rest_rotation), at::matmul(normals, out->rest_rotation)}, 1);
+    in.features =
+        at::cat({at::matmul(g.rest - origin, out->rest_rotation), at::matmul(normals, out->rest_rotation)}, 1);
     in.attributes = scaled_attributes(g.attributes);
     in.rest = g.rest;
     out->garments.push_back(std::move(in));
@@ -156,8 +158,8 @@ at::Tensor DeepsdModel::pose_embedding(const zoo::StepInput& in) {
   if (!in.joints_next.defined())
     fail("step input joints_next", "the joint transforms at t+1 [J,3,4] (LAYERS-H5 body/joints)", "nothing");
   const Inputs& inputs = this->inputs();
-  const at::Tensor features = pose_features(inputs.tpose, in.joints_next, inputs.root, params_.wind,
-                                            in.wind_rotation[1], in.wind_strength[1]);
+  const at::Tensor features =
+      pose_features(inputs.tpose, in.joints_next, inputs.root, params_.wind, in.wind_rotation[1], in.wind_strength[1]);
   return pose_head_->forward(features);
 }
 
@@ -181,9 +183,8 @@ zoo::StepOutput DeepsdModel::predict(const zoo::StepInput& in) {
   }
   last_.body_next = in.body_next;
   last_.maps = maps;
-  last_.counters = {{"garment_vertices", double(vertices)},
-                    {"joints", double(params_.joints)},
-                    {"heads_reused", reused ? 1.0 : 0.0}};
+  last_.counters = {
+      {"garment_vertices", double(vertices)}, {"joints", double(params_.joints)}, {"heads_reused", reused ? 1.0 : 0.0}};
   return out;
 }
 

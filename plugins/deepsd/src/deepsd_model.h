@@ -37,9 +37,9 @@
 #include <vector>
 
 #include "factory.h"
-#include "layers/zoo/model.h"
 #include "graph_layer.h"
 #include "layers/zoo/mlp.h"
+#include "layers/zoo/model.h"
 #include "params.h"
 
 namespace layers::deepsd {

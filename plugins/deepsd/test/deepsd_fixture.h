@@ -44,7 +44,8 @@ inline DeepsdParams scene_params(int w) {
 inline at::Tensor to_tensor(const Skeleton& s) {
   std::vector<float> out;
   for (const Joint& j : s)
-    for (int r = 0; r < 3; ++r) out.insert(out.end(), {float(j.r(r, 0)), float(j.r(r, 1)), float(j.r(r, 2)), float(j.p[r])});
+    for (int r = 0; r < 3; ++r)
+      out.insert(out.end(), {float(j.r(r, 0)), float(j.r(r, 1)), float(j.r(r, 2)), float(j.p[r])});
   return at::tensor(out).view({static_cast<std::int64_t>(s.size()), 3, 4});
 }
 
@@ -190,7 +191,8 @@ struct Scene {
   // Body vertices skinned to `frame`.
   at::Tensor body_at(const Skeleton& frame) const {
     std::vector<Eigen::Vector3d> out;
-    for (std::size_t v = 0; v < body.vertices.size(); ++v) out.push_back(lbs(frame, t, body_weights[v], body.vertices[v]));
+    for (std::size_t v = 0; v < body.vertices.size(); ++v)
+      out.push_back(lbs(frame, t, body_weights[v], body.vertices[v]));
     return points_tensor(out);
   }
 

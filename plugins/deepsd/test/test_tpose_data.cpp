@@ -52,7 +52,8 @@ struct Scene {
     for (int k = 0; k < 4; ++k) {
       const auto j = static_cast<std::size_t>(seq.body.skin_index[4 * v + k]);
       const double w = seq.body.skin_weight[4 * v + k];
-      blended += w * tpose_to_frame(joint(seq.body.joints, frame, j, joints), joint(seq.body.tpose_joints, 0, j, joints));
+      blended +=
+          w * tpose_to_frame(joint(seq.body.joints, frame, j, joints), joint(seq.body.tpose_joints, 0, j, joints));
     }
     return blended;
   }
@@ -71,8 +72,8 @@ struct Scene {
 
 const Scene& scene() {
   static const Scene s = [] {
-    auto config = cfg::read<generate::GeneratorConfig>(
-        cfg::load_file(test::source_dir() + "/configs/data/tiny.yaml"), "tiny");
+    auto config =
+        cfg::read<generate::GeneratorConfig>(cfg::load_file(test::source_dir() + "/configs/data/tiny.yaml"), "tiny");
     config.frames = 4;
     config.drape_frames = 4;
     config.body.transition_frames = 4;

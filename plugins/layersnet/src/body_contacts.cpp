@@ -17,8 +17,8 @@ Eigen::RowVector3f row(const float* p) { return Eigen::RowVector3f(p[0], p[1], p
 
 }  // namespace
 
-BodyContacts find_body_contacts(const at::Tensor& body_next, const at::Tensor& centroids,
-                                const at::Tensor& vertices, double radius, std::int64_t max_senders) {
+BodyContacts find_body_contacts(const at::Tensor& body_next, const at::Tensor& centroids, const at::Tensor& vertices,
+                                double radius, std::int64_t max_senders) {
   const at::Tensor body = cpu_points(body_next), cen = cpu_points(centroids), ver = cpu_points(vertices);
   const std::int64_t P = cen.size(0), V = ver.size(0);
   const std::int64_t K = radius > 0 ? max_senders : 0;

@@ -26,7 +26,7 @@ struct BodyContacts {
 //   body_next  [Vb,3] body vertices at t+1
 //   centroids  [P,3] patch centroids at t
 //   vertices   [V,3] garment vertices at t
-BodyContacts find_body_contacts(const at::Tensor& body_next, const at::Tensor& centroids,
-                                const at::Tensor& vertices, double radius, std::int64_t max_senders);
+BodyContacts find_body_contacts(const at::Tensor& body_next, const at::Tensor& centroids, const at::Tensor& vertices,
+                                double radius, std::int64_t max_senders);
 
 }  // namespace layers::layersnet

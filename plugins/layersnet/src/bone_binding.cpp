@@ -20,8 +20,7 @@ JointBinding bind_to_bones(const zoo::SequenceStatic& s) {
   // Bones: every joint with a parent, from the parent (which moves it) to the joint.
   const at::Tensor parents = s.joint_parents.to(x.device(), at::kLong);
   const at::Tensor child = at::nonzero((parents >= 0) & (parents < parents.size(0))).flatten();
-  if (child.numel() == 0)
-    throw InputError(where, "joint_parents", "at least one bone (a joint with a parent)", "none");
+  if (child.numel() == 0) throw InputError(where, "joint_parents", "at least one bone (a joint with a parent)", "none");
   const at::Tensor owners = parents.index_select(0, child);
   const at::Tensor position = s.tpose_joints.select(2, 3).to(x.device(), at::kFloat);  // [J,3]
   const at::Tensor a = position.index_select(0, owners), b = position.index_select(0, child);

@@ -10,10 +10,10 @@
 #include "frame.h"
 #include "integration.h"
 #include "joint_binding.h"
-#include "tokens.h"
-#include "topology.h"
 #include "layers/core/error.h"
 #include "layers/zoo/skinning.h"
+#include "tokens.h"
+#include "topology.h"
 
 namespace layers::layersnet {
 namespace {
@@ -56,8 +56,9 @@ cfg::Node LayersNet::config() const { return cfg::to_node(params_); }
 
 std::map<std::string, double> LayersNet::step_counters() const {
   const StepCounts& c = counts_;
-  return {{"vertices", c.vertices},       {"patches", c.patches},         {"body_tokens", c.body_tokens},
-          {"abstract_tokens", c.abstract_tokens}, {"mesh_edges", c.mesh_edges}, {"world_edges", c.world_edges},
+  return {{"vertices", c.vertices},       {"patches", c.patches},
+          {"body_tokens", c.body_tokens}, {"abstract_tokens", c.abstract_tokens},
+          {"mesh_edges", c.mesh_edges},   {"world_edges", c.world_edges},
           {"body_edges", c.body_edges}};
 }
 
@@ -87,11 +88,11 @@ struct LayersNet::StepContext {
   const zoo::Normalization& norm;
   at::TensorOptions f32;
   StepFrames frames;
-  at::Tensor x;       // [V,3] garment vertices at t, world
-  at::Tensor p_rel;   // [V,3] x in the frame of t
-  at::Tensor v_rel;   // [V,3] velocity: p_rel minus x(t-1) in the frame of t-1
-  at::Tensor state;   // [V,6] normalised p_rel, v_rel
-  at::Tensor body;    // [Vb,3] body at t
+  at::Tensor x;          // [V,3] garment vertices at t, world
+  at::Tensor p_rel;      // [V,3] x in the frame of t
+  at::Tensor v_rel;      // [V,3] velocity: p_rel minus x(t-1) in the frame of t-1
+  at::Tensor state;      // [V,6] normalised p_rel, v_rel
+  at::Tensor body;       // [Vb,3] body at t
   at::Tensor body_next;  // [Vb,3] body at t+1
 
   // Body vertices `ids` [N] in the moving frames.
@@ -107,12 +108,12 @@ struct LayersNet::StepContext {
 
 // The step's tokens and sender graph, then the processed patch tokens.
 struct LayersNet::Encoded {
-  at::Tensor patch_state;  // [P,6] patch means of the vertex state
-  at::Tensor patches;      // [P,d] patch tokens
-  at::Tensor body_tokens;  // [B,d]
+  at::Tensor patch_state;      // [P,6] patch means of the vertex state
+  at::Tensor patches;          // [P,d] patch tokens
+  at::Tensor body_tokens;      // [B,d]
   at::Tensor abstract_tokens;  // [A,d] gravity, wind, attributes
-  at::Tensor world;        // [P,P] bool world edges
-  BodyContacts contacts;   // body senders and each vertex's nearest body vertex (CPU)
+  at::Tensor world;            // [P,P] bool world edges
+  BodyContacts contacts;       // body senders and each vertex's nearest body vertex (CPU)
   SenderGraph graph;
 };
 
@@ -201,7 +202,8 @@ at::Tensor LayersNet::integrate(const StepContext& c, const Encoded& e, const zo
   // (integration.h): near the body (within the radius), or everywhere for
   // joints with a learned blend, which takes v + g (follow - v) instead.
   at::Tensor base = c.v_rel;
-  at::Tensor follow = integration_->follow({in, c.frames, c.x, c.p_rel, nearest.displacement, derived<Cached>().joints});
+  at::Tensor follow =
+      integration_->follow({in, c.frames, c.x, c.p_rel, nearest.displacement, derived<Cached>().joints});
   if (follow.defined()) {
     if (learned_blend_) follow = c.v_rel + at::sigmoid(decoded.narrow(1, 3, 1)) * (follow - c.v_rel);
     const bool everywhere = learned_blend_ && integration_->defined_everywhere();

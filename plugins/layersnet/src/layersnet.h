@@ -14,8 +14,8 @@
 #include "decoder.h"
 #include "factory.h"
 #include "integration.h"
-#include "layers/zoo/model.h"
 #include "layers/zoo/mlp.h"
+#include "layers/zoo/model.h"
 #include "params.h"
 #include "tie_block.h"
 
@@ -23,7 +23,7 @@ namespace layers::layersnet {
 
 // What the last step used (cost follows these).
 struct StepCounts {
-  std::int64_t vertices = 0;         // garment vertices, all garments
+  std::int64_t vertices = 0;  // garment vertices, all garments
   std::int64_t patches = 0;
   std::int64_t body_tokens = 0;      // distinct body vertices encoded
   std::int64_t abstract_tokens = 0;  // gravity + wind (if blowing) + attribute tokens

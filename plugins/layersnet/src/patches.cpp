@@ -25,7 +25,8 @@ void check_input(const PatchInput& in, double patch_size, const std::string& wha
   if (in.uv.size() % 2 != 0) throw InputError(what, "uv", "[U,2]", std::to_string(in.uv.size()) + " values");
   const std::size_t nf = in.faces.size() / 3;
   if (in.uv_faces.size() != nf * 3)
-    throw InputError(what, "uv_faces", "[" + std::to_string(nf) + ",3]", std::to_string(in.uv_faces.size()) + " values");
+    throw InputError(what, "uv_faces", "[" + std::to_string(nf) + ",3]",
+                     std::to_string(in.uv_faces.size()) + " values");
   if (in.panel.size() != nf)
     throw InputError(what, "panel", "[" + std::to_string(nf) + "]", std::to_string(in.panel.size()) + " values");
   check_indices(in.faces, in.n_vertices, what, "faces");

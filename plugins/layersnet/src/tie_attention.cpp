@@ -38,8 +38,7 @@ at::Tensor split_heads(const at::Tensor& x, std::int64_t heads) {
 
 }  // namespace
 
-at::Tensor tie_attention(const at::Tensor& q, const at::Tensor& r, const TieSenders& senders,
-                         const TieWeights& w) {
+at::Tensor tie_attention(const at::Tensor& q, const at::Tensor& r, const TieSenders& senders, const TieWeights& w) {
   require(q.dim() == 2, "q must be [P,d]", q);
   const std::int64_t P = q.size(0), d = q.size(1), H = w.heads;
   require(H > 0 && d % H == 0, "heads must divide the width " + std::to_string(d), q);
@@ -69,14 +68,14 @@ at::Tensor tie_attention(const at::Tensor& q, const at::Tensor& r, const TieSend
   const double scale = 1.0 / std::sqrt(static_cast<double>(dh));
 
   const Centred rc(r), sc(s);
-  const at::Tensor qh = split_heads(q, H);                                   // [H,P,dh]
+  const at::Tensor qh = split_heads(q, H);                                        // [H,P,dh]
   const at::Tensor q_kr = (qh * split_heads(at::linear(rc.x, w.wk), H)).sum(-1);  // [H,P]
 
   // Dense block: sd [P,S], logits [H,P,S].
   const at::Tensor sd_d = spread(rc.var.unsqueeze(1) + sc.var.unsqueeze(0), at::matmul(rc.x, sc.x.t()) / d, w.eps);
-  const at::Tensor ks = split_heads(at::linear(sc.x, w.wk), H);              // [H,S,dh]
+  const at::Tensor ks = split_heads(at::linear(sc.x, w.wk), H);  // [H,S,dh]
   at::Tensor logits = (q_kr.unsqueeze(2) + at::bmm(qh, ks.transpose(1, 2))) / sd_d.unsqueeze(0) * scale;
-  at::Tensor mask = md.repeat_interleave(H / G, 0);                          // [H,P,S]
+  at::Tensor mask = md.repeat_interleave(H / G, 0);  // [H,P,S]
 
   // Local block: per-token work on [B,d], gathered to the slots: sd
   // [P,K], logits [H,P,K].
@@ -85,7 +84,7 @@ at::Tensor tie_attention(const at::Tensor& q, const at::Tensor& r, const TieSend
     const std::int64_t K = senders.local_index.size(1);
     const at::Tensor flat = senders.local_index.reshape({-1});
     auto gather = [&](const at::Tensor& t) { return t.index_select(0, flat).reshape({P, K, -1}); };
-    const Centred lc(senders.local);                                         // [B,d], [B]
+    const Centred lc(senders.local);                                                   // [B,d], [B]
     const at::Tensor cross = at::bmm(gather(lc.x), rc.x.unsqueeze(2)).squeeze(2) / d;  // [P,K]
     sd_l = spread(rc.var.unsqueeze(1) + gather(lc.var.unsqueeze(1)).squeeze(2), cross, w.eps);
     const at::Tensor kl = gather(at::linear(lc.x, w.wk)).reshape({P, K, H, dh});
@@ -104,9 +103,9 @@ at::Tensor tie_attention(const at::Tensor& q, const at::Tensor& r, const TieSend
   const at::Tensor a = e / (total + (total == 0).to(total.scalar_type()));  // [H,P,S(+K)]; empty rows: 0 / 1
 
   const at::Tensor a_d = a.narrow(2, 0, S);
-  const at::Tensor w_d = a_d / sd_d.unsqueeze(0);                            // a / sd, [H,P,S]
-  at::Tensor w_sum = w_d.sum(2);                                             // [H,P]
-  at::Tensor out = at::bmm(w_d, split_heads(at::linear(sc.x, w.wv), H));     // [H,P,dh]
+  const at::Tensor w_d = a_d / sd_d.unsqueeze(0);                         // a / sd, [H,P,S]
+  at::Tensor w_sum = w_d.sum(2);                                          // [H,P]
+  at::Tensor out = at::bmm(w_d, split_heads(at::linear(sc.x, w.wv), H));  // [H,P,dh]
   if (has_local) {
     const at::Tensor w_l = a.narrow(2, S, a.size(2) - S) / sd_l.unsqueeze(0);  // [H,P,K]
     w_sum = w_sum + w_l.sum(2);

@@ -42,7 +42,6 @@ struct TieSenders {
 
 // q, r: [P,d]. Returns [P,d] (heads concatenated). Throws layers::Error on
 // inconsistent shapes.
-at::Tensor tie_attention(const at::Tensor& q, const at::Tensor& r, const TieSenders& senders,
-                         const TieWeights& w);
+at::Tensor tie_attention(const at::Tensor& q, const at::Tensor& r, const TieSenders& senders, const TieWeights& w);
 
 }  // namespace layers::layersnet

@@ -95,10 +95,12 @@ SceneTopology build_topology(const zoo::SequenceStatic& s, double patch_size) {
 
   const std::int64_t P = t.patches(), V = t.vertices(), T = static_cast<std::int64_t>(tokens.size());
   const at::Tensor vertex = long_tensor(member_vertex, at::kCPU), patch = long_tensor(member_patch, at::kCPU);
-  t.patch_from_vertex =
-      at::sparse_coo_tensor(at::stack({patch, vertex}), float_tensor(patch_weight, at::kCPU), {P, V}).coalesce().to(device);
-  t.vertex_from_patch =
-      at::sparse_coo_tensor(at::stack({vertex, patch}), float_tensor(vertex_weight, at::kCPU), {V, P}).coalesce().to(device);
+  t.patch_from_vertex = at::sparse_coo_tensor(at::stack({patch, vertex}), float_tensor(patch_weight, at::kCPU), {P, V})
+                            .coalesce()
+                            .to(device);
+  t.vertex_from_patch = at::sparse_coo_tensor(at::stack({vertex, patch}), float_tensor(vertex_weight, at::kCPU), {V, P})
+                            .coalesce()
+                            .to(device);
   t.memberships = vertex.numel();
   t.patch_kind = float_tensor(kind, device).reshape({P, 3});
 

@@ -21,14 +21,14 @@ struct SceneTopology {
   // coalesced) matrices: patch p = sum of its vertices / their count,
   // vertex v = sum of its patches / their count. One sparse product each
   // (5x faster than gather + scatter-add on 32k vertices x 128 channels).
-  at::Tensor patch_from_vertex;             // [P,V]
-  at::Tensor vertex_from_patch;             // [V,P]
-  std::int64_t memberships = 0;             // (vertex, patch) pairs
-  at::Tensor mesh_mask;                     // [P,P] bool E^M (symmetric, empty diagonal)
-  std::int64_t mesh_edges = 0;              // undirected E^M edges
-  at::Tensor patch_kind;                    // [P,3] one-hot: inner garment, outer garment, body
-  at::Tensor attributes;                    // [T,7] distinct attribute vectors, min-max scaled
-  at::Tensor patch_attribute;               // [P,T] bool: the patch's garment has token t
+  at::Tensor patch_from_vertex;  // [P,V]
+  at::Tensor vertex_from_patch;  // [V,P]
+  std::int64_t memberships = 0;  // (vertex, patch) pairs
+  at::Tensor mesh_mask;          // [P,P] bool E^M (symmetric, empty diagonal)
+  std::int64_t mesh_edges = 0;   // undirected E^M edges
+  at::Tensor patch_kind;         // [P,3] one-hot: inner garment, outer garment, body
+  at::Tensor attributes;         // [T,7] distinct attribute vectors, min-max scaled
+  at::Tensor patch_attribute;    // [P,T] bool: the patch's garment has token t
 
   std::int64_t vertices() const { return vertex_offset.back(); }
   std::int64_t patches() const { return patch_offset.back(); }

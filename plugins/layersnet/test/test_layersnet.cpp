@@ -12,13 +12,13 @@
 
 #include <torch/optim/adam.h>
 
+#include "joint_binding.h"
 #include "layers/core/config_node.h"
 #include "layers/core/error.h"
-#include "layers/zoo/skinning.h"
 #include "layers/zoo/plugin_loader.h"
 #include "layers/zoo/registry.h"
 #include "layers/zoo/rotations.h"
-#include "joint_binding.h"
+#include "layers/zoo/skinning.h"
 #include "layersnet.h"
 #include "synthetic_scene.h"
 #include "topology.h"
@@ -181,7 +181,8 @@ TEST(LayersNet, HeadingFrameTurnsThePredictionWithTheBody) {
   const at::Tensor shift = at::tensor({0.7f, 0.0f, -1.3f});
   const at::Tensor r = zoo::rotation_matrices(yaw_quaternion(yaw))[0];
   for (const bool heading : {true, false}) {
-    auto model = make(heading ? "{width: 32, blocks: 2, heads: 4, heading_frame: true}" : "{width: 32, blocks: 2, heads: 4}");
+    auto model =
+        make(heading ? "{width: 32, blocks: 2, heads: 4, heading_frame: true}" : "{width: 32, blocks: 2, heads: 4}");
     model->set_normalization(ln::testing::scene_normalization(scene));
     model->prepare(scene.statics);
     const zoo::StepOutput base = model->step(in), other = model->step(turned(in, yaw, shift));
@@ -190,7 +191,8 @@ TEST(LayersNet, HeadingFrameTurnsThePredictionWithTheBody) {
       // Translation never matters; turning matters only without the heading frame.
       EXPECT_TRUE(at::allclose(moved.garments[k], base.garments[k] + shift, 1e-5, 1e-5)) << k;
       const double off = (other.garments[k] - (at::matmul(base.garments[k], r.t()) + shift)).abs().max().item<double>();
-      std::cout << (heading ? "heading" : "world") << " garment " << k << ": " << off << " m off the turned prediction\n";
+      std::cout << (heading ? "heading" : "world") << " garment " << k << ": " << off
+                << " m off the turned prediction\n";
       if (heading)
         EXPECT_LT(off, 1e-5) << "garment " << k;
       else
@@ -214,9 +216,8 @@ at::Tensor root_velocity(const zoo::StepInput& in, std::size_t k) {
 // the radius and not at all elsewhere (no heading frame: root-relative
 // world axes). follow(k, x) is the base's displacement of garment k's
 // vertices x from t to t+1 in that frame.
-void expect_base_adds(
-    const ln::testing::SyntheticScene& scene, const zoo::StepInput& in, const std::string& base,
-    const std::function<at::Tensor(std::size_t, const at::Tensor&)>& follow) {
+void expect_base_adds(const ln::testing::SyntheticScene& scene, const zoo::StepInput& in, const std::string& base,
+                      const std::function<at::Tensor(std::size_t, const at::Tensor&)>& follow) {
   const std::string shape = "{width: 32, blocks: 2, heads: 4, body_radius: " + std::to_string(kBaseRadius);
   at::manual_seed(5);
   auto inertial = make(shape + "}");

@@ -14,8 +14,7 @@ namespace ln = layers::layersnet;
 namespace {
 
 // Senders of receiver i: every dense sender, then its own local slots.
-at::Tensor naive_attention(const at::Tensor& q, const at::Tensor& r, const ln::TieSenders& s,
-                           const ln::TieWeights& w) {
+at::Tensor naive_attention(const at::Tensor& q, const at::Tensor& r, const ln::TieSenders& s, const ln::TieWeights& w) {
   const std::int64_t P = q.size(0), d = q.size(1), H = w.heads, dh = d / H, S = s.dense.size(0);
   const std::int64_t G = s.dense_mask.size(0);
   at::Tensor senders = s.dense.unsqueeze(0).expand({P, S, d});

@@ -20,8 +20,8 @@ namespace {
 class MGNet : public zoo::Model {
  public:
   explicit MGNet(const Params& p) : Model(kName), params_(p), base_(p.base) {
-    state_encoder_ = register_module(
-        "state_encoder", std::make_shared<UvEncoder>(kStateChannels, p.channels, p.resolution, p.latent));
+    state_encoder_ = register_module("state_encoder",
+                                     std::make_shared<UvEncoder>(kStateChannels, p.channels, p.resolution, p.latent));
     dynamic_encoder_ = register_module(
         "dynamic_encoder", std::make_shared<UvEncoder>(kDynamicChannels, p.channels, p.resolution, p.latent));
     decoder_ = register_module("decoder", std::make_shared<UvDecoder>(2 * p.latent, p.channels, p.resolution, 3));

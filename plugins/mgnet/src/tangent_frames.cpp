@@ -22,8 +22,8 @@ TangentBasis tangent_basis(const at::Tensor& faces, const at::Tensor& uv_faces, 
   TangentBasis b;
   b.vertices = vertices;
   b.faces = faces.to(at::kLong);
-  const at::Tensor corners = uv.to(faces.device(), at::kFloat).index_select(0, uv_faces.to(at::kLong).reshape(-1))
-                                 .reshape({-1, 3, 2});
+  const at::Tensor corners =
+      uv.to(faces.device(), at::kFloat).index_select(0, uv_faces.to(at::kLong).reshape(-1)).reshape({-1, 3, 2});
   const at::Tensor d1 = corners.select(1, 1) - corners.select(1, 0);
   const at::Tensor d2 = corners.select(1, 2) - corners.select(1, 0);
   const at::Tensor det = d1.select(1, 0) * d2.select(1, 1) - d2.select(1, 0) * d1.select(1, 1);
@@ -51,13 +51,16 @@ at::Tensor vertex_frames(const TangentBasis& basis, const at::Tensor& positions)
   const at::Tensor p = positions.index_select(0, basis.faces.reshape(-1)).reshape({-1, 3, 3});
   const at::Tensor e1 = p.select(1, 1) - p.select(1, 0), e2 = p.select(1, 2) - p.select(1, 0);
   const at::Tensor face_normal = at::cross(e1, e2, 1);  // length = 2 x area
-  const at::Tensor face_tangent = basis.coeff.select(1, 0).unsqueeze(1) * e1 + basis.coeff.select(1, 1).unsqueeze(1) * e2;
+  const at::Tensor face_tangent =
+      basis.coeff.select(1, 0).unsqueeze(1) * e1 + basis.coeff.select(1, 1).unsqueeze(1) * e2;
   const at::Tensor corner_vertex = basis.faces.reshape(-1);
   const auto to_vertices = [&](const at::Tensor& per_face) {
     return at::zeros({basis.vertices, 3}, positions.options())
         .index_add(0, corner_vertex, per_face.repeat_interleave(3, 0));
   };
-  const auto axis_of = [&](float x, float y, float z) { return at::tensor({x, y, z}, positions.options()).reshape({1, 3}); };
+  const auto axis_of = [&](float x, float y, float z) {
+    return at::tensor({x, y, z}, positions.options()).reshape({1, 3});
+  };
   const at::Tensor n = unit(or_else(to_vertices(face_normal), axis_of(0, 1, 0).expand({basis.vertices, 3})));
 
   // Fallback tangent: x unless n is mostly along x, then z.

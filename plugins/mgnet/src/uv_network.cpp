@@ -66,8 +66,7 @@ UvDecoder::UvDecoder(std::int64_t code_size, const std::vector<std::int64_t>& ch
 at::Tensor UvDecoder::forward(const at::Tensor& code) const {
   at::Tensor x = at::silu(at::linear(code, head_weight_, head_bias_));
   x = x.reshape({code.size(0), -1, coarse_, coarse_});
-  for (std::size_t i = 0; i < weight_.size(); ++i)
-    x = at::silu(at::conv_transpose2d(x, weight_[i], bias_[i], 2, 1));
+  for (std::size_t i = 0; i < weight_.size(); ++i) x = at::silu(at::conv_transpose2d(x, weight_[i], bias_[i], 2, 1));
   return at::conv2d(x, out_weight_, out_bias_, 1, 1);
 }
 

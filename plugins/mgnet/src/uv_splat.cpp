@@ -130,9 +130,10 @@ UvSplat concatenate(const std::vector<UvSplat>& parts) {
 
 at::Tensor splat(const UvSplat& s, const at::Tensor& features) {
   const std::int64_t R = s.resolution, C = features.size(1), P = s.vertex.size(0);
-  const at::Tensor at_points = features.index_select(0, s.vertex);                 // [P,C]
+  const at::Tensor at_points = features.index_select(0, s.vertex);  // [P,C]
   const at::Tensor weighted = (at_points.unsqueeze(1) * s.weight.unsqueeze(-1)).reshape({4 * P, C});
-  const at::Tensor sum = at::zeros({s.images * R * R, C}, features.options()).index_add(0, s.pixel.reshape(-1), weighted);
+  const at::Tensor sum =
+      at::zeros({s.images * R * R, C}, features.options()).index_add(0, s.pixel.reshape(-1), weighted);
   const at::Tensor denom = at::where(s.weight_sum > 0, s.weight_sum, at::ones_like(s.weight_sum));
   return (sum / denom.unsqueeze(1)).reshape({s.images, R, R, C}).permute({0, 3, 1, 2}).contiguous();
 }
@@ -145,7 +146,7 @@ at::Tensor sample(const UvSplat& s, const at::Tensor& images) {
   const std::int64_t R = s.resolution, C = images.size(1), P = s.vertex.size(0);
   const at::Tensor flat = images.permute({0, 2, 3, 1}).reshape({s.images * R * R, C});
   const at::Tensor corners = flat.index_select(0, s.pixel.reshape(-1)).reshape({P, 4, C});
-  const at::Tensor at_points = (corners * s.weight.unsqueeze(-1)).sum(1);          // [P,C]
+  const at::Tensor at_points = (corners * s.weight.unsqueeze(-1)).sum(1);  // [P,C]
   const at::Tensor sum = at::zeros({s.vertices, C}, images.options()).index_add(0, s.vertex, at_points);
   return sum / s.points_per_vertex.clamp_min(1.0).unsqueeze(1);
 }

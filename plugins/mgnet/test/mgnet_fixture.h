@@ -18,7 +18,8 @@
 namespace layers::mgnet::testing {
 
 // UVs of the grid: column c, row r -> (u0 + su c / (cols-1), v0 + sv r / (rows-1)).
-inline at::Tensor grid_uv(std::int64_t rows, std::int64_t cols, float u0 = 0, float v0 = 0, float su = 1, float sv = 1) {
+inline at::Tensor grid_uv(std::int64_t rows, std::int64_t cols, float u0 = 0, float v0 = 0, float su = 1,
+                          float sv = 1) {
   at::Tensor u = at::linspace(u0, u0 + su, cols).repeat({rows});
   at::Tensor v = at::linspace(v0, v0 + sv, rows).repeat_interleave(cols);
   return at::stack({u, v}, 1);

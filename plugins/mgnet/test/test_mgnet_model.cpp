@@ -65,8 +65,7 @@ zoo::GarmentStatic unseen_garment() {
 }
 
 std::string error_of_params(const std::string& yaml) {
-  return layers::test::error_of<layers::InputError>(
-      [&] { layers::mgnet::make_mgnet(cfg::parse(yaml, "bad.yaml")); });
+  return layers::test::error_of<layers::InputError>([&] { layers::mgnet::make_mgnet(cfg::parse(yaml, "bad.yaml")); });
 }
 
 }  // namespace

@@ -31,8 +31,8 @@ at::Tensor window_loss(zoo::Model& model, const std::vector<zoo::StepInput>& inp
 
 TEST(MGNetTraining, OverfittingOneWindowCutsThePositionErrorTenfold) {
   at::manual_seed(0);
-  auto model = layers::mgnet::make_mgnet(
-      layers::cfg::parse("{resolution: 16, channels: [16, 32], latent: 32}", "overfit.yaml"));
+  auto model =
+      layers::mgnet::make_mgnet(layers::cfg::parse("{resolution: 16, channels: [16, 32], latent: 32}", "overfit.yaml"));
   layers::data::NormStats stats;
   stats.garment_position.std = {0.3, 0.3, 0.3};
   stats.garment_velocity.std = {0.01, 0.01, 0.01};

@@ -20,9 +20,9 @@ mg::TangentBasis basis_of(const layers::zoo::GarmentStatic& g) {
 // Rotation by `angle` about the unit axis (x, y, z).
 at::Tensor rotation(double angle, double x, double y, double z) {
   const double c = std::cos(angle), s = std::sin(angle), k = 1 - c;
-  return at::tensor({float(c + x * x * k), float(x * y * k - z * s), float(x * z * k + y * s),
-                     float(y * x * k + z * s), float(c + y * y * k), float(y * z * k - x * s),
-                     float(z * x * k - y * s), float(z * y * k + x * s), float(c + z * z * k)})
+  return at::tensor({float(c + x * x * k), float(x * y * k - z * s), float(x * z * k + y * s), float(y * x * k + z * s),
+                     float(c + y * y * k), float(y * z * k - x * s), float(z * x * k - y * s), float(z * y * k + x * s),
+                     float(c + z * z * k)})
       .reshape({3, 3});
 }
 

@@ -44,8 +44,7 @@ class SkinnedModel : public zoo::Model {
   std::shared_ptr<const Derived> derive(const zoo::SequenceStatic& data) override {
     if (!data.skin_index.defined()) {
       throw InputError("sequence '" + data.id + "'", "skin_index",
-                       "skinning data (LAYERS-H5 body/skin_index and body/skin_weight) for model 'skinned'",
-                       "none");
+                       "skinning data (LAYERS-H5 body/skin_index and body/skin_weight) for model 'skinned'", "none");
     }
     return std::make_shared<Skinnable>();
   }
@@ -81,23 +80,23 @@ class SkinnedModel : public zoo::Model {
 
   zoo::StepOutput predict(const zoo::StepInput& in) override {
     if (!in.joints.defined() || !in.joints_next.defined()) {
-      fail("step input joints / joints_next",
-           "the joint transforms [J,3,4] at t and t+1 (LAYERS-H5 body/joints)",
+      fail("step input joints / joints_next", "the joint transforms [J,3,4] at t and t+1 (LAYERS-H5 body/joints)",
            in.joints.defined() ? "no joints_next" : "no joints");
     }
     const Binding& binding = derived<Binding>();
     const std::int64_t nj = in.joints.size(0);
     if (binding.max_joint >= nj) {
-      fail("step input joints", "at least " + std::to_string(binding.max_joint + 1) +
-           " joints (skin_index names joint " + std::to_string(binding.max_joint) + ")",
+      fail("step input joints",
+           "at least " + std::to_string(binding.max_joint + 1) + " joints (skin_index names joint " +
+               std::to_string(binding.max_joint) + ")",
            std::to_string(nj));
     }
 
     const zoo::JointSteps steps = zoo::joint_steps(in.joints, in.joints_next);
     zoo::StepOutput out;
     for (std::size_t k = 0; k < in.garments.size(); ++k)
-      out.garments.push_back(zoo::move_with_joints(steps, in.garments[k].current, binding.garments[k].joint,
-                                                   binding.garments[k].weight));
+      out.garments.push_back(
+          zoo::move_with_joints(steps, in.garments[k].current, binding.garments[k].joint, binding.garments[k].weight));
     return out;
   }
 };

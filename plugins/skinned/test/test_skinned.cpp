@@ -153,13 +153,14 @@ TEST(Skinned, BlendsTheJointMotionsWithNormalisedWeights) {
   at::Tensor expected = at::zeros({current.size(0), 3}, at::kDouble);
   for (int j = 0; j < 2; ++j) {
     const test::Rigid step = joint_motion(j, f + 1, true) * joint_motion(j, f, true).inverse();
-    expected += arm.skin.weight.select(1, j).to(at::kDouble).unsqueeze(1) * test::transformed(step, current.to(at::kDouble));
+    expected +=
+        arm.skin.weight.select(1, j).to(at::kDouble).unsqueeze(1) * test::transformed(step, current.to(at::kDouble));
   }
   EXPECT_LT(max_abs_difference(got, expected.to(at::kFloat)), 1e-5f);
   // Not merely one joint's motion.
   for (int j = 0; j < 2; ++j)
-    EXPECT_GT(max_abs_difference(got, test::transformed(joint_motion(j, f + 1, true) * joint_motion(j, f, true).inverse(),
-                                                        current)),
+    EXPECT_GT(max_abs_difference(
+                  got, test::transformed(joint_motion(j, f + 1, true) * joint_motion(j, f, true).inverse(), current)),
               1e-3f);
 }
 

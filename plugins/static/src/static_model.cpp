@@ -22,9 +22,10 @@ class StaticModel : public zoo::Model {
     at::Tensor rot = in.root_rot.slice(0, 1, 3);
     at::Tensor lengths = rot.norm(2, {1});
     if (!(lengths.min().item<double>() > 1e-6 && at::isfinite(rot).all().item<bool>()))
-      throw Error("model 'static': step input root_rot: expected non-zero, finite quaternions (w,x,y,z) at t and t+1, "
-                  "got lengths " + std::to_string(lengths[0].item<double>()) + " and " +
-                  std::to_string(lengths[1].item<double>()));
+      throw Error(
+          "model 'static': step input root_rot: expected non-zero, finite quaternions (w,x,y,z) at t and t+1, "
+          "got lengths " +
+          std::to_string(lengths[0].item<double>()) + " and " + std::to_string(lengths[1].item<double>()));
     at::Tensor r = zoo::rotation_matrices(rot);
     zoo::StepOutput out;
     for (const zoo::GarmentState& g : in.garments) {

@@ -5,9 +5,9 @@
 #include <cstdlib>
 #include <map>
 
+#include "body_fixture.h"
 #include "layers/core/error.h"
 #include "layers/geometry/normals.h"
-#include "body_fixture.h"
 #include "test_paths.h"
 
 namespace layers::body {

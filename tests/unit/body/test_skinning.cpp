@@ -1,10 +1,10 @@
 // Linear blend skinning and joint transforms.
 #include <gtest/gtest.h>
 
+#include "body_fixture.h"
 #include "layers/body/body_arrays.h"
 #include "layers/body/pose_body.h"
 #include "layers/body/skinning.h"
-#include "body_fixture.h"
 
 namespace layers::body {
 namespace {
@@ -48,7 +48,8 @@ TEST(Skinning, JointMatricesMatchTheLayout) {
     EXPECT_NEAR(m[12 * elbow + 4 * row + 3], t.position[elbow][row], 1e-6);
   }
   // A child of the rotated joint moves, its parent does not.
-  EXPECT_GT((t.position[b.skeleton.require("LeftHand")] - b.skeleton.rest_head[b.skeleton.require("LeftHand")]).norm(), 0.05);
+  EXPECT_GT((t.position[b.skeleton.require("LeftHand")] - b.skeleton.rest_head[b.skeleton.require("LeftHand")]).norm(),
+            0.05);
   EXPECT_LT((t.position[elbow] - b.skeleton.rest_head[elbow]).norm(), 1e-9);
 }
 
@@ -77,7 +78,8 @@ TEST(Skinning, BodyArraysHaveTheH5Shapes) {
       const double w = a.skin_weight[4 * v + k];
       for (int row = 0; row < 3; ++row) {
         double y = m[12 * j + 4 * row + 3];
-        for (int col = 0; col < 3; ++col) y += m[12 * j + 4 * row + col] * (a.rest_vertices[3 * v + col] - a.rest_joints[3 * j + col]);
+        for (int col = 0; col < 3; ++col)
+          y += m[12 * j + 4 * row + col] * (a.rest_vertices[3 * v + col] - a.rest_joints[3 * j + col]);
         x[row] += w * y;
       }
     }

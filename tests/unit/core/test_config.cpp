@@ -47,8 +47,8 @@ struct Model {
     if (layers.size() != o.layers.size()) return false;
     for (size_t i = 0; i < layers.size(); ++i)
       if (!same(layers[i], o.layers[i])) return false;
-    return name == o.name && lr == o.lr && normalise == o.normalise && seed == o.seed &&
-           sizes == o.sizes && weights == o.weights && same(head, o.head);
+    return name == o.name && lr == o.lr && normalise == o.normalise && seed == o.seed && sizes == o.sizes &&
+           weights == o.weights && same(head, o.head);
   }
 };
 
@@ -217,7 +217,8 @@ TEST(Config, AliasBombAndDeepNestingAreBounded) {
   std::string deep = "a: ";
   for (int i = 0; i < 100; ++i) deep += "[";
   for (int i = 0; i < 100; ++i) deep += "]";
-  expect_error([&] { cfg::parse(deep, "deep.yaml"); }, {"deep.yaml:1", "nested at most 64 levels deep, got deeper nesting"});
+  expect_error([&] { cfg::parse(deep, "deep.yaml"); },
+               {"deep.yaml:1", "nested at most 64 levels deep, got deeper nesting"});
   std::string deeper = "a: ";
   for (int i = 0; i < 5000; ++i) deeper += "[";
   expect_error([&] { cfg::parse(deeper, "deeper.yaml"); }, {"deeper.yaml:1", "got nesting beyond the parser's limit"});

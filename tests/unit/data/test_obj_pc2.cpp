@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "error_of.h"
 #include "layers/core/error.h"
 #include "layers/data/dataset.h"
 #include "layers/data/dataset_writer.h"
@@ -12,7 +13,6 @@
 #include "layers/data/obj.h"
 #include "layers/data/pc2.h"
 #include "synthetic_sequence.h"
-#include "error_of.h"
 
 namespace layers::data {
 namespace {
@@ -42,8 +42,8 @@ TEST(DataObj, ReadsEveryFaceFormPolygonsAndNegativeIndices) {
   testing::write_text(dir.file("m.obj"),
                       "# comment\r\nmtllib x.mtl\no thing\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0 1.0\n"
                       "vn 0 0 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\ns off\n"
-                      "f 1/1 2/2 3/3\n"            // v/vt
-                      "f 1/1/1 3/3/1 4/4/1\n"      // v/vt/vn
+                      "f 1/1 2/2 3/3\n"              // v/vt
+                      "f 1/1/1 3/3/1 4/4/1\n"        // v/vt/vn
                       "f -4/-4 -3/-3 -2/-2 -1/-1\n"  // quad, negative indices
                       "l 1 2\n");
   const ObjMesh m = read_obj(dir.file("m.obj"));
@@ -79,8 +79,12 @@ TEST(DataObj, MalformedInputsNameTheLine) {
   EXPECT_NE(e.find("bad.obj:5"), std::string::npos) << e;
   e = error_for("v 0 0\n");
   EXPECT_NE(e.find("expected 3 numbers after 'v', got 2"), std::string::npos) << e;
-  EXPECT_NE(test::error_of<InputError>([&] { read_obj(dir.file("missing.obj")); }).find("missing.obj"), std::string::npos);
-  EXPECT_NE(test::error_of<InputError>([&] { write_obj(dir.file("w.obj"), {0, 0, 0}, {0, 0, 1}); }).find("faces"), std::string::npos);
+  EXPECT_NE(test::error_of<InputError>([&] { read_obj(dir.file("missing.obj")); }).find("missing.obj"),
+            std::string::npos);
+  EXPECT_NE(test::error_of<InputError>([&] {
+              write_obj(dir.file("w.obj"), {0, 0, 0}, {0, 0, 1});
+            }).find("faces"),
+            std::string::npos);
 }
 
 TEST(DataPc2, RoundTripAndLayout) {
@@ -111,19 +115,24 @@ TEST(DataPc2, MalformedFilesAreRejected) {
   std::string bad = good;
   bad[0] = 'X';
   testing::write_text(dir.file("sig.pc2"), bad);
-  EXPECT_NE(test::error_of<InputError>([&] { read_pc2(dir.file("sig.pc2")); }).find("signature: expected \"POINTCACHE2\\0\""),
-            std::string::npos);
+  EXPECT_NE(
+      test::error_of<InputError>([&] { read_pc2(dir.file("sig.pc2")); }).find("signature: expected \"POINTCACHE2\\0\""),
+      std::string::npos);
   bad = good;
   bad[12] = 2;
   testing::write_text(dir.file("ver.pc2"), bad);
-  EXPECT_NE(test::error_of<InputError>([&] { read_pc2(dir.file("ver.pc2")); }).find("file version: expected 1, got 2"), std::string::npos);
+  EXPECT_NE(test::error_of<InputError>([&] { read_pc2(dir.file("ver.pc2")); }).find("file version: expected 1, got 2"),
+            std::string::npos);
   testing::write_text(dir.file("short.pc2"), good.substr(0, good.size() - 4));
   const std::string e = test::error_of<InputError>([&] { read_pc2(dir.file("short.pc2")); });
-  EXPECT_NE(e.find("file size: expected 80 bytes (32 + 12 x 2 points x 2 samples), got 76 bytes"), std::string::npos) << e;
+  EXPECT_NE(e.find("file size: expected 80 bytes (32 + 12 x 2 points x 2 samples), got 76 bytes"), std::string::npos)
+      << e;
   testing::write_text(dir.file("tiny.pc2"), good.substr(0, 20));
-  EXPECT_NE(test::error_of<InputError>([&] { read_pc2(dir.file("tiny.pc2")); }).find("at least 32 bytes"), std::string::npos);
+  EXPECT_NE(test::error_of<InputError>([&] { read_pc2(dir.file("tiny.pc2")); }).find("at least 32 bytes"),
+            std::string::npos);
   cache.positions.pop_back();
-  EXPECT_NE(test::error_of<InputError>([&] { write_pc2(dir.file("w.pc2"), cache); }).find("12 floats"), std::string::npos);
+  EXPECT_NE(test::error_of<InputError>([&] { write_pc2(dir.file("w.pc2"), cache); }).find("12 floats"),
+            std::string::npos);
 }
 
 class DataExport : public ::testing::Test {
@@ -166,9 +175,11 @@ TEST_F(DataExport, Pc2CachePlusObjAtFirstFrame) {
 
 TEST_F(DataExport, BadRangeAndFormat) {
   const Dataset ds = Dataset::open(dir.file("ds"));
-  const std::string e = test::error_of<InputError>([&] { export_sequence(ds, "s", ExportFormat::Obj, 5, 20, dir.file("out")); });
+  const std::string e =
+      test::error_of<InputError>([&] { export_sequence(ds, "s", ExportFormat::Obj, 5, 20, dir.file("out")); });
   EXPECT_NE(e.find("expected [first,last) with 0 <= first < last <= 12, got [5,20)"), std::string::npos) << e;
-  EXPECT_NE(test::error_of<InputError>([&] { parse_export_format("fbx"); }).find("expected obj or pc2, got 'fbx'"), std::string::npos);
+  EXPECT_NE(test::error_of<InputError>([&] { parse_export_format("fbx"); }).find("expected obj or pc2, got 'fbx'"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -7,13 +7,13 @@
 #include <filesystem>
 #include <thread>
 
+#include "error_of.h"
 #include "layers/core/error.h"
 #include "layers/data/dataset.h"
 #include "layers/data/dataset_writer.h"
 #include "layers/data/manifest.h"
 #include "layers/data/shard_writer.h"
 #include "synthetic_sequence.h"
-#include "error_of.h"
 
 namespace layers::data {
 namespace {
@@ -80,8 +80,8 @@ TEST(DataRoundTrip, FileLayoutFollowsTheFormat) {
   EXPECT_EQ(value, 1);
   root.openAttribute("fps").read(H5::PredType::NATIVE_INT64, &value);
   EXPECT_EQ(value, 30);
-  for (const auto& [path, v] : {std::pair<std::string, hsize_t>{"/seq/s0/body/positions", 200},
-                                {"/seq/s0/garments/1/positions", 128}}) {
+  for (const auto& [path, v] :
+       {std::pair<std::string, hsize_t>{"/seq/s0/body/positions", 200}, {"/seq/s0/garments/1/positions", 128}}) {
     hsize_t chunk[3] = {0, 0, 0};
     ASSERT_EQ(file.openDataSet(path).getCreatePlist().getChunk(3, chunk), 3) << path;
     EXPECT_EQ(chunk[0], 1u);
@@ -140,7 +140,8 @@ TEST(DataReader, WindowsEqualSlicesOfTheFullArrays) {
   const Dataset ds = Dataset::open(dir.path());
   const SequenceData& seq = written[1];
   const std::int64_t T = seq.n_frames;
-  for (const auto& [start, history, horizon] : {std::tuple<int, int, int>{1, 1, 2}, {0, 0, 0}, {5, 2, 6}, {11, 11, 0}}) {
+  for (const auto& [start, history, horizon] :
+       {std::tuple<int, int, int>{1, 1, 2}, {0, 0, 0}, {5, 2, 6}, {11, 11, 0}}) {
     const Window w = ds.read_window(seq.id, start, history, horizon);
     const std::int64_t first = start - history, n = history + horizon + 1;
     EXPECT_EQ(w.first_frame, first);
@@ -260,7 +261,8 @@ TEST(DataWriter, RejectsInconsistentSequencesWithPreciseMessages) {
 
   DatasetWriter writer(dir.path());
   writer.add(make_sequence("a", 1));
-  EXPECT_NE(test::error_of<InputError>([&] { writer.add(make_sequence("a", 2)); }).find("duplicate"), std::string::npos);
+  EXPECT_NE(test::error_of<InputError>([&] { writer.add(make_sequence("a", 2)); }).find("duplicate"),
+            std::string::npos);
   writer.set_split("train", {"a", "ghost"});
   message = test::error_of<InputError>([&] { writer.finish(); });
   EXPECT_NE(message.find("'ghost'"), std::string::npos) << message;
@@ -317,7 +319,6 @@ TEST(DataChecksums, FlippedBytesInAShardAreRefused) {
   EXPECT_NE(message.find("checksum"), std::string::npos) << message;
   EXPECT_EQ(message.find('\n'), std::string::npos) << message;
 }
-
 
 }  // namespace
 }  // namespace layers::data

@@ -12,8 +12,8 @@
 #include "layers/core/error.h"
 #include "layers/data/dataset.h"
 #include "layers/data/dataset_writer.h"
-#include "layers/data/stats.h"
 #include "layers/data/sequence.h"
+#include "layers/data/stats.h"
 #include "layers/data/validate.h"
 #include "synthetic_sequence.h"
 
@@ -95,8 +95,7 @@ TEST(TposeJoints, ValidatorAndReaderRejectBadShapeAndValues) {
       << all_text(problems);
 
   const std::vector<float> values(4 * 12, 0.0f);
-  testing::replace_dataset(shard, "/seq/with/body/tpose_joints", H5::PredType::NATIVE_FLOAT, {4, 3, 4},
-                           values.data());
+  testing::replace_dataset(shard, "/seq/with/body/tpose_joints", H5::PredType::NATIVE_FLOAT, {4, 3, 4}, values.data());
   problems = validate_dataset(dir.path());
   ASSERT_FALSE(problems.empty());
   EXPECT_NE(all_text(problems).find("/seq/with/body/tpose_joints: expected float32 [J,3,4] with J=5"),

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <limits>
 
+#include "error_of.h"
 #include "layers/core/error.h"
 #include "layers/data/content_hash.h"
 #include "layers/data/dataset.h"
@@ -13,7 +14,6 @@
 #include "layers/data/manifest.h"
 #include "layers/data/stats.h"
 #include "layers/data/validate.h"
-#include "error_of.h"
 #include "synthetic_sequence.h"
 
 namespace layers::data {
@@ -112,8 +112,7 @@ TEST_F(DataValidate, WrongShape) {
 
 TEST_F(DataValidate, WrongDtype) {
   const std::vector<double> values(12 * 200 * 3, 0.25);
-  testing::replace_dataset(shard(0), "/seq/a/body/positions", H5::PredType::NATIVE_DOUBLE, {12, 200, 3},
-                           values.data());
+  testing::replace_dataset(shard(0), "/seq/a/body/positions", H5::PredType::NATIVE_DOUBLE, {12, 200, 3}, values.data());
   const auto problems = validate_dataset(dir.path());
   EXPECT_TRUE(has_problem(problems, "/seq/a/body/positions: expected dtype float32, got float64"));
   const std::string error = open_error(dir.path());
@@ -123,15 +122,16 @@ TEST_F(DataValidate, WrongDtype) {
 TEST_F(DataValidate, NaNInPositions) {
   testing::poke(shard(0), "/seq/a/garments/1/positions", {7, 3, 1}, std::numeric_limits<float>::quiet_NaN());
   const auto problems = validate_dataset(dir.path());
-  EXPECT_TRUE(has_problem(problems,
-                          "/seq/a/garments/1/positions: expected finite values, got 1 non-finite (first NaN at [7,3,1])"));
+  EXPECT_TRUE(has_problem(
+      problems, "/seq/a/garments/1/positions: expected finite values, got 1 non-finite (first NaN at [7,3,1])"));
 }
 
 TEST_F(DataValidate, FacesOutOfRange) {
   testing::poke(shard(1), "/seq/b/body/faces", {4, 2}, std::int32_t{200});
   testing::poke(shard(1), "/seq/b/garments/0/uv_faces", {0, 0}, std::int32_t{-1});
   const auto problems = validate_dataset(dir.path());
-  EXPECT_TRUE(has_problem(problems, "/seq/b/body/faces: expected indices in [0,199], got 1 out of range, first 200 at row 4"));
+  EXPECT_TRUE(
+      has_problem(problems, "/seq/b/body/faces: expected indices in [0,199], got 1 out of range, first 200 at row 4"));
   EXPECT_TRUE(has_problem(problems, "/seq/b/garments/0/uv_faces: expected indices in [0,127]"));
 }
 
@@ -139,7 +139,8 @@ TEST_F(DataValidate, WindOutOfRangeAndNonUnitQuaternion) {
   testing::poke(shard(0), "/seq/a/wind/strength", {3}, 450.0f);
   testing::poke(shard(0), "/seq/a/wind/rotation", {2, 0}, 3.0f);
   const auto problems = validate_dataset(dir.path());
-  EXPECT_TRUE(has_problem(problems, "/seq/a/wind/strength: expected strengths in [0,400], got 1 outside (first 450 at [3])"));
+  EXPECT_TRUE(
+      has_problem(problems, "/seq/a/wind/strength: expected strengths in [0,400], got 1 outside (first 450 at [3])"));
   EXPECT_TRUE(has_problem(problems, "/seq/a/wind/rotation: expected unit quaternions"));
   EXPECT_TRUE(has_problem(problems, "at frame [2,0]"));
 }
@@ -280,7 +281,6 @@ TEST(DataBounds, ContentHashesCatchAChangedSequence) {
   testing::poke(folder + "/shard-00000.h5", "/seq/s/garments/1/positions", {2, 3, 0}, 0.25f);
   EXPECT_TRUE(has_problem(validate_dataset(folder), "content_hashes.s: expected " + sequence_content_hash(seq)));
 }
-
 
 }  // namespace
 }  // namespace layers::data

@@ -14,10 +14,10 @@
 #include <tuple>
 #include <vector>
 
-#include "layers/geometry/normals.h"
-#include "layers/geometry/penetration.h"
 #include "layers/body/body_model.h"
 #include "layers/garment/garment.h"
+#include "layers/geometry/normals.h"
+#include "layers/geometry/penetration.h"
 
 namespace layers::garment::test {
 
@@ -36,7 +36,8 @@ inline body::ShapeParams test_shape(int which) {
 inline const TPoseBody& tpose(int which) {
   static std::map<int, TPoseBody> cache;
   auto it = cache.find(which);
-  if (it == cache.end()) it = cache.emplace(which, t_pose_body(body::BodyModel::load()->build(test_shape(which)))).first;
+  if (it == cache.end())
+    it = cache.emplace(which, t_pose_body(body::BodyModel::load()->build(test_shape(which)))).first;
   return it->second;
 }
 
@@ -75,8 +76,8 @@ struct UnionFind {
 };
 
 struct MeshReport {
-  int over_shared_edges = 0;   // edges in more than two faces
-  int misoriented_edges = 0;   // interior edges not traversed once each way
+  int over_shared_edges = 0;  // edges in more than two faces
+  int misoriented_edges = 0;  // interior edges not traversed once each way
   int components = 0;
   int boundary_loops = 0;
   int boundary_flag_mismatch = 0;
@@ -124,12 +125,15 @@ inline MeshReport inspect(const GarmentMesh& g, const geometry::Surface& body, d
   int out = 0;
   double area3 = 0, area2 = 0;
   for (int f = 0; f < g.num_faces(); ++f) {
-    const Eigen::RowVector3f c = (g.vertices.row(g.faces(f, 0)) + g.vertices.row(g.faces(f, 1)) + g.vertices.row(g.faces(f, 2))) / 3;
+    const Eigen::RowVector3f c =
+        (g.vertices.row(g.faces(f, 0)) + g.vertices.row(g.faces(f, 1)) + g.vertices.row(g.faces(f, 2))) / 3;
     const auto near = body.index().nearest(c);
     out += (c - body.vertices().row(near.index)).dot(normals.row(f)) > 0;
-    const Eigen::RowVector3f a = g.vertices.row(g.faces(f, 0)), b = g.vertices.row(g.faces(f, 1)), d = g.vertices.row(g.faces(f, 2));
+    const Eigen::RowVector3f a = g.vertices.row(g.faces(f, 0)), b = g.vertices.row(g.faces(f, 1)),
+                             d = g.vertices.row(g.faces(f, 2));
     area3 += 0.5 * (b - a).cross(d - a).norm();
-    const Eigen::RowVector2f p = g.uv.row(g.uv_faces(f, 0)), q = g.uv.row(g.uv_faces(f, 1)), s = g.uv.row(g.uv_faces(f, 2));
+    const Eigen::RowVector2f p = g.uv.row(g.uv_faces(f, 0)), q = g.uv.row(g.uv_faces(f, 1)),
+                             s = g.uv.row(g.uv_faces(f, 2));
     const double uv = 0.5 * ((q - p).x() * (s - p).y() - (q - p).y() * (s - p).x());
     area2 += uv;
     r.uv_flipped += uv <= 0;

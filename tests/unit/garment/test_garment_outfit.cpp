@@ -14,7 +14,8 @@ namespace {
 
 using test::tpose;
 
-std::vector<GarmentMesh> outfit(const std::vector<std::string>& inner, const std::string& outer, int shape, std::uint64_t seed) {
+std::vector<GarmentMesh> outfit(const std::vector<std::string>& inner, const std::string& outer, int shape,
+                                std::uint64_t seed) {
   return build_outfit(inner, outer, tpose(shape), GarmentParams(), seed);
 }
 

@@ -13,7 +13,8 @@ using test::garment;
 
 TEST(GarmentParams, ReadsFromConfigAndChecksRanges) {
   const GarmentParams p = cfg::read<GarmentParams>(
-      cfg::parse("edge_length: 0.03\nflare: [0.1, 0.2]\nlayer_clearance: [0.02, 0.025]\n", "garments.yaml"), "garments");
+      cfg::parse("edge_length: 0.03\nflare: [0.1, 0.2]\nlayer_clearance: [0.02, 0.025]\n", "garments.yaml"),
+      "garments");
   EXPECT_DOUBLE_EQ(p.edge_length, 0.03);
   EXPECT_EQ(p.flare, (std::vector<double>{0.1, 0.2}));
   EXPECT_NO_THROW(validate(p));

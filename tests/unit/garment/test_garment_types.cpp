@@ -62,7 +62,8 @@ TEST(GarmentType, LayersAndNames) {
   EXPECT_EQ(garment_types().size(), 8u);
   EXPECT_EQ(garment_layer("jacket"), 1);
   EXPECT_EQ(garment_layer("jacket_hood"), 1);
-  for (const char* inner : {"dress", "dress_belt", "jumpsuit", "tshirt", "pants", "skirt"}) EXPECT_EQ(garment_layer(inner), 0);
+  for (const char* inner : {"dress", "dress_belt", "jumpsuit", "tshirt", "pants", "skirt"})
+    EXPECT_EQ(garment_layer(inner), 0);
   try {
     garment_layer("hat");
     FAIL() << "expected an InputError";
@@ -83,7 +84,8 @@ TEST(GarmentType, PanelsAreTheSewingPattern) {
   for (const char* p : {"front_left", "front_right", "back", "sleeve_left", "sleeve_right", "hood_left", "hood_right"})
     EXPECT_EQ(jacket.count(p), 1u) << p;
   const auto belted = names(garment("dress_belt", 0, 1));
-  for (const char* p : {"front", "back", "belt_front", "belt_back", "skirt_front", "skirt_back"}) EXPECT_EQ(belted.count(p), 1u) << p;
+  for (const char* p : {"front", "back", "belt_front", "belt_back", "skirt_front", "skirt_back"})
+    EXPECT_EQ(belted.count(p), 1u) << p;
 }
 
 }  // namespace

@@ -1,11 +1,11 @@
 // Normals, areas, edges, adjacency and validation on hand-made meshes.
 #include <gtest/gtest.h>
 
+#include "grid_mesh.h"
 #include "layers/core/error.h"
 #include "layers/geometry/mesh.h"
 #include "layers/geometry/normals.h"
 #include "layers/geometry/topology.h"
-#include "grid_mesh.h"
 
 namespace g = layers::geometry;
 
@@ -145,8 +145,7 @@ TEST(Mesh, ValidateNamesFaceAndIndex) {
     g::validate(t, "shard-00000.h5:/seq/a/garments/0");
     FAIL() << "no error";
   } catch (const layers::InputError& e) {
-    EXPECT_STREQ(e.what(),
-                 "shard-00000.h5:/seq/a/garments/0: faces[2][1]: expected a vertex index in [0, 4), got 7");
+    EXPECT_STREQ(e.what(), "shard-00000.h5:/seq/a/garments/0: faces[2][1]: expected a vertex index in [0, 4), got 7");
   }
   t.faces(2, 1) = 0;
   EXPECT_THROW(g::validate(t, "x"), layers::InputError);

@@ -1,9 +1,9 @@
 // The nearest-vertex penetration test against a plane and a cube.
 #include <gtest/gtest.h>
 
+#include "grid_mesh.h"
 #include "layers/core/error.h"
 #include "layers/geometry/penetration.h"
-#include "grid_mesh.h"
 
 namespace g = layers::geometry;
 
@@ -29,8 +29,7 @@ TEST(Surface, InsideCubeIsBehind) {
   c.vertices.resize(8, 3);
   for (int i = 0; i < 8; ++i) c.vertices.row(i) << float(i & 1), float((i >> 1) & 1), float((i >> 2) & 1);
   c.faces.resize(12, 3);
-  c.faces << 0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4, 2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3,
-      5, 3, 7, 5;
+  c.faces << 0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4, 2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5;
   g::Surface s = g::Surface::from_mesh(c, "cube");
   EXPECT_TRUE(s.behind(Eigen::RowVector3f(0.5f, 0.5f, 0.5f)));
   EXPECT_TRUE(s.behind(Eigen::RowVector3f(0.9f, 0.9f, 0.8f)));

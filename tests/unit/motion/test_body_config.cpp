@@ -8,7 +8,9 @@
 namespace layers::motion {
 namespace {
 
-BodyMotionConfig read(const std::string& yaml) { return cfg::read<BodyMotionConfig>(cfg::parse(yaml, "body.yaml"), "body"); }
+BodyMotionConfig read(const std::string& yaml) {
+  return cfg::read<BodyMotionConfig>(cfg::parse(yaml, "body.yaml"), "body");
+}
 
 TEST(BodyConfig, ReadsAndWritesBack) {
   const BodyMotionConfig c = read(

@@ -4,9 +4,9 @@
 
 #include <sstream>
 
+#include "body_fixture.h"
 #include "layers/core/error.h"
 #include "layers/motion/bvh.h"
-#include "body_fixture.h"
 #include "temp_dir.h"
 
 namespace layers::motion {
@@ -91,7 +91,8 @@ TEST(Bvh, ReadsHierarchyChannelsAndFrames) {
   EXPECT_NEAR((c.translation[1][2] - body::Vec3(0.5, 0.2, 0)).norm(), 0.0, 1e-12);
   // World positions: at frame 0 the root turned 90 degrees about z moves the thigh.
   const BvhWorld w = bvh_world(c, 0);
-  EXPECT_NEAR((w.position[1] - (body::Vec3(1, 2, 3) + body::rot_z(M_PI / 2) * body::Vec3(0.1, -0.1, 0))).norm(), 0.0, 1e-9);
+  EXPECT_NEAR((w.position[1] - (body::Vec3(1, 2, 3) + body::rot_z(M_PI / 2) * body::Vec3(0.1, -0.1, 0))).norm(), 0.0,
+              1e-9);
 }
 
 TEST(Bvh, RotationOrderMatters) {

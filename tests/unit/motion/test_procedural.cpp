@@ -4,9 +4,9 @@
 // joins the T-pose transition smoothly.
 #include <gtest/gtest.h>
 
+#include "body_fixture.h"
 #include "layers/core/error.h"
 #include "layers/motion/procedural.h"
-#include "body_fixture.h"
 
 namespace layers::motion {
 namespace {

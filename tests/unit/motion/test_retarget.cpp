@@ -5,11 +5,11 @@
 
 #include <set>
 
+#include "body_fixture.h"
 #include "layers/core/error.h"
 #include "layers/motion/bvh.h"
 #include "layers/motion/motion.h"
 #include "layers/motion/retarget.h"
-#include "body_fixture.h"
 
 namespace layers::motion {
 namespace {

@@ -2,12 +2,12 @@
 // the torso, repair by abduction, and the frame policies.
 #include <gtest/gtest.h>
 
-#include "layers/core/error.h"
+#include "body_fixture.h"
 #include "layers/body/pose_body.h"
+#include "layers/body/self_intersection.h"
+#include "layers/core/error.h"
 #include "layers/motion/body_sequence.h"
 #include "layers/motion/procedural.h"
-#include "layers/body/self_intersection.h"
-#include "body_fixture.h"
 
 namespace layers::motion {
 namespace {
@@ -23,7 +23,8 @@ body::Pose arm_in(const body::Body& b, double angle) {
 }
 
 TEST(SelfIntersection, RestPosesAreClean) {
-  for (const body::ShapeParams& s : {shape(0.5, 0.5, 0.5, 0.5), shape(0, 0, 0, 0), shape(1, 1, 1, 1), shape(0, 1, 1, 0.5)}) {
+  for (const body::ShapeParams& s :
+       {shape(0.5, 0.5, 0.5, 0.5), shape(0, 0, 0, 0), shape(1, 1, 1, 1), shape(0, 1, 1, 0.5)}) {
     const body::Body& b = body::test::body(s);
     const body::SelfIntersection si(b);
     const body::FrameIntersection r = si.check(b.rest.vertices);
@@ -36,7 +37,8 @@ TEST(SelfIntersection, PartsCoverTheBody) {
   const body::SelfIntersection si(b);
   std::array<int, body::kNumBodyParts + 1> count{};
   for (int p : si.part()) ++count[p + 1];
-  for (int p = 1; p <= body::kNumBodyParts; ++p) EXPECT_GT(count[p], 1000) << body::body_part_name(static_cast<body::BodyPart>(p - 1));
+  for (int p = 1; p <= body::kNumBodyParts; ++p)
+    EXPECT_GT(count[p], 1000) << body::body_part_name(static_cast<body::BodyPart>(p - 1));
   EXPECT_LT(count[0], b.num_vertices() / 5);  // blend zones stay small
 }
 

@@ -27,37 +27,50 @@ inline std::string number_or_null(double v) { return v != v ? "null" : std::to_s
 inline std::string metrics_json(const FakeRun& r) {
   std::string steps;
   for (std::size_t k = 0; k < r.step_errors.size(); ++k)
-    steps += std::string(k ? "," : "") + "{\"step\": " + std::to_string(k + 1) + ", \"error_mm\": " +
-             std::to_string(r.step_errors[k]) + ", \"h_collision\": " + std::to_string(r.h) +
+    steps += std::string(k ? "," : "") + "{\"step\": " + std::to_string(k + 1) +
+             ", \"error_mm\": " + std::to_string(r.step_errors[k]) + ", \"h_collision\": " + std::to_string(r.h) +
              ", \"l_collision\": " + (k == 0 ? "null" : std::to_string(r.l)) + ", \"sequences\": 2}";
   const std::string diverged = r.diverged_at >= 0 ? std::to_string(r.diverged_at) : "null";
   return R"({
-  "model": ")" + r.model + R"(",
+  "model": ")" +
+         r.model + R"(",
   "checkpoint": "x/checkpoint-best.pt", "trained_epochs": 3, "experiment": "e.yaml",
-  "dataset": ")" + r.dataset + R"(", "split": "test", "subsets": [], "inner_only": false,
+  "dataset": ")" +
+         r.dataset + R"(", "split": "test", "subsets": [], "inner_only": false,
   "horizon": 27, "diverge_mm": 1000.0, "sequences": 2, "frames": 54,
-  "diverged": )" + std::string(r.diverged_at >= 0 ? "1" : "0") + R"(,
-  "ms_per_frame": )" + std::to_string(r.ms_per_frame) + R"(, "parameters": 1234,
-  "overall": {"error_mm": {"mean": )" + std::to_string(r.error) + R"(, "std": )" + std::to_string(r.error_std) +
+  "diverged": )" +
+         std::string(r.diverged_at >= 0 ? "1" : "0") + R"(,
+  "ms_per_frame": )" +
+         std::to_string(r.ms_per_frame) + R"(, "parameters": 1234,
+  "overall": {"error_mm": {"mean": )" +
+         std::to_string(r.error) + R"(, "std": )" + std::to_string(r.error_std) +
          R"(, "count": 2},
-              "h_collision": {"mean": )" + std::to_string(r.h) + R"(, "std": 0.01, "count": 2},
-              "l_collision": {"mean": )" + std::to_string(r.l) + R"(, "std": 0.0, "count": 2}},
+              "h_collision": {"mean": )" +
+         std::to_string(r.h) + R"(, "std": 0.01, "count": 2},
+              "l_collision": {"mean": )" +
+         std::to_string(r.l) + R"(, "std": 0.0, "count": 2}},
   "truth": {"h_collision": 0.0, "l_collision": 0.0645},
   "per_type": {
-    "jacket": {"error_mm": {"mean": )" + std::to_string(r.error + 1) + R"(, "std": 0.5, "count": 2},
+    "jacket": {"error_mm": {"mean": )" +
+         std::to_string(r.error + 1) + R"(, "std": 0.5, "count": 2},
                "h_collision": {"mean": 0.01, "std": 0.0, "count": 2},
-               "l_collision": {"mean": )" + std::to_string(r.l) + R"(, "std": 0.0, "count": 2}},
-    "jumpsuit": {"error_mm": {"mean": )" + std::to_string(r.error - 1) + R"(, "std": 0.5, "count": 2},
+               "l_collision": {"mean": )" +
+         std::to_string(r.l) + R"(, "std": 0.0, "count": 2}},
+    "jumpsuit": {"error_mm": {"mean": )" +
+         std::to_string(r.error - 1) + R"(, "std": 0.5, "count": 2},
                  "h_collision": {"mean": 0.03, "std": 0.0, "count": 2},
                  "l_collision": {"mean": 0.0, "std": 0.0, "count": 0}}},
-  "by_step": [)" + steps + R"(],
+  "by_step": [)" +
+         steps + R"(],
   "per_sequence": [
     {"id": "s1", "motion": "walk", "tags": ["T"], "frames": 27, "error_mm": 9.0, "h_collision": 0.02,
      "l_collision": 0.05, "truth_h_collision": 0.0, "truth_l_collision": 0.06, "diverged_at": null,
      "diverge_reason": "", "garments": []},
     {"id": "s2", "motion": "jump", "tags": ["T+W"], "frames": 27, "error_mm": 11.0, "h_collision": 0.02,
-     "l_collision": 0.05, "truth_h_collision": 0.0, "truth_l_collision": 0.06, "diverged_at": )" + diverged + R"(,
-     "diverge_reason": ")" + std::string(r.diverged_at >= 0 ? "non-finite prediction" : "") + R"(", "garments": []}]
+     "l_collision": 0.05, "truth_h_collision": 0.0, "truth_l_collision": 0.06, "diverged_at": )" +
+         diverged + R"(,
+     "diverge_reason": ")" +
+         std::string(r.diverged_at >= 0 ? "non-finite prediction" : "") + R"(", "garments": []}]
 }
 )";
 }
@@ -66,19 +79,21 @@ inline std::string bench_json(const std::string& model, double ms0, double ms1) 
   return R"({"model": ")" + model + R"(", "parameters": 1234, "threads": 2, "sequence": "s1",
   "dataset": "d", "experiment": "e.yaml", "rows": [
   {"level": 0, "far_body": false, "garment_vertices": 300, "body_vertices": 200, "counters": {"patches": 12},
-   "ms_per_frame": )" + std::to_string(ms0) + R"(, "train_ms_per_frame": 0.0},
+   "ms_per_frame": )" +
+         std::to_string(ms0) + R"(, "train_ms_per_frame": 0.0},
   {"level": 0, "far_body": true, "garment_vertices": 300, "body_vertices": 400, "counters": {"patches": 12},
-   "ms_per_frame": )" + std::to_string(ms0) + R"(, "train_ms_per_frame": 0.0},
+   "ms_per_frame": )" +
+         std::to_string(ms0) + R"(, "train_ms_per_frame": 0.0},
   {"level": 1, "far_body": false, "garment_vertices": 1200, "body_vertices": 200, "counters": {},
-   "ms_per_frame": )" + std::to_string(ms1) + R"(, "train_ms_per_frame": 4.5}]}
+   "ms_per_frame": )" +
+         std::to_string(ms1) + R"(, "train_ms_per_frame": 4.5}]}
 )";
 }
 
 // A run folder <root>/<name> with experiment.yaml and eval-test/metrics.json.
 inline std::string write_run(const layers::test::TempDir& root, const std::string& name, const FakeRun& r) {
-  root.write(name + "/experiment.yaml",
-             "run: {output: " + root.file(name) + "}\ndata: {dataset: " + r.dataset + "}\nmodel: {name: " + r.model +
-                 ", params: {}}\n");
+  root.write(name + "/experiment.yaml", "run: {output: " + root.file(name) + "}\ndata: {dataset: " + r.dataset +
+                                            "}\nmodel: {name: " + r.model + ", params: {}}\n");
   root.write(name + "/eval-test/metrics.json", metrics_json(r));
   return root.file(name);
 }

@@ -22,9 +22,9 @@ TEST(MeshView, CullsBackFacesAndOrdersFarthestFirst) {
   // Two triangles facing +z (counter-clockwise seen from +z) at z = 0 and
   // z = 1, and one facing -z at z = 2; a vertex with NaN makes a fourth face
   // that is skipped.
-  const float p[] = {0, 0, 1, 1, 0, 1, 0, 1, 1,   // near, facing the camera
-                     0, 0, 0, 1, 0, 0, 0, 1, 0,   // far, facing the camera
-                     0, 0, 2, 0, 1, 2, 1, 0, 2,   // nearest, facing away
+  const float p[] = {0,   0, 1, 1, 0, 1, 0, 1, 1,  // near, facing the camera
+                     0,   0, 0, 1, 0, 0, 0, 1, 0,  // far, facing the camera
+                     0,   0, 2, 0, 1, 2, 1, 0, 2,  // nearest, facing away
                      NAN, 0, 0};
   const std::vector<std::int32_t> faces = {0, 1, 2, 3, 4, 5, 6, 7, 8, 0, 1, 9};
   std::vector<ScreenTriangle> culled, both;

@@ -4,9 +4,9 @@
 // shapes are wound outwards.
 #pragma once
 
-#include <cmath>
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <map>
 #include <tuple>
 #include <utility>
@@ -26,7 +26,8 @@ using V3 = Eigen::Vector3d;
 inline TriMesh make_mesh(const std::vector<V3>& v, const std::vector<std::array<int, 3>>& f) {
   TriMesh m;
   m.vertices.resize(static_cast<Eigen::Index>(v.size()), 3);
-  for (std::size_t i = 0; i < v.size(); ++i) m.vertices.row(static_cast<Eigen::Index>(i)) = v[i].cast<float>().transpose();
+  for (std::size_t i = 0; i < v.size(); ++i)
+    m.vertices.row(static_cast<Eigen::Index>(i)) = v[i].cast<float>().transpose();
   m.faces.resize(static_cast<Eigen::Index>(f.size()), 3);
   for (std::size_t i = 0; i < f.size(); ++i) m.faces.row(static_cast<Eigen::Index>(i)) << f[i][0], f[i][1], f[i][2];
   return m;
@@ -70,7 +71,8 @@ inline TriMesh weld(const TriMesh& m, double eps = 1e-6) {
     remap[i] = it->second;
   }
   std::vector<std::array<int, 3>> f;
-  for (int i = 0; i < m.num_faces(); ++i) f.push_back({remap[m.faces(i, 0)], remap[m.faces(i, 1)], remap[m.faces(i, 2)]});
+  for (int i = 0; i < m.num_faces(); ++i)
+    f.push_back({remap[m.faces(i, 0)], remap[m.faces(i, 1)], remap[m.faces(i, 2)]});
   return make_mesh(v, f);
 }
 
@@ -87,8 +89,8 @@ inline void orient_outwards(TriMesh& m, const V3& center) {
 
 inline TriMesh icosphere(const V3& center, double radius, int subdivisions) {
   const double t = (1 + std::sqrt(5.0)) / 2;
-  std::vector<V3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                       {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  std::vector<V3> v = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                       {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
   std::vector<std::array<int, 3>> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
                                        {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
                                        {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
@@ -132,7 +134,8 @@ inline TriMesh box(const V3& center, const V3& half, double cell) {
       origin[b] -= half[b];
       u[a] = 2 * half[a];
       w[b] = 2 * half[b];
-      const int nu = std::max(1, int(std::lround(u.norm() / cell))), nw = std::max(1, int(std::lround(w.norm() / cell)));
+      const int nu = std::max(1, int(std::lround(u.norm() / cell))),
+                nw = std::max(1, int(std::lround(w.norm() / cell)));
       sides.push_back(grid(origin, u, w, nu, nw));
     }
   TriMesh m = weld(geometry::concatenate(sides));

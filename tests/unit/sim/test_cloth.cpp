@@ -13,9 +13,9 @@
 namespace layers::sim {
 namespace {
 
-using test::V3;
 using geometry::Points;
 using geometry::TriMesh;
+using test::V3;
 
 TriMesh square(double size, int n) { return test::grid(V3(0, 0, 0), V3(size, 0, 0), V3(0, size, 0), n, n); }
 
@@ -76,9 +76,10 @@ TEST(Cloth, BendingEnergyIsResolutionIndependent) {
                finer = wrapped_bending_sum(48, radius);
   // Continuum: integral of 0.5 * kappa^2 over the area (kappa = 1/R).
   const double reference = 0.5 * 0.3 * 0.2 / (radius * radius);
-  std::printf("[sim] bending energy / B of a sheet wrapped on R=0.1 m: %.4f (e=2.5cm) %.4f (e=1.25cm) %.4f "
-              "(e=0.63cm), continuum 0.5*A/R^2 = %.4f\n",
-              coarse, fine, finer, reference);
+  std::printf(
+      "[sim] bending energy / B of a sheet wrapped on R=0.1 m: %.4f (e=2.5cm) %.4f (e=1.25cm) %.4f "
+      "(e=0.63cm), continuum 0.5*A/R^2 = %.4f\n",
+      coarse, fine, finer, reference);
   EXPECT_NEAR(coarse / finer, 1.0, 0.1);
   EXPECT_NEAR(fine / finer, 1.0, 0.05);
   EXPECT_NEAR(finer / reference, 1.0, 0.05);

@@ -17,7 +17,8 @@ using test::V3;
 
 Points transformed(const Points& p, const Eigen::Matrix3d& r, const V3& t) {
   Points out(p.rows(), 3);
-  for (Eigen::Index i = 0; i < p.rows(); ++i) out.row(i) = (r * p.row(i).cast<double>().transpose() + t).cast<float>().transpose();
+  for (Eigen::Index i = 0; i < p.rows(); ++i)
+    out.row(i) = (r * p.row(i).cast<double>().transpose() + t).cast<float>().transpose();
   return out;
 }
 
@@ -49,8 +50,8 @@ TEST(Contact, HigherFrictionSlidesLess) {
     slid[k] = (test::centroid(s.cloth(0).positions()) - start).dot(downhill);
     std::printf("[sim] sheet on a 30 degree slope, friction %.0f: slid %.1f mm in 0.5 s\n", a.friction, 1000 * slid[k]);
   }
-  EXPECT_GT(slid[0], 0.05);   // a = g (sin 30 - 0.4 cos 30) = 1.5 m/s^2: ~19 cm
-  EXPECT_LT(slid[1], 0.01);   // static friction holds
+  EXPECT_GT(slid[0], 0.05);  // a = g (sin 30 - 0.4 cos 30) = 1.5 m/s^2: ~19 cm
+  EXPECT_LT(slid[1], 0.01);  // static friction holds
   EXPECT_GT(slid[0], slid[1]);
 }
 
@@ -66,7 +67,8 @@ TEST(Contact, SheetDroppedOnASphereStaysOutside) {
     s.step();
     measures.add(measure_frame(s));
     const Points p = s.cloth(0).positions();
-    for (Eigen::Index i = 0; i < p.rows(); ++i) inside += (p.row(i).cast<double>().transpose() - centre).norm() < radius;
+    for (Eigen::Index i = 0; i < p.rows(); ++i)
+      inside += (p.row(i).cast<double>().transpose() - centre).norm() < radius;
   }
   const FrameMeasures last = measure_frame(s);
   std::printf("[sim] sheet on a sphere after 2 s: H-penetration %.3f%% (mean over frames %.3f%%), max stretch %.1f%%\n",
@@ -104,9 +106,10 @@ TEST(Contact, FastBoxDoesNotTunnel) {
   const double ahead = fast_box(SolverConfig{}.substeps, inside);
   int inside_one = 0;
   const double ahead_one = fast_box(1, inside_one);
-  std::printf("[sim] box at 15 m/s (0.5 m per frame) through a sheet: %d vertex-frames inside, sheet centroid %.0f mm "
-              "from the box centre (front face at +100 mm); with 1 substep: %d inside, %.0f mm\n",
-              inside, 1000 * ahead, inside_one, 1000 * ahead_one);
+  std::printf(
+      "[sim] box at 15 m/s (0.5 m per frame) through a sheet: %d vertex-frames inside, sheet centroid %.0f mm "
+      "from the box centre (front face at +100 mm); with 1 substep: %d inside, %.0f mm\n",
+      inside, 1000 * ahead, inside_one, 1000 * ahead_one);
   EXPECT_EQ(inside, 0);
   EXPECT_GT(ahead, 0.05);  // carried in front of the box, not left behind it
 }
@@ -124,9 +127,10 @@ TEST(Contact, TwoLayersOnABoxStayLayered) {
     measures.add(measure_frame(s));
   }
   const double gap = test::centroid(s.cloth(1).positions()).y() - test::centroid(s.cloth(0).positions()).y();
-  std::printf("[sim] outer sheet dropped on an inner sheet on a box: L-penetration %.3f%% (mean over frames), "
-              "layer gap %.1f mm (thickness %.1f mm)\n",
-              100 * measures.mean_l_penetration(), 1000 * gap, 1000 * s.config().layer_thickness);
+  std::printf(
+      "[sim] outer sheet dropped on an inner sheet on a box: L-penetration %.3f%% (mean over frames), "
+      "layer gap %.1f mm (thickness %.1f mm)\n",
+      100 * measures.mean_l_penetration(), 1000 * gap, 1000 * s.config().layer_thickness);
   EXPECT_LT(measures.mean_l_penetration(), 0.005);
   EXPECT_EQ(measures.mean_h_penetration(), 0.0);
   EXPECT_GT(gap, 0.5 * s.config().layer_thickness);
@@ -148,9 +152,12 @@ double folded_strip_gap(bool self_contact) {
   for (int i = 0; i < rest.num_vertices(); ++i) {
     const double x = rest.vertices(i, 0), t = rest.vertices(i, 2);
     V3 p;
-    if (t <= s1) p = V3(x, y0, t - 0.15);
-    else if (t >= s2) p = V3(x, y0 + 2 * r, s1 - (t - s2) - 0.15);
-    else p = V3(x, y0 + r - r * std::cos((t - s1) / r), s1 + r * std::sin((t - s1) / r) - 0.15);
+    if (t <= s1)
+      p = V3(x, y0, t - 0.15);
+    else if (t >= s2)
+      p = V3(x, y0 + 2 * r, s1 - (t - s2) - 0.15);
+    else
+      p = V3(x, y0 + r - r * std::cos((t - s1) / r), s1 + r * std::sin((t - s1) / r) - 0.15);
     folded.row(i) = p.cast<float>().transpose();
   }
   cloth.set_positions(folded);
@@ -162,17 +169,24 @@ double folded_strip_gap(bool self_contact) {
   int nt = 0, nb = 0;
   for (int i = 0; i < rest.num_vertices(); ++i) {
     const double t = rest.vertices(i, 2);
-    if (t < s1 - 0.05) { bottom += p(i, 1); ++nb; }
-    if (t > s2 + 0.05) { top += p(i, 1); ++nt; }
+    if (t < s1 - 0.05) {
+      bottom += p(i, 1);
+      ++nb;
+    }
+    if (t > s2 + 0.05) {
+      top += p(i, 1);
+      ++nt;
+    }
   }
   return top / nt - bottom / nb;
 }
 
 TEST(Contact, SelfContactKeepsAFoldApart) {
   const double with = folded_strip_gap(true), without = folded_strip_gap(false);
-  std::printf("[sim] strip folded on itself: top half %.1f mm above the bottom half with self-contact, %.1f mm "
-              "without\n",
-              1000 * with, 1000 * without);
+  std::printf(
+      "[sim] strip folded on itself: top half %.1f mm above the bottom half with self-contact, %.1f mm "
+      "without\n",
+      1000 * with, 1000 * without);
   EXPECT_GT(with, 0.5 * SolverConfig{}.self_thickness);
   EXPECT_LT(without, 0.5 * SolverConfig{}.self_thickness);
 }

@@ -21,8 +21,10 @@ Cloth hanging_sheet(double size, double edge, const GarmentAttributes& a, bool c
   const int n = static_cast<int>(std::lround(size / edge));
   ClothOptions o;
   o.name = "sheet";
-  if (corners_only) o.pinned = {0, n};
-  else for (int i = 0; i <= n; ++i) o.pinned.push_back(i);
+  if (corners_only)
+    o.pinned = {0, n};
+  else
+    for (int i = 0; i <= n; ++i) o.pinned.push_back(i);
   return Cloth(test::grid(V3(-size / 2, 1.0, 0), V3(size, 0, 0), V3(0, -size, 0), n, n), to_material(a), o);
 }
 
@@ -58,7 +60,8 @@ TEST(Dynamics, StifferClothSagsLess) {
     Solver s(c);
     s.add_cloth(hanging_sheet(0.4, 0.02, a, true));
     const double sag = 1.0 - settle(s, 60).y();
-    std::printf("[sim] sheet hung by its corners, tension %5.1f: centroid %.2f mm below the pins\n", tension, 1000 * sag);
+    std::printf("[sim] sheet hung by its corners, tension %5.1f: centroid %.2f mm below the pins\n", tension,
+                1000 * sag);
     if (previous > 0) {
       EXPECT_LT(sag, previous) << "tension " << tension;
     }

@@ -44,7 +44,8 @@ TEST(Material, MappingIsStrictlyMonotoneInEachAttribute) {
       for (const Case& other : kCases) {
         if (other.parameter == c.parameter) continue;
         if (other.parameter == &Material::tension_modulus && c.parameter == &Material::compression_modulus) continue;
-        EXPECT_EQ(m.*other.parameter, to_material(GarmentAttributes{}).*other.parameter) << c.name << " moved " << other.name;
+        EXPECT_EQ(m.*other.parameter, to_material(GarmentAttributes{}).*other.parameter)
+            << c.name << " moved " << other.name;
       }
     }
   }
@@ -85,7 +86,8 @@ TEST(Material, RejectsNegativeOrNonPositiveValues) {
 }
 
 TEST(SolverConfig, ReadsWritesAndChecks) {
-  const cfg::Node node = cfg::parse("substeps: 12\nbody_thickness: 0.004\nvalidation:\n  max_stretch: 0.2\n", "sim.yaml");
+  const cfg::Node node =
+      cfg::parse("substeps: 12\nbody_thickness: 0.004\nvalidation:\n  max_stretch: 0.2\n", "sim.yaml");
   const SolverConfig c = cfg::read<SolverConfig>(node, "sim");
   EXPECT_EQ(c.substeps, 12);
   EXPECT_DOUBLE_EQ(c.body_thickness, 0.004);

@@ -25,13 +25,13 @@ geometry::TriMesh floor_at(double y) { return test::grid(V3(0, y, 1), V3(1, 0, 0
 
 TEST(Measures, PenetrationRates) {
   const geometry::TriMesh body = floor_at(0);
-  EXPECT_DOUBLE_EQ(h_penetration_rate({rows({{0.3, 0.01, 0.3}, {0.5, -0.02, 0.5}}), rows({{0.7, 0.2, 0.1}, {0.2, -0.1, 0.8}})},
-                                      body),
+  EXPECT_DOUBLE_EQ(h_penetration_rate(
+                       {rows({{0.3, 0.01, 0.3}, {0.5, -0.02, 0.5}}), rows({{0.7, 0.2, 0.1}, {0.2, -0.1, 0.8}})}, body),
                    0.5);
   const geometry::TriMesh inner = floor_at(0.1);
-  EXPECT_DOUBLE_EQ(l_penetration_rate({rows({{0.5, 0.12, 0.5}, {0.2, 0.08, 0.3}, {0.6, 0.15, 0.6}, {0.9, 0.11, 0.9}})},
-                                      {inner}),
-                   0.25);
+  EXPECT_DOUBLE_EQ(
+      l_penetration_rate({rows({{0.5, 0.12, 0.5}, {0.2, 0.08, 0.3}, {0.6, 0.15, 0.6}, {0.9, 0.11, 0.9}})}, {inner}),
+      0.25);
   EXPECT_DOUBLE_EQ(l_penetration_rate({rows({{0.5, 0.12, 0.5}})}, {}), 0.0);
   EXPECT_DOUBLE_EQ(penetration_rate(Points(0, 3), geometry::Surface::from_mesh(body)), 0.0);
 }
@@ -142,9 +142,11 @@ TEST(Measures, SequenceVerdict) {
 TEST(Measures, FrameOfASolverUsesTheTopLayerAsOuter) {
   Solver s;
   s.set_body(floor_at(0));
-  s.add_cloth(Cloth(test::grid(V3(0.2, 0.05, 0.8), V3(0.6, 0, 0), V3(0, 0, -0.6), 6, 6), Material{}, ClothOptions("inner", 0)));
+  s.add_cloth(
+      Cloth(test::grid(V3(0.2, 0.05, 0.8), V3(0.6, 0, 0), V3(0, 0, -0.6), 6, 6), Material{}, ClothOptions("inner", 0)));
   // The outer sheet is placed below the inner one: every vertex is behind it.
-  s.add_cloth(Cloth(test::grid(V3(0.2, 0.03, 0.8), V3(0.6, 0, 0), V3(0, 0, -0.6), 6, 6), Material{}, ClothOptions("outer", 1)));
+  s.add_cloth(
+      Cloth(test::grid(V3(0.2, 0.03, 0.8), V3(0.6, 0, 0), V3(0, 0, -0.6), 6, 6), Material{}, ClothOptions("outer", 1)));
   const FrameMeasures m = measure_frame(s);
   EXPECT_DOUBLE_EQ(m.h_penetration, 0.0);
   EXPECT_DOUBLE_EQ(m.l_penetration, 1.0);

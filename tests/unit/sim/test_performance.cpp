@@ -45,10 +45,11 @@ TEST(Performance, TwoLayersOnAMovingBody) {
   }
   const StepTimings& t = s.timings();
   const auto part = [&](double seconds) { return 1000 * seconds / t.frames; };
-  std::printf("[sim] perf case: %.1f ms/frame CPU on one thread, %.1f ms wall (predict+wind %.1f, elastic %.1f, "
-              "layers %.1f, self %.1f, body %.1f, strain cap %.1f)\n",
-              1000 * cpu / frames, part(t.total), part(t.predict), part(t.elastic), part(t.layer_contact), part(t.self_contact),
-              part(t.body_contact), part(t.strain_cap));
+  std::printf(
+      "[sim] perf case: %.1f ms/frame CPU on one thread, %.1f ms wall (predict+wind %.1f, elastic %.1f, "
+      "layers %.1f, self %.1f, body %.1f, strain cap %.1f)\n",
+      1000 * cpu / frames, part(t.total), part(t.predict), part(t.elastic), part(t.layer_contact), part(t.self_contact),
+      part(t.body_contact), part(t.strain_cap));
   std::printf("[sim] perf case: mean H-penetration %.3f%%, mean L-penetration %.3f%%, max stretch %.1f%%\n",
               100 * measures.mean_h_penetration(), 100 * measures.mean_l_penetration(), 100 * measures.max_stretch());
   EXPECT_EQ(measures.nonfinite(), 0);

@@ -44,8 +44,8 @@ TEST(StrainLimit, ConvergesWhereManySweepsAreNeeded) {
   detail::StrainLimiter limiter;
   const int sweeps = limiter.apply(cloth, state, 0.08, 1000);
   std::printf("[sim] strip pinned at the far end: capped in %d sweeps\n", sweeps);
-  EXPECT_GT(sweeps, 5);     // the correction travels edge by edge...
-  EXPECT_LT(sweeps, 200);   // ...and converges within the solver's default
+  EXPECT_GT(sweeps, 5);    // the correction travels edge by edge...
+  EXPECT_LT(sweeps, 200);  // ...and converges within the solver's default
   Cloth capped = cloth;
   capped.set_velocities(geometry::Points::Zero(cloth.num_vertices(), 3));
   geometry::Points x(cloth.num_vertices(), 3);

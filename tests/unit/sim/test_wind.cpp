@@ -43,7 +43,7 @@ TEST(Wind, ScheduleIsConstantWithinSpans) {
   EXPECT_TRUE(schedule.at(12).direction.isApprox(V3(0, 1, 0)));
   EXPECT_TRUE(schedule.at(20).calm());
   EXPECT_THROW(WindSchedule({{0, 10, east}, {5, 15, up}}), InputError);  // overlap
-  EXPECT_THROW(WindSchedule({{3, 3, east}}), InputError);               // empty
+  EXPECT_THROW(WindSchedule({{3, 3, east}}), InputError);                // empty
   Wind bad = east;
   bad.direction = V3(2, 0, 0);
   EXPECT_THROW(WindSchedule({{0, 1, bad}}), InputError);
@@ -87,7 +87,8 @@ TEST(Wind, PushesClothDownwind) {
       s.step(w);
       downwind += test::centroid(s.cloth(0).positions()).z() / 30;
     }
-    std::printf("[sim] curtain in wind %3.0f: mean displacement downwind over 1 s %.1f mm\n", strength, 1000 * downwind);
+    std::printf("[sim] curtain in wind %3.0f: mean displacement downwind over 1 s %.1f mm\n", strength,
+                1000 * downwind);
     if (strength > 0) {
       EXPECT_GT(downwind, previous) << strength;
     }
@@ -116,9 +117,10 @@ TEST(Wind, CalibratedCalmAndStrongOnAGarment) {
     double moved[3];
     const double strengths[3] = {50, 250, 400};
     for (int k = 0; k < 3; ++k) moved[k] = test::mean_distance(run(strengths[k]), calm);
-    std::printf("[sim] wind calibration, mass %.1f (%.2f kg/m^2): mean displacement after 1 s at 50 / 250 / 400: "
-                "%.1f / %.1f / %.1f mm\n",
-                mass, to_material(scene.outer_attributes).density, 1000 * moved[0], 1000 * moved[1], 1000 * moved[2]);
+    std::printf(
+        "[sim] wind calibration, mass %.1f (%.2f kg/m^2): mean displacement after 1 s at 50 / 250 / 400: "
+        "%.1f / %.1f / %.1f mm\n",
+        mass, to_material(scene.outer_attributes).density, 1000 * moved[0], 1000 * moved[1], 1000 * moved[2]);
     EXPECT_GE(moved[2], 0.03) << "mass " << mass;
     if (mass >= 0.5) {
       EXPECT_LT(moved[0], 0.01) << "mass " << mass;

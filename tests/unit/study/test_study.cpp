@@ -139,7 +139,8 @@ TEST_F(StudyTest, EvaluationSettingsRerunEvaluationNotTraining) {
 TEST_F(StudyTest, CopiedStudyAndDatasetStayCurrent) {
   run();
   ASSERT_EQ(std::system(("cp -a " + dir.file("out") + " " + dir.file("out2") + " && cp -a " + dir.file("data") + " " +
-                         dir.file("data2")).c_str()),
+                         dir.file("data2"))
+                            .c_str()),
             0);
   const auto r = run({"output=" + dir.file("out2"), "dataset.folder=" + dir.file("data2")});
   EXPECT_EQ(r.count(StepStatus::Ran), 1u);  // the report: it names the run folders
@@ -211,10 +212,12 @@ TEST_F(StudyTest, OnlyAndForce) {
 }
 
 TEST_F(StudyTest, RequiredStudyRunsFirstAndLendsItsCheckpoint) {
-  const std::string other = dir.write(
-      "stability.yaml", "requires: [study.yaml]\noutput: " + dir.file("stab") + "\ndataset: {config: gen.yaml, folder: " +
-                            dir.file("data") + "}\nsteps: [train, eval]\nset: [eval.horizon=0]\nexperiments:\n"
-                            "  - {name: a, file: exp.yaml, checkpoint: " + dir.file("out/a") + "}\n");
+  const std::string other =
+      dir.write("stability.yaml", "requires: [study.yaml]\noutput: " + dir.file("stab") +
+                                      "\ndataset: {config: gen.yaml, folder: " + dir.file("data") +
+                                      "}\nsteps: [train, eval]\nset: [eval.horizon=0]\nexperiments:\n"
+                                      "  - {name: a, file: exp.yaml, checkpoint: " +
+                                      dir.file("out/a") + "}\n");
   const auto r = study::run_study(other, {}, actions(), {});
   EXPECT_TRUE(r.ok());
   EXPECT_EQ(calls["train a"], 1);  // in the required study only
@@ -230,15 +233,18 @@ TEST_F(StudyTest, RequiredStudyRunsFirstAndLendsItsCheckpoint) {
 }
 
 TEST_F(StudyTest, RequiredCycleAndMissingCheckpointAreReported) {
-  dir.write("x.yaml", "requires: [y.yaml]\ndataset: {config: gen.yaml, folder: d}\nexperiments: [{name: a, file: exp.yaml}]\n");
+  dir.write("x.yaml",
+            "requires: [y.yaml]\ndataset: {config: gen.yaml, folder: d}\nexperiments: [{name: a, file: exp.yaml}]\n");
   const std::string y = dir.write(
-      "y.yaml", "requires: [x.yaml]\ndataset: {config: gen.yaml, folder: d}\nexperiments: [{name: a, file: exp.yaml}]\n");
+      "y.yaml",
+      "requires: [x.yaml]\ndataset: {config: gen.yaml, folder: d}\nexperiments: [{name: a, file: exp.yaml}]\n");
   EXPECT_THROW(study::run_study(y, {}, actions(), {}), InputError);
 
-  const std::string lone = dir.write("lone.yaml", "output: " + dir.file("lone") + "\ndataset: {config: gen.yaml, folder: " +
-                                                      dir.file("data") + "}\nsteps: [eval]\nexperiments:\n"
-                                                      "  - {name: a, file: exp.yaml, checkpoint: " + dir.file("nowhere") +
-                                                      "}\n");
+  const std::string lone = dir.write("lone.yaml", "output: " + dir.file("lone") +
+                                                      "\ndataset: {config: gen.yaml, folder: " + dir.file("data") +
+                                                      "}\nsteps: [eval]\nexperiments:\n"
+                                                      "  - {name: a, file: exp.yaml, checkpoint: " +
+                                                      dir.file("nowhere") + "}\n");
   const auto r = study::run_study(lone, {}, actions(), {});
   EXPECT_FALSE(r.ok());
   EXPECT_EQ(status(r, "a eval-test"), StepStatus::Blocked);
@@ -271,9 +277,9 @@ TEST_F(StudyTest, BadStudyFilesNameFileAndKey) {
   EXPECT_NE(message("dataset: {config: nope.yaml, folder: d}\nexperiments: [{name: a, file: exp.yaml}]\n")
                 .find("dataset.config"),
             std::string::npos);
-  EXPECT_NE(message("dataset: {folder: d, set: [frames=3]}\nexperiments: [{name: a, file: exp.yaml}]\n")
-                .find("dataset.set"),
-            std::string::npos);
+  EXPECT_NE(
+      message("dataset: {folder: d, set: [frames=3]}\nexperiments: [{name: a, file: exp.yaml}]\n").find("dataset.set"),
+      std::string::npos);
   EXPECT_NE(message(head + "experiments: [{name: a, file: exp.yaml}]\ncolour: red\n").find("colour"),
             std::string::npos);
   EXPECT_NE(message(head + "experiments: []\n").find("experiments"), std::string::npos);
@@ -284,8 +290,9 @@ TEST_F(StudyTest, BadStudyFilesNameFileAndKey) {
 // runs go on from it.
 TEST_F(StudyTest, FinishedDatasetWithoutConfig) {
   for (const char* f : {"dataset.yaml", "splits.yaml", "stats.h5", "shard-00000.h5"}) touch(dir.file("fixed/") + f);
-  const std::string y = dir.write("fixed.yaml", "output: " + dir.file("out") + "\ndataset: {folder: " + dir.file("fixed") +
-                                                    "}\nsteps: [train, eval]\nexperiments: [{name: a, file: exp.yaml}]\n");
+  const std::string y =
+      dir.write("fixed.yaml", "output: " + dir.file("out") + "\ndataset: {folder: " + dir.file("fixed") +
+                                  "}\nsteps: [train, eval]\nexperiments: [{name: a, file: exp.yaml}]\n");
   const study::StudyConfig loaded = study::load_study(y);
   EXPECT_TRUE(loaded.dataset.config.empty());
   study_file = y;

@@ -55,7 +55,7 @@ TEST_F(Fixture, TrainingLowersTheLossAndValidates) {
   EXPECT_LT(r.epochs.back().loss, 0.1 * r.epochs.front().loss);
   EXPECT_GT(r.epochs.back().val_error_mm, 0.0);
   EXPECT_LT(r.epochs.back().val_error_mm, 50.0);  // a few mm per frame of drift at most
-  EXPECT_DOUBLE_EQ(r.epochs[2].lr, 0.05 * 0.5);  // halved every 2 epochs
+  EXPECT_DOUBLE_EQ(r.epochs[2].lr, 0.05 * 0.5);   // halved every 2 epochs
   EXPECT_TRUE(std::filesystem::exists(r.last_checkpoint));
   EXPECT_TRUE(std::filesystem::exists(r.best_checkpoint));
 }

@@ -69,9 +69,8 @@ inline void register_test_models(zoo::Registry& registry) {
   registry.add("tiny", "test model", [](const cfg::Node& params) -> std::shared_ptr<zoo::Model> {
     return std::make_shared<TinyModel>(cfg::read<TinyParams>(params).gain);
   });
-  registry.add("exploding", "test model", [](const cfg::Node&) -> std::shared_ptr<zoo::Model> {
-    return std::make_shared<ExplodingModel>();
-  });
+  registry.add("exploding", "test model",
+               [](const cfg::Node&) -> std::shared_ptr<zoo::Model> { return std::make_shared<ExplodingModel>(); });
 }
 
 // A dataset folder with `n` sequences of `frames` frames: the first n-2 in
@@ -97,7 +96,7 @@ inline std::string write_dataset(const std::string& folder, int n = 5, std::int6
           p[1] = g.rest[v + 1];
           p[2] = g.rest[v + 2] + vz * static_cast<float>(t);
         }
-      g.attributes = {{"mass", 0.3},    {"tension", 20}, {"compression", 30}, {"shear", 40},
+      g.attributes = {{"mass", 0.3},   {"tension", 20},  {"compression", 30},  {"shear", 40},
                       {"bending", 50}, {"friction", 60}, {"self_friction", 70}};
     }
     writer.add(seq);
@@ -113,13 +112,18 @@ inline std::string write_dataset(const std::string& folder, int n = 5, std::int6
 }
 
 inline ExperimentConfig experiment(const std::string& dataset, const std::string& output, const std::string& model) {
-  cfg::Node tree = cfg::parse("run: {seed: 3, threads: 1, output: '" + output + "'}\n"
-                                   "data: {dataset: '" + dataset + "'}\n"
-                                   "model: {name: " + model + "}\n"
-                                   "loss: {normal: 0, body_collision: 0}\n"
-                                   "train: {epochs: 2, batch_size: 2, val_horizon: 4, lr: 0.01}\n"
-                                   "eval: {horizon: 6}\n",
-                                   "test.yaml");
+  cfg::Node tree = cfg::parse("run: {seed: 3, threads: 1, output: '" + output +
+                                  "'}\n"
+                                  "data: {dataset: '" +
+                                  dataset +
+                                  "'}\n"
+                                  "model: {name: " +
+                                  model +
+                                  "}\n"
+                                  "loss: {normal: 0, body_collision: 0}\n"
+                                  "train: {epochs: 2, batch_size: 2, val_horizon: 4, lr: 0.01}\n"
+                                  "eval: {horizon: 6}\n",
+                              "test.yaml");
   return read_experiment(tree, "test.yaml");
 }
 

@@ -17,9 +17,7 @@ using layers::test::error_of;
 
 namespace {
 
-at::Tensor points(std::initializer_list<float> xyz) {
-  return at::tensor(std::vector<float>(xyz)).reshape({-1, 3});
-}
+at::Tensor points(std::initializer_list<float> xyz) { return at::tensor(std::vector<float>(xyz)).reshape({-1, 3}); }
 
 at::Tensor to_tensor(const g::Points& p) {
   return at::from_blob(const_cast<float*>(p.data()), {p.rows(), 3}, at::kFloat).clone();
@@ -195,8 +193,8 @@ TEST(Losses, ConstantAndDifferentiableSurfacesGiveTheSameLoss) {
   // A body that needs no gradient takes its normals from layers::geometry,
   // one that does from torch: the same numbers either way.
   Plane body = sphere(0.3f, 10, 16);
-  at::Tensor garment = at::cat({points({0.29f, 0.01f, 0.0f, 0.0f, -0.295f, 0.02f}),
-                                points({0.1f, 0.2f, -0.15f, -0.2f, 0.1f, 0.18f})});
+  at::Tensor garment =
+      at::cat({points({0.29f, 0.01f, 0.0f, 0.0f, -0.295f, 0.02f}), points({0.1f, 0.2f, -0.15f, -0.2f, 0.1f, 0.18f})});
   at::Tensor constant = zoo::body_collision_loss(garment, body.vertices, body.faces, 0.01);
   at::Tensor moving = zoo::body_collision_loss(garment, body.vertices.clone().requires_grad_(true), body.faces, 0.01);
   EXPECT_GT(constant.item<double>(), 0.0);
@@ -247,27 +245,35 @@ TEST(Losses, EmptyInputsGiveZero) {
 TEST(Losses, BadInputsAreClearErrors) {
   Plane body = plane();
   at::Tensor x = points({0.5f, 0.5f, 0.1f});
-  EXPECT_NE(error_of<layers::Error>([&] { zoo::position_mse(x, at::zeros({2, 3})); }).find("position_mse: truth"),
+  EXPECT_NE(error_of<layers::Error>([&] {
+              zoo::position_mse(x, at::zeros({2, 3}));
+            }).find("position_mse: truth"),
             std::string::npos);
-  EXPECT_NE(error_of<layers::Error>([&] { zoo::position_mse(at::zeros({3, 2}), at::zeros({3, 2})); })
-                .find("expected a floating-point tensor [*, 3]"),
+  EXPECT_NE(error_of<layers::Error>([&] {
+              zoo::position_mse(at::zeros({3, 2}), at::zeros({3, 2}));
+            }).find("expected a floating-point tensor [*, 3]"),
             std::string::npos);
-  EXPECT_NE(error_of<layers::Error>([&] { zoo::normal_loss(x, x, at::tensor({0, 0, 1}, at::kInt).reshape({1, 3})); })
-                .find("normal_loss: faces: expected indices in [0, 1), got values in [0, 1]"),
+  EXPECT_NE(error_of<layers::Error>([&] {
+              zoo::normal_loss(x, x, at::tensor({0, 0, 1}, at::kInt).reshape({1, 3}));
+            }).find("normal_loss: faces: expected indices in [0, 1), got values in [0, 1]"),
             std::string::npos);
-  EXPECT_NE(error_of<layers::Error>([&] { zoo::body_collision_loss(x, body.vertices, body.faces.to(at::kFloat), 0.005); })
-                .find("body_collision_loss: body_faces: expected an integer tensor"),
+  EXPECT_NE(error_of<layers::Error>([&] {
+              zoo::body_collision_loss(x, body.vertices, body.faces.to(at::kFloat), 0.005);
+            }).find("body_collision_loss: body_faces: expected an integer tensor"),
             std::string::npos);
   at::Tensor bad_body = body.vertices.clone();
   bad_body[3][1] = INFINITY;
-  EXPECT_NE(error_of<layers::Error>([&] { zoo::body_collision_loss(x, bad_body, body.faces, 0.005); })
-                .find("body_collision_loss: body: expected finite positions"),
+  EXPECT_NE(error_of<layers::Error>([&] {
+              zoo::body_collision_loss(x, bad_body, body.faces, 0.005);
+            }).find("body_collision_loss: body: expected finite positions"),
             std::string::npos);
-  EXPECT_NE(error_of<layers::Error>([&] { zoo::layer_collision_loss(x, body.vertices, body.faces, NAN); })
-                .find("layer_collision_loss: eps: expected a finite distance"),
+  EXPECT_NE(error_of<layers::Error>([&] {
+              zoo::layer_collision_loss(x, body.vertices, body.faces, NAN);
+            }).find("layer_collision_loss: eps: expected a finite distance"),
             std::string::npos);
-  EXPECT_NE(error_of<layers::Error>([&] { zoo::vertex_normals(at::Tensor(), body.faces); })
-                .find("vertex_normals: vertices: expected a floating-point tensor [*, 3], got nothing"),
+  EXPECT_NE(error_of<layers::Error>([&] {
+              zoo::vertex_normals(at::Tensor(), body.faces);
+            }).find("vertex_normals: vertices: expected a floating-point tensor [*, 3], got nothing"),
             std::string::npos);
 }
 

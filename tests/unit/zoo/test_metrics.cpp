@@ -4,9 +4,9 @@
 #include <cmath>
 #include <random>
 
+#include "grid_mesh.h"
 #include "layers/core/error.h"
 #include "layers/zoo/metrics.h"
-#include "grid_mesh.h"
 
 namespace g = layers::geometry;
 namespace zoo = layers::zoo;

@@ -3,12 +3,12 @@
 // only torch translation unit of test_zoo.
 #include <gtest/gtest.h>
 
+#include "error_of.h"
 #include "layers/core/config_node.h"
 #include "layers/core/error.h"
 #include "layers/zoo/model.h"
 #include "layers/zoo/plugin_loader.h"
 #include "test_paths.h"
-#include "error_of.h"
 
 namespace zoo = layers::zoo;
 namespace cfg = layers::cfg;
@@ -110,8 +110,7 @@ TEST(Model, PluginModelRejectsBadParameters) {
   zoo::Registry r2;
   EXPECT_THROW(plugin_model(r2, "damping: -1\n"), layers::InputError);  // the type survives the plugin
   std::string range = layers::test::error_of([&] { plugin_model(r2, "damping: 2\n"); });
-  EXPECT_NE(range.find("exp.yaml:1: damping: expected a number in [0, 1], got '2'"), std::string::npos)
-      << range;
+  EXPECT_NE(range.find("exp.yaml:1: damping: expected a number in [0, 1], got '2'"), std::string::npos) << range;
 }
 
 TEST(Model, PrepareConvertsAndValidatesStaticData) {

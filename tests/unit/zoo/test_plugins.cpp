@@ -12,8 +12,8 @@
 #include "layers/core/error.h"
 #include "layers/zoo/plugin_abi.h"
 #include "layers/zoo/plugin_loader.h"
-#include "test_paths.h"
 #include "temp_dir.h"
+#include "test_paths.h"
 
 namespace fs = std::filesystem;
 namespace zoo = layers::zoo;
@@ -71,8 +71,7 @@ TEST(PluginLoader, WrongApiVersionAsksForRebuild) {
   zoo::Registry r;
   std::string path = canonical(plugin_file("test_wrong_api"));
   EXPECT_EQ(load_error(r, path), path + ": built for zoo API v999, this layers expects v" +
-                                     std::to_string(zoo::api_version()) +
-                                     "; rebuild the plugin against this layers");
+                                     std::to_string(zoo::api_version()) + "; rebuild the plugin against this layers");
   EXPECT_TRUE(r.names().empty());
 }
 
@@ -100,10 +99,10 @@ TEST(PluginAbi, NamesEveryDifference) {
                    std::to_string(host.cxx11_abi)),
             std::string::npos)
       << m;
-  EXPECT_NE(m.find("layers::zoo::Model is " + std::to_string(host.types[4].size + 8) + " bytes (align " +
-                   std::to_string(host.types[4].align) + ") in the plugin, " + std::to_string(host.types[4].size) +
-                   " bytes"),
-            std::string::npos)
+  EXPECT_NE(
+      m.find("layers::zoo::Model is " + std::to_string(host.types[4].size + 8) + " bytes (align " +
+             std::to_string(host.types[4].align) + ") in the plugin, " + std::to_string(host.types[4].size) + " bytes"),
+      std::string::npos)
       << m;
   EXPECT_EQ(m.find("LibTorch"), std::string::npos) << m;
   // A plugin with another list of crossing types is named at the first difference.
@@ -168,8 +167,8 @@ TEST(PluginLoader, DuplicateNameNamesBothFilesAndRollsBack) {
   zoo::load_file(r, plugin_file("test_constant_velocity"));
   std::string good = canonical(plugin_file("test_constant_velocity"));
   std::string dup = canonical(plugin_file("test_duplicate"));
-  EXPECT_EQ(load_error(r, dup), dup + ": registration failed: model 'test_constant_velocity': registered twice: by " + good +
-                                    " and by " + dup +
+  EXPECT_EQ(load_error(r, dup), dup + ": registration failed: model 'test_constant_velocity': registered twice: by " +
+                                    good + " and by " + dup +
                                     "; model names must be unique, remove or rename one of the plugins");
   // The model it registered before failing was removed with it.
   EXPECT_EQ(r.names(), std::vector<std::string>{"test_constant_velocity"});

@@ -1,10 +1,10 @@
 // Registry: names, duplicates, unknown models.
 #include <gtest/gtest.h>
 
+#include "error_of.h"
 #include "layers/core/config_node.h"
 #include "layers/core/error.h"
 #include "layers/zoo/registry.h"
-#include "error_of.h"
 
 using layers::zoo::Registry;
 

@@ -22,18 +22,20 @@ TEST(Rotations, MatricesProductsAndConjugatesAgree) {
   const at::Tensor a = about(0.7, 1, 2, -0.5), b = about(-1.9, 0.2, -1, 0.4);
   const at::Tensor ra = zoo::rotation_matrices(a)[0], rb = zoo::rotation_matrices(b)[0];
   EXPECT_TRUE(at::allclose(at::matmul(ra, ra.t()), at::eye(3, at::kDouble), 1e-12, 1e-12));
-  EXPECT_TRUE(at::allclose(zoo::rotation_matrices(zoo::quaternion_multiply(a, b))[0], at::matmul(ra, rb), 1e-12, 1e-12));
+  EXPECT_TRUE(
+      at::allclose(zoo::rotation_matrices(zoo::quaternion_multiply(a, b))[0], at::matmul(ra, rb), 1e-12, 1e-12));
   EXPECT_TRUE(at::allclose(zoo::rotation_matrices(zoo::quaternion_conjugate(a))[0], ra.t(), 1e-12, 1e-12));
   EXPECT_TRUE(at::allclose(zoo::rotate_z(a)[0], ra.select(1, 2), 1e-12, 1e-12));
   // Leading dimensions broadcast: one quaternion times a batch of two.
   const at::Tensor ab = at::cat({a, b});
-  EXPECT_TRUE(at::allclose(zoo::quaternion_multiply(a[0], ab), zoo::quaternion_multiply(a.expand({2, 4}), ab), 1e-15, 1e-15));
+  EXPECT_TRUE(
+      at::allclose(zoo::quaternion_multiply(a[0], ab), zoo::quaternion_multiply(a.expand({2, 4}), ab), 1e-15, 1e-15));
   EXPECT_EQ(zoo::rotation_matrices(ab.unsqueeze(0)).sizes(), (at::IntArrayRef{1, 2, 3, 3}));
   // Any length: normalised first.
   EXPECT_TRUE(at::allclose(zoo::rotation_matrices(3 * a)[0], ra, 1e-12, 1e-12));
   // 90 degrees about +y takes +z to +x.
-  EXPECT_TRUE(at::allclose(zoo::rotate_z(about(M_PI / 2, 0, 1, 0))[0], at::tensor({1.0, 0.0, 0.0}, at::kDouble),
-                           1e-12, 1e-12));
+  EXPECT_TRUE(
+      at::allclose(zoo::rotate_z(about(M_PI / 2, 0, 1, 0))[0], at::tensor({1.0, 0.0, 0.0}, at::kDouble), 1e-12, 1e-12));
 }
 
 TEST(Rotations, HeadingKeepsTheYawAndDropsTheTilt) {
@@ -42,7 +44,8 @@ TEST(Rotations, HeadingKeepsTheYawAndDropsTheTilt) {
     EXPECT_TRUE(at::allclose(zoo::heading_quaternions(y), y, 1e-9, 1e-9)) << yaw;
     // A forward lean (about the body's own x axis) and a sideways roll
     // (about its own z axis) leave the heading where it was.
-    const at::Tensor leaned = zoo::quaternion_multiply(zoo::quaternion_multiply(y, about(0.5, 1, 0, 0)), about(-0.3, 0, 0, 1));
+    const at::Tensor leaned =
+        zoo::quaternion_multiply(zoo::quaternion_multiply(y, about(0.5, 1, 0, 0)), about(-0.3, 0, 0, 1));
     EXPECT_TRUE(at::allclose(zoo::heading_quaternions(leaned), y, 1e-9, 1e-9)) << yaw;
   }
   // Batched, and +z pointing straight up has heading 0 (the identity).

@@ -14,13 +14,13 @@ namespace layers::body {
 // rest pose a skinning model needs to use `body/joints`: with joint j's
 // frame [R | p], a rest point x moves to R (x - rest_joints[j]) + p.
 struct BodyArrays {
-  std::vector<int> faces;             // [Fb, 3]
+  std::vector<int> faces;  // [Fb, 3]
   std::vector<std::string> joint_names;
-  std::vector<int> joint_parents;     // -1 for the root
-  std::vector<int> skin_index;        // [Vb, 4]
-  std::vector<float> skin_weight;     // [Vb, 4]
-  std::vector<float> rest_joints;     // [J, 3]
-  std::vector<float> rest_vertices;   // [Vb, 3]
+  std::vector<int> joint_parents;    // -1 for the root
+  std::vector<int> skin_index;       // [Vb, 4]
+  std::vector<float> skin_weight;    // [Vb, 4]
+  std::vector<float> rest_joints;    // [J, 3]
+  std::vector<float> rest_vertices;  // [Vb, 3]
 };
 BodyArrays body_arrays(const Body& body);
 

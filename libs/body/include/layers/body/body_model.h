@@ -16,10 +16,10 @@
 #include <utility>
 #include <vector>
 
-#include "layers/core/config.h"
-#include "layers/geometry/mesh.h"
 #include "layers/body/skeleton.h"
 #include "layers/body/skinning.h"
+#include "layers/core/config.h"
+#include "layers/geometry/mesh.h"
 
 namespace layers::body {
 
@@ -50,10 +50,10 @@ std::vector<std::pair<std::string, double>> target_weights(const ShapeParams& sh
 
 struct Body {
   ShapeParams shape;
-  geometry::TriMesh rest;  // skin in the rest (MPFB2 default, A-like) pose, metres, soles at y = 0
-  Skeleton skeleton;       // 31 cmu_mb joints
-  SkinWeights weights;     // per skin vertex, top 4 influences
-  Pose t_pose;             // the MPFB2 T-pose (root at its rest position)
+  geometry::TriMesh rest;                 // skin in the rest (MPFB2 default, A-like) pose, metres, soles at y = 0
+  Skeleton skeleton;                      // 31 cmu_mb joints
+  SkinWeights weights;                    // per skin vertex, top 4 influences
+  Pose t_pose;                            // the MPFB2 T-pose (root at its rest position)
   std::array<std::vector<int>, 2> soles;  // skin vertices on the left / right sole
 
   int num_vertices() const { return rest.num_vertices(); }

@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "layers/geometry/mesh.h"
 #include "layers/body/body_model.h"
+#include "layers/geometry/mesh.h"
 
 namespace layers::body {
 
@@ -28,14 +28,14 @@ constexpr int kNumBodyParts = 5;
 const char* body_part_name(BodyPart part);
 
 struct IntersectionOptions {
-  double tolerance = 0.004;     // m: deeper than this counts as intersecting
-  double max_distance = 0.06;   // m: farther from the nearest surface vertex is not tested
+  double tolerance = 0.004;    // m: deeper than this counts as intersecting
+  double max_distance = 0.06;  // m: farther from the nearest surface vertex is not tested
 };
 
 struct FrameIntersection {
-  double depth = 0.0;                 // deepest penetration found (m)
+  double depth = 0.0;                  // deepest penetration found (m)
   std::array<double, 4> limb_depth{};  // left arm, right arm, left leg, right leg
-  int vertices = 0;                   // vertices deeper than the tolerance
+  int vertices = 0;                    // vertices deeper than the tolerance
   bool intersects(double tolerance) const { return depth > tolerance; }
 };
 
@@ -55,8 +55,8 @@ class SelfIntersection {
   const Body& body_;
   IntersectionOptions options_;
   std::vector<int> part_;
-  std::array<std::vector<int>, kNumBodyParts> members_;   // core vertices per part
-  std::vector<char> near_blend_;                          // core vertex next to a blend zone
+  std::array<std::vector<int>, kNumBodyParts> members_;  // core vertices per part
+  std::vector<char> near_blend_;                         // core vertex next to a blend zone
 };
 
 }  // namespace layers::body

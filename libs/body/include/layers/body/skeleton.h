@@ -26,10 +26,10 @@ namespace layers::body {
 
 struct Skeleton {
   std::vector<std::string> names;
-  std::vector<int> parents;    // -1 for the root
-  std::vector<Vec3> rest_head;  // joint positions in the rest pose (world, metres)
-  std::vector<Vec3> rest_tail;  // bone tails in the rest pose
-  std::vector<Mat3> bone_frame; // Blender bone axes (columns) in world coordinates
+  std::vector<int> parents;      // -1 for the root
+  std::vector<Vec3> rest_head;   // joint positions in the rest pose (world, metres)
+  std::vector<Vec3> rest_tail;   // bone tails in the rest pose
+  std::vector<Mat3> bone_frame;  // Blender bone axes (columns) in world coordinates
 
   int num_joints() const { return static_cast<int>(names.size()); }
   // Joint index by name, or -1.
@@ -42,8 +42,8 @@ struct Skeleton {
 };
 
 struct Pose {
-  std::vector<Quat> local;  // per joint, relative to rest, in the parent's frame
-  Vec3 root = Vec3::Zero(); // world position of joint 0
+  std::vector<Quat> local;   // per joint, relative to rest, in the parent's frame
+  Vec3 root = Vec3::Zero();  // world position of joint 0
 };
 
 // All rotations identity, root at its rest position.

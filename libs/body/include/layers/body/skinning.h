@@ -5,8 +5,8 @@
 
 #include <Eigen/Core>
 
-#include "layers/geometry/mesh.h"
 #include "layers/body/skeleton.h"
+#include "layers/geometry/mesh.h"
 
 namespace layers::body {
 
@@ -29,8 +29,7 @@ void skin(const geometry::Points& rest, const SkinWeights& weights, const Skelet
           const JointTransforms& transforms, geometry::Points& out);
 
 // Skins only the listed vertices (rows of `rest`), e.g. foot soles.
-std::vector<Vec3> skin_subset(const geometry::Points& rest, const SkinWeights& weights,
-                              const Skeleton& skeleton, const JointTransforms& transforms,
-                              const std::vector<int>& vertices);
+std::vector<Vec3> skin_subset(const geometry::Points& rest, const SkinWeights& weights, const Skeleton& skeleton,
+                              const JointTransforms& transforms, const std::vector<int>& vertices);
 
 }  // namespace layers::body

@@ -53,12 +53,31 @@ struct Opt {
   std::vector<std::string> allowed;
   std::string text;
 
-  Opt& required() { is_required = true; return *this; }
-  Opt& range(double l, double h) { lo = l; hi = h; return *this; }
-  Opt& min(double l) { lo = l; return *this; }
-  Opt& max(double h) { hi = h; return *this; }
-  Opt& choices(std::vector<std::string> c) { allowed = std::move(c); return *this; }
-  Opt& help(std::string h) { text = std::move(h); return *this; }
+  Opt& required() {
+    is_required = true;
+    return *this;
+  }
+  Opt& range(double l, double h) {
+    lo = l;
+    hi = h;
+    return *this;
+  }
+  Opt& min(double l) {
+    lo = l;
+    return *this;
+  }
+  Opt& max(double h) {
+    hi = h;
+    return *this;
+  }
+  Opt& choices(std::vector<std::string> c) {
+    allowed = std::move(c);
+    return *this;
+  }
+  Opt& help(std::string h) {
+    text = std::move(h);
+    return *this;
+  }
 };
 inline Opt opt() { return {}; }
 
@@ -82,8 +101,7 @@ template <class T>
 struct is_map<std::map<std::string, T>> : std::true_type {};
 
 std::string join_path(const std::string& parent, const std::string& key);
-[[noreturn]] void fail(const Node& at, const std::string& path, const std::string& expected,
-                       const std::string& got);
+[[noreturn]] void fail(const Node& at, const std::string& path, const std::string& expected, const std::string& got);
 void check_range(const Node& at, const std::string& path, double value, const Opt& o, const char* what);
 void check_choice(const Node& at, const std::string& path, const std::string& value, const Opt& o);
 void check_kind(const Node& at, const std::string& path, Node::Kind kind, const char* expected);

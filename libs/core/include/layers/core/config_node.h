@@ -18,11 +18,11 @@ struct Node {
   enum class Kind { Null, Scalar, Map, Seq };
 
   Kind kind = Kind::Null;
-  std::string scalar;                              // Kind::Scalar
-  std::vector<std::pair<std::string, Node>> map;   // Kind::Map, in file order
-  std::vector<Node> seq;                           // Kind::Seq
-  std::string file;                                // where the value was written
-  int line = 0;                                    // 1-based; 0 if not from a file
+  std::string scalar;                             // Kind::Scalar
+  std::vector<std::pair<std::string, Node>> map;  // Kind::Map, in file order
+  std::vector<Node> seq;                          // Kind::Seq
+  std::string file;                               // where the value was written
+  int line = 0;                                   // 1-based; 0 if not from a file
 
   const Node* find(const std::string& key) const;
   Node* find(const std::string& key);

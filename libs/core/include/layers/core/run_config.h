@@ -11,9 +11,9 @@ namespace layers {
 
 struct RunConfig {
   std::uint64_t seed = 0;
-  int threads = 2;             // intra-op threads (torch/BLAS); 0 = all cores
-  std::string device = "cpu";  // cpu or cuda
-  std::string output = "runs"; // where runs write checkpoints, metrics, reports
+  int threads = 2;              // intra-op threads (torch/BLAS); 0 = all cores
+  std::string device = "cpu";   // cpu or cuda
+  std::string output = "runs";  // where runs write checkpoints, metrics, reports
 
   template <class V>
   void visit(V& v) {

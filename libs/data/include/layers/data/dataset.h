@@ -56,8 +56,7 @@ class Dataset {
   // eviction.
   std::shared_ptr<const SequenceStatic> statics(const std::string& id) const;
   // Frames [start - history, start + horizon] (history + horizon + 1 frames).
-  Window read_window(const std::string& id, std::int64_t start, std::int64_t history,
-                     std::int64_t horizon) const;
+  Window read_window(const std::string& id, std::int64_t start, std::int64_t history, std::int64_t horizon) const;
   // Frames [first, first + count).
   Window read_frames(const std::string& id, std::int64_t first, std::int64_t count) const;
   // Everything of one sequence (export, validation, tests).

@@ -26,8 +26,7 @@ ExportFormat parse_export_format(const std::string& text, const std::string& sou
 
 // Exports frames [first, last) of sequence `id` (last < 0: to the end)
 // into out_dir (created if missing). Returns the written paths.
-std::vector<std::string> export_sequence(const Dataset& dataset, const std::string& id,
-                                         ExportFormat format, std::int64_t first,
-                                         std::int64_t last, const std::string& out_dir);
+std::vector<std::string> export_sequence(const Dataset& dataset, const std::string& id, ExportFormat format,
+                                         std::int64_t first, std::int64_t last, const std::string& out_dir);
 
 }  // namespace layers::data

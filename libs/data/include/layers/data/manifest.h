@@ -22,7 +22,7 @@ struct DatasetManifest {
   std::int64_t format_version = 1;
   std::int64_t sequences_per_shard = 0;
   std::int64_t n_sequences = 0, n_frames = 0, n_garments = 0, n_shards = 0;
-  std::string generator_yaml;  // YAML text of the generator config; "" if none
+  std::string generator_yaml;                         // YAML text of the generator config; "" if none
   std::map<std::string, std::string> content_hashes;  // id -> content hash; empty if not recorded
 };
 

@@ -24,9 +24,8 @@ struct ObjMesh {
 // read back is bit-identical. Throws InputError on inconsistent sizes or
 // out-of-range indices.
 void write_obj(const std::string& path, const ObjMesh& mesh);
-void write_obj(const std::string& path, const std::vector<float>& positions,
-               const std::vector<std::int32_t>& faces, const std::vector<float>& uv = {},
-               const std::vector<std::int32_t>& uv_faces = {});
+void write_obj(const std::string& path, const std::vector<float>& positions, const std::vector<std::int32_t>& faces,
+               const std::vector<float>& uv = {}, const std::vector<std::int32_t>& uv_faces = {});
 ObjMesh read_obj(const std::string& path);
 
 }  // namespace layers::data

@@ -18,11 +18,11 @@ namespace layers::data::run_layout {
 inline constexpr const char* kExperiment = "experiment.yaml";
 inline constexpr const char* kBench = "bench.json";
 inline constexpr const char* kSteps = "steps.yaml";
-inline constexpr const char* kMetrics = "metrics.json";     // in eval-<split>/
-inline constexpr const char* kSequences = "sequences.csv";  // in eval-<split>/
+inline constexpr const char* kMetrics = "metrics.json";        // in eval-<split>/
+inline constexpr const char* kSequences = "sequences.csv";     // in eval-<split>/
 inline constexpr const char* kPredictions = "predictions.h5";  // in eval-<split>/ (eval.save_predictions)
-inline constexpr const char* kReportFolder = "report";      // in a study folder
-inline constexpr const char* kReport = "report.md";         // in the report folder
+inline constexpr const char* kReportFolder = "report";         // in a study folder
+inline constexpr const char* kReport = "report.md";            // in the report folder
 
 // "checkpoint-<which>.pt"; which is last or best.
 std::string checkpoint(const std::string& which);

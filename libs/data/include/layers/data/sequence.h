@@ -16,11 +16,11 @@
 namespace layers::data {
 
 struct BodyStatic {
-  std::vector<std::int32_t> faces;        // [Fb,3]
-  std::vector<std::string> joint_names;   // [J]
-  std::vector<std::int32_t> joint_parents;// [J], -1 for a root joint
-  std::vector<std::int32_t> skin_index;   // [Vb,4] joint indices
-  std::vector<float> skin_weight;         // [Vb,4]
+  std::vector<std::int32_t> faces;          // [Fb,3]
+  std::vector<std::string> joint_names;     // [J]
+  std::vector<std::int32_t> joint_parents;  // [J], -1 for a root joint
+  std::vector<std::int32_t> skin_index;     // [Vb,4] joint indices
+  std::vector<float> skin_weight;           // [Vb,4]
   // [J,3,4] joint transforms [R|p] of the T-pose the garments' rest shapes
   // were made in (convention of body/joints); empty when absent.
   std::vector<float> tpose_joints;
@@ -48,14 +48,14 @@ struct WindData {
 
 struct GarmentStatic {
   std::string name;
-  std::string type;  // see garment_types()
-  int layer = 0;     // 0 inner, 1 outer
+  std::string type;                          // see garment_types()
+  int layer = 0;                             // 0 inner, 1 outer
   std::map<std::string, double> attributes;  // mass, tension, ...
-  std::vector<std::int32_t> faces;     // [F,3]
-  std::vector<float> rest;             // [V,3]
-  std::vector<float> uv;               // [U,2]
-  std::vector<std::int32_t> uv_faces;  // [F,3] indices into uv
-  std::vector<std::int32_t> panel;     // [F] sewing-pattern panel of each face
+  std::vector<std::int32_t> faces;           // [F,3]
+  std::vector<float> rest;                   // [V,3]
+  std::vector<float> uv;                     // [U,2]
+  std::vector<std::int32_t> uv_faces;        // [F,3] indices into uv
+  std::vector<std::int32_t> panel;           // [F] sewing-pattern panel of each face
 
   std::int64_t n_vertices() const { return static_cast<std::int64_t>(rest.size() / 3); }
   std::int64_t n_faces() const { return static_cast<std::int64_t>(faces.size() / 3); }
@@ -73,8 +73,8 @@ struct SequenceData {
   std::int64_t n_frames = 0;
   std::string motion;
   std::uint64_t seed = 0;
-  std::vector<std::string> tags;         // e.g. {"T+W"}
-  std::map<std::string, double> shape;   // body shape parameters
+  std::vector<std::string> tags;        // e.g. {"T+W"}
+  std::map<std::string, double> shape;  // body shape parameters
   BodyData body;
   WindData wind;
   std::vector<GarmentData> garments;

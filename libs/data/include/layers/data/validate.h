@@ -15,9 +15,9 @@
 namespace layers::data {
 
 struct Problem {
-  std::string file;     // file path (with :line for YAML files)
-  std::string object;   // HDF5 object path or YAML key; may be empty
-  std::string message;  // what is wrong: "expected ..., got ..." or free text
+  std::string file;               // file path (with :line for YAML files)
+  std::string object;             // HDF5 object path or YAML key; may be empty
+  std::string message;            // what is wrong: "expected ..., got ..." or free text
   std::string to_string() const;  // "file: object: message"
 };
 

@@ -36,35 +36,35 @@
 #include <string>
 #include <vector>
 
-#include "layers/core/config.h"
-#include "layers/geometry/penetration.h"
 #include "layers/body/body_model.h"
+#include "layers/core/config.h"
 #include "layers/garment/garment_body.h"
 #include "layers/garment/garment_pattern.h"
+#include "layers/geometry/penetration.h"
 
 namespace layers::garment {
 
 // Garment generation settings. Ranges are [lo, hi] in metres unless noted;
 // each garment draws its values uniformly from them.
 struct GarmentParams {
-  double edge_length = 0.02;                    // target edge length
-  double body_clearance = 0.006;                // rest pose: every vertex this far in front of the skin
-  double layer_gap = 0.004;                     // rest pose: every vertex this far in front of the garments under it
-  double layer_reach = 0.06;                    // ... counting only vertices this close to them (see below)
+  double edge_length = 0.02;      // target edge length
+  double body_clearance = 0.006;  // rest pose: every vertex this far in front of the skin
+  double layer_gap = 0.004;       // rest pose: every vertex this far in front of the garments under it
+  double layer_reach = 0.06;      // ... counting only vertices this close to them (see below)
   std::vector<double> layer_clearance{0.015, 0.03};  // ease of an outer garment over what it covers
-  std::vector<double> ease_fitted{0.008, 0.02};  // jumpsuit, dress bodice, skirt waist
-  std::vector<double> ease_loose{0.02, 0.045};  // t-shirt
+  std::vector<double> ease_fitted{0.008, 0.02};      // jumpsuit, dress bodice, skirt waist
+  std::vector<double> ease_loose{0.02, 0.045};       // t-shirt
   std::vector<double> ease_pants{0.012, 0.03};
-  std::vector<double> flare{0.05, 0.35};        // extra ease per metre below the hips (skirts, dresses)
-  std::vector<double> top_length{0.3, 1.0};     // t-shirt hem: 0 = natural waist, 1 = crotch
-  std::vector<double> jacket_length{0.8, 1.3};  // same scale
-  std::vector<double> skirt_length{0.15, 0.65}; // hem: 0 = crotch, 1 = ankle
-  std::vector<double> dress_length{0.2, 0.75};  // same scale
-  std::vector<double> pants_length{0.7, 1.0};   // same scale
-  std::vector<double> sleeve_short{0.2, 0.45};  // share of armhole -> wrist
+  std::vector<double> flare{0.05, 0.35};         // extra ease per metre below the hips (skirts, dresses)
+  std::vector<double> top_length{0.3, 1.0};      // t-shirt hem: 0 = natural waist, 1 = crotch
+  std::vector<double> jacket_length{0.8, 1.3};   // same scale
+  std::vector<double> skirt_length{0.15, 0.65};  // hem: 0 = crotch, 1 = ankle
+  std::vector<double> dress_length{0.2, 0.75};   // same scale
+  std::vector<double> pants_length{0.7, 1.0};    // same scale
+  std::vector<double> sleeve_short{0.2, 0.45};   // share of armhole -> wrist
   std::vector<double> sleeve_long{0.85, 1.0};
-  double long_sleeves = 0.5;                    // chance of long sleeves (t-shirt, jumpsuit)
-  double sleeveless = 0.4;                      // chance of no sleeves (dress, jumpsuit)
+  double long_sleeves = 0.5;  // chance of long sleeves (t-shirt, jumpsuit)
+  double sleeveless = 0.4;    // chance of no sleeves (dress, jumpsuit)
   std::vector<double> belt_width{0.03, 0.06};
   std::vector<double> hood_ease{0.03, 0.06};
 
@@ -73,7 +73,8 @@ struct GarmentParams {
     v("edge_length", edge_length, cfg::opt().range(0.004, 0.1).help("target edge length (m)"));
     v("body_clearance", body_clearance, cfg::opt().range(0, 0.05).help("rest-pose gap to the skin (m)"));
     v("layer_gap", layer_gap, cfg::opt().range(0, 0.05).help("rest-pose gap to the garments underneath (m)"));
-    v("layer_reach", layer_reach, cfg::opt().range(0.01, 1).help("outer vertices farther than this from the inner layer are not pushed (m)"));
+    v("layer_reach", layer_reach,
+      cfg::opt().range(0.01, 1).help("outer vertices farther than this from the inner layer are not pushed (m)"));
     v("layer_clearance", layer_clearance, cfg::opt().range(0.005, 0.1).help("outer over inner ease [lo, hi] (m)"));
     v("ease_fitted", ease_fitted, cfg::opt().range(0.003, 0.1).help("[lo, hi] (m)"));
     v("ease_loose", ease_loose, cfg::opt().range(0.003, 0.15).help("[lo, hi] (m)"));
@@ -106,7 +107,8 @@ int garment_layer(const std::string& type);
 // vertices are enclosed with the layer clearance). Deterministic for a seed.
 GarmentMesh build_garment(const std::string& type, const TPoseBody& body, const GarmentParams& params,
                           std::uint64_t seed, const std::vector<const GarmentMesh*>& under = {});
-GarmentMesh build_garment(const std::string& type, const body::Body& body, const GarmentParams& params, std::uint64_t seed);
+GarmentMesh build_garment(const std::string& type, const body::Body& body, const GarmentParams& params,
+                          std::uint64_t seed);
 
 // An outfit: `inner` is one type, or "tshirt" with "pants" or "skirt";
 // `outer` is "jacket", "jacket_hood" or "" (none). Returns the inner

@@ -9,13 +9,25 @@
 #include <string>
 #include <vector>
 
-#include "layers/geometry/mesh.h"
 #include "layers/body/body_model.h"
 #include "layers/body/rotation.h"
+#include "layers/geometry/mesh.h"
 
 namespace layers::garment {
 
-enum class Part : std::uint8_t { Torso, Neck, Head, LeftArm, RightArm, LeftHand, RightHand, LeftLeg, RightLeg, LeftFoot, RightFoot };
+enum class Part : std::uint8_t {
+  Torso,
+  Neck,
+  Head,
+  LeftArm,
+  RightArm,
+  LeftHand,
+  RightHand,
+  LeftLeg,
+  RightLeg,
+  LeftFoot,
+  RightFoot
+};
 using PartMask = std::uint32_t;
 constexpr PartMask bit(Part p) { return PartMask{1} << static_cast<int>(p); }
 constexpr PartMask kAllParts = 0x7ff;
@@ -27,10 +39,10 @@ constexpr PartMask kHeadNeck = bit(Part::Head) | bit(Part::Neck);
 // The body the garments are made for, in its T-pose (arms along x, y up,
 // facing +z, soles on y = 0).
 struct TPoseBody {
-  geometry::TriMesh mesh;         // skin vertices posed in the T-pose
-  std::vector<body::Vec3> joints;       // T-pose joint positions
+  geometry::TriMesh mesh;          // skin vertices posed in the T-pose
+  std::vector<body::Vec3> joints;  // T-pose joint positions
   std::vector<std::string> joint_names;
-  std::vector<Part> parts;        // per skin vertex, from its dominant skinning joint
+  std::vector<Part> parts;  // per skin vertex, from its dominant skinning joint
 
   body::Vec3 joint(const std::string& name) const;  // throws layers::Error when absent
 };
@@ -40,15 +52,15 @@ TPoseBody t_pose_body(const body::Body& body);
 
 // Heights (y) and widths (x) of the T-pose body that place the garments.
 struct Landmarks {
-  double crotch = 0;        // lowest midline point between the legs
+  double crotch = 0;  // lowest midline point between the legs
   double knee = 0, ankle = 0, hip_joint = 0;
-  double hip = 0;           // widest section between the crotch and the waist
-  double waist = 0;         // narrowest torso section above the hips
-  double armpit = 0;        // lowest point of the arms next to the torso
-  double neck = 0;          // base of the neck (Neck joint)
+  double hip = 0;                                               // widest section between the crotch and the waist
+  double waist = 0;                                             // narrowest torso section above the hips
+  double armpit = 0;                                            // lowest point of the arms next to the torso
+  double neck = 0;                                              // base of the neck (Neck joint)
   double neck_half_width = 0, neck_half_depth = 0, neck_z = 0;  // neck section at its base
-  double shoulder_x = 0;    // |x| of the shoulder (LeftArm) joint
-  double wrist_x = 0;       // |x| of the wrist (LeftHand) joint
+  double shoulder_x = 0;                                        // |x| of the shoulder (LeftArm) joint
+  double wrist_x = 0;                                           // |x| of the wrist (LeftHand) joint
   body::Vec3 head_centre = body::Vec3::Zero();
   double head_top = 0;
 };

@@ -20,9 +20,9 @@
 
 #include <Eigen/Core>
 
+#include "layers/body/rotation.h"
 #include "layers/geometry/mesh.h"
 #include "layers/geometry/nearest.h"
-#include "layers/body/rotation.h"
 
 namespace layers::garment {
 
@@ -33,7 +33,8 @@ struct PanelGrid {
   std::vector<body::Vec3> points;
 
   PanelGrid() = default;
-  PanelGrid(std::string n, int r, int c) : name(std::move(n)), rows(r), cols(c), points(static_cast<std::size_t>(r) * c) {}
+  PanelGrid(std::string n, int r, int c)
+      : name(std::move(n)), rows(r), cols(c), points(static_cast<std::size_t>(r) * c) {}
   body::Vec3& at(int i, int j) { return points[static_cast<std::size_t>(i) * cols + j]; }
   const body::Vec3& at(int i, int j) const { return points[static_cast<std::size_t>(i) * cols + j]; }
 };
@@ -75,12 +76,12 @@ using UVs = Eigen::Matrix<float, Eigen::Dynamic, 2, Eigen::RowMajor>;
 // A garment mesh in the layout of LAYERS-H5 (`garments/<k>/`).
 struct GarmentMesh {
   std::string type;
-  int layer = 0;                  // 0 inner, 1 outer
-  geometry::Points vertices;      // [V,3] placed around the T-pose body; also the rest shape
-  geometry::Faces faces;          // [F,3] outward, consistently wound
-  UVs uv;                         // [U,2] panel coordinates in metres (panels laid side by side)
-  geometry::Faces uv_faces;       // [F,3] into uv
-  Eigen::VectorXi panel;          // [F] panel id of each face
+  int layer = 0;              // 0 inner, 1 outer
+  geometry::Points vertices;  // [V,3] placed around the T-pose body; also the rest shape
+  geometry::Faces faces;      // [F,3] outward, consistently wound
+  UVs uv;                     // [U,2] panel coordinates in metres (panels laid side by side)
+  geometry::Faces uv_faces;   // [F,3] into uv
+  Eigen::VectorXi panel;      // [F] panel id of each face
   std::vector<std::string> panel_names;
   std::vector<std::uint8_t> boundary;  // [V] 1 on an opening (hem, cuff, neckline, ...)
   // The sampled sizes (ease, lengths, ...) in metres or as fractions.

@@ -60,10 +60,10 @@ TubeQuarters build_tube(Pattern& pattern, const FitContext& ctx, const std::stri
                         const EaseProfile& ease, const EaseProfile& hang);
 
 struct TopSpec {
-  double hem = 0;                // height of the bottom row
-  EaseProfile ease;              // of the torso rows (up to the armpit)
-  EaseProfile hang{0.0};         // of the torso rows (see build_tube)
-  double armhole_drop = 0.02;    // armpit of the garment below the body's
+  double hem = 0;              // height of the bottom row
+  EaseProfile ease;            // of the torso rows (up to the armpit)
+  EaseProfile hang{0.0};       // of the torso rows (see build_tube)
+  double armhole_drop = 0.02;  // armpit of the garment below the body's
   // Neckline: where the shoulders meet a vertical elliptic cylinder round
   // the neck, wider than the neck by neck_extra and reaching neck_front
   // (neck_back) further forward (backward) for a scoop.

@@ -35,15 +35,15 @@ struct Radial {
 
 // Radial function of a convex hull seen from `centre` (which must lie
 // inside or on it), smoothed over `smooth` neighbouring angles.
-Radial radial_of(const std::vector<Vec2>& hull, const Vec2& centre, bool closed, double start, double span,
-                 int samples, int smooth);
+Radial radial_of(const std::vector<Vec2>& hull, const Vec2& centre, bool closed, double start, double span, int samples,
+                 int smooth);
 
 // How a horizontal section is measured.
 struct SectionSpec {
   PartMask parts = kAllParts;
-  double slab = 0.02;      // points within +-slab of the height
-  double ease = 0.01;      // dilation
-  int side = 0;            // +1: only points with x >= 0; 0: all
+  double slab = 0.02;             // points within +-slab of the height
+  double ease = 0.01;             // dilation
+  int side = 0;                   // +1: only points with x >= 0; 0: all
   bool centre_on_midline = true;  // centre (0, mid z); else the hull's box centre
   // Loose cloth hangs from what is above it: points up to `hang_reach`
   // above the slab count too, drawn in horizontally by `hang` per metre of

@@ -16,7 +16,7 @@ namespace layers::garment {
 struct TubeRows {
   std::vector<std::vector<body::Vec3>> front, back;  // [row][column]
   std::vector<int> front_knot_cols, back_knot_cols;  // column of each knot
-  std::vector<Radial> sections;                // per row
+  std::vector<Radial> sections;                      // per row
 };
 
 // Front rows run along the knot angles `front_knots` (e.g. pi -> pi/2 -> 0:

@@ -29,16 +29,16 @@ struct GenerateOptions {
 };
 
 struct GenerateReport {
-  int scenes = 0;        // scenes of this process's shards
-  int simulated = 0;     // simulated by this run
-  int reused = 0;        // found finished (resume)
-  int written = 0, skipped = 0;  // of those simulated now
+  int scenes = 0;                         // scenes of this process's shards
+  int simulated = 0;                      // simulated by this run
+  int reused = 0;                         // found finished (resume)
+  int written = 0, skipped = 0;           // of those simulated now
   std::vector<std::string> skip_reasons;  // "<id>: <reason>"
   int simulated_frames = 0;
-  double simulate_seconds = 0;  // summed over scenes (all threads), wall clock
+  double simulate_seconds = 0;      // summed over scenes (all threads), wall clock
   double simulate_cpu_seconds = 0;  // the same in CPU time of the simulating threads
-  double seconds = 0;           // wall clock
-  bool finalized = false;       // dataset.yaml, splits.yaml and stats.h5 written
+  double seconds = 0;               // wall clock
+  bool finalized = false;           // dataset.yaml, splits.yaml and stats.h5 written
 };
 
 // `config_yaml` is the resolved config (saved and compared on resume).

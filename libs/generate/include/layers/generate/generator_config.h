@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "layers/core/config.h"
-#include "layers/motion/body_config.h"
 #include "layers/garment/garment.h"
+#include "layers/motion/body_config.h"
 #include "layers/sim/config.h"
 #include "layers/sim/material.h"
 
@@ -35,7 +35,7 @@ struct AttributeRanges {
   std::vector<double> mass{0.2, 0.8};
   std::vector<double> stiffness{15, 100};  // tension, compression, shear (drawn separately)
   std::vector<double> bending{15, 200};
-  std::vector<double> friction{40, 80};    // friction and self-friction (drawn separately)
+  std::vector<double> friction{40, 80};  // friction and self-friction (drawn separately)
 
   template <class V>
   void visit(V& v) {
@@ -81,7 +81,8 @@ struct BodySampling {
   void visit(V& v) {
     v("shape", shape);
     v("motions", motions, cfg::opt().help("motion specs: procedural:<kind>, bvh:<path> or a .bvh file"));
-    v("transition_frames", transition_frames, cfg::opt().range(1, 300).help("frames blending from the T-pose into the motion"));
+    v("transition_frames", transition_frames,
+      cfg::opt().range(1, 300).help("frames blending from the T-pose into the motion"));
     v("intersection_tolerance_mm", intersection_tolerance_mm, cfg::opt().range(0.5, 50));
   }
 };
@@ -108,8 +109,8 @@ std::string outfit_label(const OutfitConfig& outfit);
 // train/val/test but in the subset `unseen_motion` / `unseen_garment` of
 // splits.yaml, so no model trains or validates on it.
 struct SplitConfig {
-  double val = 0.1;   // share of scenes in val
-  double test = 0.1;  // share in test; the rest is train
+  double val = 0.1;                         // share of scenes in val
+  double test = 0.1;                        // share in test; the rest is train
   std::vector<std::string> unseen_motions;  // entries of body.motions
   std::vector<std::string> unseen_outfits;  // outfit labels (outfit_label)
 
@@ -127,8 +128,8 @@ struct GeneratorConfig {
   std::string name = "layers";
   std::uint64_t seed = 0;
   int sequences = 6;
-  int frames = 30;          // recorded frames per sequence
-  int drape_frames = 30;    // T-pose frames simulated before the transition (not recorded)
+  int frames = 30;        // recorded frames per sequence
+  int drape_frames = 30;  // T-pose frames simulated before the transition (not recorded)
   int sequences_per_shard = 16;
   BodySampling body;
   GarmentSampling garments;

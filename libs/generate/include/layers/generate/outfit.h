@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "layers/data/sequence.h"
-#include "layers/generate/scene_spec.h"
 #include "layers/body/body_model.h"
+#include "layers/data/sequence.h"
 #include "layers/garment/garment.h"
+#include "layers/generate/scene_spec.h"
 
 namespace layers::generate {
 

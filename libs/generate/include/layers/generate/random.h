@@ -12,10 +12,10 @@ class Rng {
  public:
   explicit Rng(std::uint64_t seed) : state_(seed) {}
   std::uint64_t next();
-  double uniform();                                 // [0, 1)
-  double uniform(double lo, double hi);             // [lo, hi)
-  double uniform(const std::vector<double>& range); // a [lo, hi] config pair
-  int integer(int lo, int hi);                      // [lo, hi]
+  double uniform();                                  // [0, 1)
+  double uniform(double lo, double hi);              // [lo, hi)
+  double uniform(const std::vector<double>& range);  // a [lo, hi] config pair
+  int integer(int lo, int hi);                       // [lo, hi]
   // Index drawn with probability proportional to weights (not all zero).
   std::size_t pick(const std::vector<double>& weights);
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "layers/generate/generator_config.h"
 #include "layers/body/body_model.h"
+#include "layers/generate/generator_config.h"
 #include "layers/sim/material.h"
 #include "layers/sim/wind.h"
 
@@ -23,8 +23,8 @@ struct GarmentSpec {
 
 struct SceneSpec {
   int index = 0;
-  std::string id;            // "seq-000042"
-  std::uint64_t seed = 0;    // the scene's own seed (motion, garment sizes)
+  std::string id;          // "seq-000042"
+  std::uint64_t seed = 0;  // the scene's own seed (motion, garment sizes)
   body::ShapeParams shape;
   std::string motion;
   std::vector<GarmentSpec> garments;  // inner garments first, then the outer one

@@ -35,9 +35,7 @@ struct TriMesh {
 // repeats a vertex; throws layers::InputError naming `what` (e.g. a file
 // and dataset path), the face and the offending index.
 void validate(const Faces& faces, int num_vertices, const std::string& what);
-inline void validate(const TriMesh& mesh, const std::string& what) {
-  validate(mesh.faces, mesh.num_vertices(), what);
-}
+inline void validate(const TriMesh& mesh, const std::string& what) { validate(mesh.faces, mesh.num_vertices(), what); }
 
 // Joins meshes into one (vertex indices of later meshes are offset), e.g.
 // all inner garments of a scene as one surface.

@@ -32,8 +32,7 @@ class Surface {
   Surface(Points vertices, Points normals);
   // Uses the mesh's area-weighted vertex normals; validates the faces
   // (InputError naming `what`). `open`: see the file comment.
-  static Surface from_mesh(const TriMesh& mesh, const std::string& what = "surface",
-                           OpenEdges open = OpenEdges::Count);
+  static Surface from_mesh(const TriMesh& mesh, const std::string& what = "surface", OpenEdges open = OpenEdges::Count);
 
   int size() const { return index_.size(); }
   const Points& vertices() const { return index_.points(); }

@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "layers/core/config.h"
 #include "layers/body/body_model.h"
+#include "layers/core/config.h"
 #include "layers/motion/body_sequence.h"
 #include "layers/motion/motion.h"
 
@@ -41,9 +41,11 @@ struct BodyMotionConfig {
     v("frames", frames, cfg::opt().min(0).help("total frames at 30 fps, transition included; 0 = whole clip"));
     v("seed", seed, cfg::opt().help("randomises procedural speed, amplitude and choices"));
     v("transition_frames", transition_frames, cfg::opt().min(0).help("frames blending in from the T-pose"));
-    v("intersection_tolerance_mm", intersection_tolerance_mm, cfg::opt().range(0.5, 50).help("allowed self-intersection depth"));
+    v("intersection_tolerance_mm", intersection_tolerance_mm,
+      cfg::opt().range(0.5, 50).help("allowed self-intersection depth"));
     v("on_intersection", on_intersection, cfg::opt().choices({"longest_run", "drop", "keep"}));
-    v("assets", assets, cfg::opt().help("asset root (default: $LAYERS_ASSETS, then <prefix>/share/layers/assets, then <source>/assets)"));
+    v("assets", assets,
+      cfg::opt().help("asset root (default: $LAYERS_ASSETS, then <prefix>/share/layers/assets, then <source>/assets)"));
   }
 };
 

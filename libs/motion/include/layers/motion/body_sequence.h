@@ -11,16 +11,16 @@
 #include <vector>
 
 #include "layers/body/body_model.h"
-#include "layers/motion/motion.h"
 #include "layers/body/self_intersection.h"
+#include "layers/motion/motion.h"
 
 namespace layers::motion {
 
 struct SequenceOptions {
   body::IntersectionOptions intersection;
-  bool resolve = true;              // try to resolve intersecting frames
-  double max_arm_correction = 0.9;  // rad an arm may be turned at most
-  double max_leg_correction = 0.35; // rad of extra leg abduction at most
+  bool resolve = true;               // try to resolve intersecting frames
+  double max_arm_correction = 0.9;   // rad an arm may be turned at most
+  double max_leg_correction = 0.35;  // rad of extra leg abduction at most
   // What happens to frames still intersecting after resolution:
   // "longest_run" keeps the longest run of consecutive clean frames,
   // "drop" removes the bad frames (the sequence then skips in time),
@@ -29,28 +29,29 @@ struct SequenceOptions {
 };
 
 struct IntersectionReport {
-  int frames = 0;          // frames of the motion checked
-  int intersecting = 0;    // frames deeper than the tolerance before resolution
-  int resolved = 0;        // of those, frames clean after resolution
-  int remaining = 0;       // frames still intersecting after resolution
-  int dropped = 0;         // frames removed by the policy
+  int frames = 0;                                // frames of the motion checked
+  int intersecting = 0;                          // frames deeper than the tolerance before resolution
+  int resolved = 0;                              // of those, frames clean after resolution
+  int remaining = 0;                             // frames still intersecting after resolution
+  int dropped = 0;                               // frames removed by the policy
   double worst_before = 0.0, worst_after = 0.0;  // deepest penetration (m), before and after resolution
   double share_intersecting() const { return frames ? static_cast<double>(intersecting) / frames : 0.0; }
 };
 
 struct BodySequence {
   int num_frames = 0, num_vertices = 0, num_joints = 0;
-  std::string motion;              // MotionSource::describe()
-  std::vector<float> positions;    // [T, Vb, 3]
-  std::vector<float> root;         // [T, 3]  root joint (pelvis) position
-  std::vector<float> root_rot;     // [T, 4]  root rotation relative to rest, w x y z
-  std::vector<float> joints;       // [T, J, 3, 4]  see joint_matrices()
-  std::vector<int> source_frame;   // [T] motion frame each output frame comes from
+  std::string motion;             // MotionSource::describe()
+  std::vector<float> positions;   // [T, Vb, 3]
+  std::vector<float> root;        // [T, 3]  root joint (pelvis) position
+  std::vector<float> root_rot;    // [T, 4]  root rotation relative to rest, w x y z
+  std::vector<float> joints;      // [T, J, 3, 4]  see joint_matrices()
+  std::vector<int> source_frame;  // [T] motion frame each output frame comes from
   IntersectionReport intersection;
 };
 
 // Poses, checks and (per options) repairs every frame of `motion`. Throws
 // InputError when the policy leaves no frame.
-BodySequence generate_body_sequence(const body::Body& body, const MotionSource& motion, const SequenceOptions& options = {});
+BodySequence generate_body_sequence(const body::Body& body, const MotionSource& motion,
+                                    const SequenceOptions& options = {});
 
 }  // namespace layers::motion

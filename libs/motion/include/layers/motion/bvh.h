@@ -25,13 +25,13 @@ struct BvhJoint {
   int parent = -1;
   body::Vec3 offset = body::Vec3::Zero();
   std::vector<BvhChannel> channels;
-  int first_channel = 0;      // column of its first channel in a frame line
+  int first_channel = 0;  // column of its first channel in a frame line
   bool has_end_site = false;
   body::Vec3 end_site = body::Vec3::Zero();  // End Site offset when present
 };
 
 struct BvhClip {
-  std::string source;           // file name, for messages
+  std::string source;            // file name, for messages
   std::vector<BvhJoint> joints;  // parents before children
   double frame_time = 1.0 / 30.0;
   // Per frame, per joint: local rotation and local translation.

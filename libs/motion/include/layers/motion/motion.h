@@ -47,17 +47,18 @@ class PoseTrack : public MotionSource {
 // Prepends `frames` frames that blend from the body's T-pose (standing
 // where the motion starts, soles on the ground) into the motion's first
 // pose with a C1 (smoothstep) ramp; the motion follows unchanged.
-std::unique_ptr<MotionSource> with_t_pose_transition(std::unique_ptr<MotionSource> motion, const body::Body& body, int frames);
+std::unique_ptr<MotionSource> with_t_pose_transition(std::unique_ptr<MotionSource> motion, const body::Body& body,
+                                                     int frames);
 
 struct MotionSpec {
   // "procedural:<kind>" (see procedural_kinds()), "bvh:<path>" or a path
   // ending in .bvh. A relative BVH path that does not exist is also looked
   // up in the asset folder's motions/ (the shipped clips are cmu/<clip>.bvh).
   std::string motion = "procedural:walk";
-  int frames = 0;                  // 0: the clip's length (BVH) or 150 (procedural)
-  std::uint64_t seed = 0;          // randomises procedural speed / amplitude
-  int transition_frames = 0;       // T-pose transition prepended (0: none)
-  std::string asset_root;          // "" = default_asset_root()
+  int frames = 0;             // 0: the clip's length (BVH) or 150 (procedural)
+  std::uint64_t seed = 0;     // randomises procedural speed / amplitude
+  int transition_frames = 0;  // T-pose transition prepended (0: none)
+  std::string asset_root;     // "" = default_asset_root()
 };
 
 // Builds the motion for `body`; the result has exactly spec.frames frames

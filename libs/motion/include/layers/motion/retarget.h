@@ -28,8 +28,8 @@ const std::map<std::string, std::string>& cmu_3dsmax_names();
 
 struct RetargetOptions {
   std::map<std::string, std::string> names = cmu_3dsmax_names();  // BVH -> rig
-  bool start_at_origin = true;  // move the first frame's root above (0, 0)
-  bool ground = true;           // lift the clip so the soles touch y = 0 in stance
+  bool start_at_origin = true;                                    // move the first frame's root above (0, 0)
+  bool ground = true;                                             // lift the clip so the soles touch y = 0 in stance
 };
 
 // Which feet touch the ground, per frame: a foot is planted when its heel

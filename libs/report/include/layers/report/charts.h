@@ -25,7 +25,7 @@
 namespace layers::report {
 
 struct Chart {
-  std::string file;     // PNG file name inside the charts folder
+  std::string file;  // PNG file name inside the charts folder
   std::string title;
   std::string caption;  // what the chart shows (Markdown), for report.md
 };

@@ -41,8 +41,7 @@ std::uint32_t shade(std::uint32_t base_rgb, double nz, double ambient = 0.4);
 // outer where they overlap, while a limb well in front still covers them.
 // Throws layers::Error for a face index out of range.
 void add_mesh(std::vector<ScreenTriangle>& out, const float* positions, std::int64_t n_vertices,
-              const std::vector<std::int32_t>& faces, std::uint32_t base_rgb, bool cull_back,
-              float depth_bias = 0.0f);
+              const std::vector<std::int32_t>& faces, std::uint32_t base_rgb, bool cull_back, float depth_bias = 0.0f);
 
 // Screen bounds of the finite vertices of a mesh.
 ScreenBounds mesh_bounds(const float* positions, std::int64_t n_vertices);

@@ -27,17 +27,17 @@ namespace layers::report {
 struct ReportInputs {
   std::vector<std::string> runs;  // run folders (run.output of experiments)
   std::string title = "layers report";
-  std::string split;              // eval-<split> to read (default: see load_run)
+  std::string split;                // eval-<split> to read (default: see load_run)
   std::string gnuplot = "gnuplot";  // program, a path or a name on PATH
-  bool charts = true;             // false: tables and report.md only
+  bool charts = true;               // false: tables and report.md only
   PictureOptions picture;
 };
 
 struct ReportResult {
-  std::string report;                 // path of report.md
-  std::vector<std::string> files;     // every file written, report.md included
-  std::vector<std::string> charts;    // the PNGs drawn
-  std::vector<std::string> problems;  // missing pieces, as in report.md
+  std::string report;                     // path of report.md
+  std::vector<std::string> files;         // every file written, report.md included
+  std::vector<std::string> charts;        // the PNGs drawn
+  std::vector<std::string> problems;      // missing pieces, as in report.md
   std::vector<std::string> pareto_front;  // run names on the front, fastest first
   std::size_t runs_with_metrics = 0;
 };

@@ -78,10 +78,10 @@ class Cloth {
  public:
   // What the solver integrates (double precision).
   struct State {
-    Vec3s x;                      // positions
-    Vec3s v;                      // velocities
-    Vec3s x_start;                // positions at the start of the current substep
-    std::vector<double> inv_mass; // 0 for pinned vertices
+    Vec3s x;                       // positions
+    Vec3s v;                       // velocities
+    Vec3s x_start;                 // positions at the start of the current substep
+    std::vector<double> inv_mass;  // 0 for pinned vertices
   };
 
   // Throws layers::InputError (naming options.name) for invalid faces,

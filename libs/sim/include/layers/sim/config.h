@@ -20,29 +20,32 @@ struct ValidationConfig {
 
   template <class V>
   void visit(V& v) {
-    v("max_h_penetration", max_h_penetration, cfg::opt().range(0, 1).help("mean share of garment vertices behind the body"));
-    v("max_l_penetration", max_l_penetration, cfg::opt().range(0, 1).help("mean share of outer vertices behind the inner layer"));
+    v("max_h_penetration", max_h_penetration,
+      cfg::opt().range(0, 1).help("mean share of garment vertices behind the body"));
+    v("max_l_penetration", max_l_penetration,
+      cfg::opt().range(0, 1).help("mean share of outer vertices behind the inner layer"));
     v("max_stretch", max_stretch, cfg::opt().min(0).help("largest allowed |l|/l0 - 1 of any edge"));
     v("l_reach", l_reach,
-      cfg::opt().range(0.001, 10).help("L-penetration: outer vertices farther than this from the inner layer are not tested (m)"));
+      cfg::opt().range(0.001, 10).help(
+          "L-penetration: outer vertices farther than this from the inner layer are not tested (m)"));
   }
 };
 
 struct SolverConfig {
-  double fps = 30;                 // frames per second; one step() is one frame
-  int substeps = 10;               // substeps per frame
-  int iterations = 2;              // local/global iterations per substep
+  double fps = 30;                                  // frames per second; one step() is one frame
+  int substeps = 10;                                // substeps per frame
+  int iterations = 2;                               // local/global iterations per substep
   std::vector<double> gravity = {0.0, -9.81, 0.0};  // m/s^2
-  double air_damping = 0.5;        // 1/s: velocities decay as exp(-air_damping t)
-  double max_speed = 30;           // m/s cap on vertex speed (0: none); a guard against blow-ups
-  double body_thickness = 0.005;   // m kept between garments and the body surface
-  double layer_thickness = 0.004;  // m kept between an inner and an outer garment
-  double self_thickness = 0.004;   // m kept between two parts of one garment
-  double max_strain = 0.08;        // strain limiting: edges are capped at (1 + max_strain) x rest (0: off)
-  int strain_sweeps = 200;         // most Gauss-Seidel sweeps of the cap after the contacts (stops when none moves)
-  double support_stiffness = 1;    // body-contact support weight / the vertex's own stiffness (docs/sim.md)
-  bool self_contact = true;        // master switch; each cloth also opts in (ClothOptions)
-  double wind_pressure = 0.004;    // Pa per unit of Blender wind strength (docs/sim.md)
+  double air_damping = 0.5;                         // 1/s: velocities decay as exp(-air_damping t)
+  double max_speed = 30;                            // m/s cap on vertex speed (0: none); a guard against blow-ups
+  double body_thickness = 0.005;                    // m kept between garments and the body surface
+  double layer_thickness = 0.004;                   // m kept between an inner and an outer garment
+  double self_thickness = 0.004;                    // m kept between two parts of one garment
+  double max_strain = 0.08;      // strain limiting: edges are capped at (1 + max_strain) x rest (0: off)
+  int strain_sweeps = 200;       // most Gauss-Seidel sweeps of the cap after the contacts (stops when none moves)
+  double support_stiffness = 1;  // body-contact support weight / the vertex's own stiffness (docs/sim.md)
+  bool self_contact = true;      // master switch; each cloth also opts in (ClothOptions)
+  double wind_pressure = 0.004;  // Pa per unit of Blender wind strength (docs/sim.md)
   ValidationConfig validation;
 
   template <class V>
@@ -58,9 +61,11 @@ struct SolverConfig {
     v("self_thickness", self_thickness, cfg::opt().range(0, 0.1).help("distance within one garment (m)"));
     v("max_strain", max_strain, cfg::opt().range(0, 10).help("edge strain cap after the elastic solve (0: off)"));
     v("strain_sweeps", strain_sweeps,
-      cfg::opt().range(1, 1000).help("most sweeps of the strain cap after the contacts (it stops early once no edge is over)"));
+      cfg::opt().range(1, 1000).help(
+          "most sweeps of the strain cap after the contacts (it stops early once no edge is over)"));
     v("support_stiffness", support_stiffness,
-      cfg::opt().range(0, 100).help("weight of body-contact supports in the elastic solve, relative to each vertex's stiffness (0: projection only)"));
+      cfg::opt().range(0, 100).help("weight of body-contact supports in the elastic solve, relative to each vertex's "
+                                    "stiffness (0: projection only)"));
     v("self_contact", self_contact, cfg::opt().help("allow self-contact for cloths that ask for it"));
     v("wind_pressure", wind_pressure, cfg::opt().min(0).help("pressure (Pa) per unit of wind strength"));
     v("validation", validation);

@@ -16,13 +16,13 @@ namespace layers::sim {
 
 struct ContactTopology {
   std::vector<std::array<int, 3>> faces;
-  std::vector<int> face_offsets;   // num_vertices + 1 entries
-  std::vector<int> vertex_faces;   // faces of vertex i: [face_offsets[i], face_offsets[i+1])
+  std::vector<int> face_offsets;  // num_vertices + 1 entries
+  std::vector<int> vertex_faces;  // faces of vertex i: [face_offsets[i], face_offsets[i+1])
   // Per face, bit k is set when the edge from corner k to corner (k+1)%3
   // belongs to this face only.
   std::vector<std::uint8_t> boundary_edges;
   std::vector<std::uint8_t> boundary_vertex;  // 1 for vertices on an open boundary
-  double max_edge_length = 0;      // in the reference positions given to build()
+  double max_edge_length = 0;                 // in the reference positions given to build()
 
   // How far a point of the surface can be from its nearest vertex: every
   // point of a triangle lies within (longest edge)/sqrt(3) of a corner; with

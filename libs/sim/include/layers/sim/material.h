@@ -54,12 +54,12 @@ struct Material {
 // its attribute times a constant (friction: divided by 100), so the map is
 // linear and monotone.
 struct MaterialMapping {
-  double density_per_mass = 0.5;       // (kg/m^2) per unit of Blender mass
-  double modulus_per_stiffness = 20;   // (N/m) per unit of tension
+  double density_per_mass = 0.5;         // (kg/m^2) per unit of Blender mass
+  double modulus_per_stiffness = 20;     // (N/m) per unit of tension
   double compression_per_stiffness = 5;  // (N/m) per unit of compression (fabric buckles)
-  double shear_per_stiffness = 5;      // (N/m) per unit of shear
-  double rigidity_per_bending = 2e-7;  // (N m) per unit of bending
-  double friction_per_unit = 0.01;     // Coulomb coefficient per unit of friction
+  double shear_per_stiffness = 5;        // (N/m) per unit of shear
+  double rigidity_per_bending = 2e-7;    // (N m) per unit of bending
+  double friction_per_unit = 0.01;       // Coulomb coefficient per unit of friction
 
   template <class V>
   void visit(V& v) {

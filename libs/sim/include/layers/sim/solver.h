@@ -39,9 +39,9 @@ struct StepTimings {
   double elastic = 0;        // supports and refactorisation, stretch/shear/bending iterations, first strain cap
   double layer_contact = 0;  // inner/outer garments
   double self_contact = 0;
-  double body_contact = 0;   // including the per-substep body interpolation and grid
-  double strain_cap = 0;     // the strain cap after the contacts
-  long cap_sweeps = 0;       // sweeps it ran (all cloths and substeps)
+  double body_contact = 0;  // including the per-substep body interpolation and grid
+  double strain_cap = 0;    // the strain cap after the contacts
+  long cap_sweeps = 0;      // sweeps it ran (all cloths and substeps)
   double total = 0;
   long frames = 0;
 };

@@ -33,15 +33,16 @@
 namespace layers::study {
 
 struct StudyDataset {
-  std::string config;             // generator config (configs/data/*.yaml), relative to the study file;
-                                  // "" = folder is a finished dataset used as it is (never generated)
-  std::string folder;             // dataset folder, relative to the working directory
-  std::vector<std::string> set;   // generator overrides, key.path=value
-  int threads = 2;                // scenes simulated in parallel
+  std::string config;            // generator config (configs/data/*.yaml), relative to the study file;
+                                 // "" = folder is a finished dataset used as it is (never generated)
+  std::string folder;            // dataset folder, relative to the working directory
+  std::vector<std::string> set;  // generator overrides, key.path=value
+  int threads = 2;               // scenes simulated in parallel
 
   template <class V>
   void visit(V& v) {
-    v("config", config, cfg::opt().help("generator config, relative to the study file (omit to use a finished dataset as it is)"));
+    v("config", config,
+      cfg::opt().help("generator config, relative to the study file (omit to use a finished dataset as it is)"));
     v("folder", folder, cfg::opt().required().help("dataset folder (generated when missing or incomplete)"));
     v("set", set, cfg::opt().help("generator overrides key.path=value"));
     v("threads", threads, cfg::opt().range(1, 256).help("scenes generated in parallel"));
@@ -49,11 +50,11 @@ struct StudyDataset {
 };
 
 struct StudyExperiment {
-  std::string name;                 // run folder <output>/<name>; the run's label in reports
-  std::string file;                 // experiment config, relative to the study file
-  std::vector<std::string> set;     // overrides after the study's `set`
-  std::vector<std::string> steps;   // empty: the study's steps
-  std::string checkpoint;           // a run folder or checkpoint file to evaluate instead of training
+  std::string name;                // run folder <output>/<name>; the run's label in reports
+  std::string file;                // experiment config, relative to the study file
+  std::vector<std::string> set;    // overrides after the study's `set`
+  std::vector<std::string> steps;  // empty: the study's steps
+  std::string checkpoint;          // a run folder or checkpoint file to evaluate instead of training
 
   template <class V>
   void visit(V& v) {
@@ -78,8 +79,8 @@ struct StudyEval {
 };
 
 struct StudyReport {
-  std::string title;     // default: the study name
-  std::string split;     // eval-<split> to report (default: the report's own choice)
+  std::string title;  // default: the study name
+  std::string split;  // eval-<split> to report (default: the report's own choice)
   bool charts = true;
   int frames = 4;        // columns of the ground truth / predictions picture
   std::string sequence;  // sequence of the picture (default: the report's choice)
@@ -99,9 +100,9 @@ struct StudyReport {
 train::BenchOptions study_bench();
 
 struct StudyConfig {
-  std::string name;                       // default: the file's stem
-  std::string output;                     // default: runs/<name>
-  std::vector<std::string> requires_;     // key `requires`
+  std::string name;                    // default: the file's stem
+  std::string output;                  // default: runs/<name>
+  std::vector<std::string> requires_;  // key `requires`
   StudyDataset dataset;
   std::vector<std::string> steps{"train", "eval", "report"};
   std::vector<std::string> set;

@@ -39,13 +39,13 @@ struct StepWork {
 };
 
 struct Step {
-  std::string run, name;             // "<run> <name>" (or "<name>") is its id in `after`
-  std::vector<std::string> after;    // steps run first; a failed or blocked one blocks this one
-  bool after_failures = false;       // run even when an `after` step failed (a report lists what is missing)
-  std::string folder;                // folder of the steps.yaml record; "" = unrecorded: the work itself
-                                     // says whether it found everything current
-  std::function<std::string()> inputs;  // recorded steps: the inputs' fingerprint, taken when its turn comes
-  std::vector<std::string> outputs;  // relative to folder; the step is current only while they exist
+  std::string run, name;                 // "<run> <name>" (or "<name>") is its id in `after`
+  std::vector<std::string> after;        // steps run first; a failed or blocked one blocks this one
+  bool after_failures = false;           // run even when an `after` step failed (a report lists what is missing)
+  std::string folder;                    // folder of the steps.yaml record; "" = unrecorded: the work itself
+                                         // says whether it found everything current
+  std::function<std::string()> inputs;   // recorded steps: the inputs' fingerprint, taken when its turn comes
+  std::vector<std::string> outputs;      // relative to folder; the step is current only while they exist
   std::function<std::string()> blocked;  // optional, real runs: "" or why it cannot run
   std::function<bool(std::string& message)> would_run;  // unrecorded steps in a dry run
   std::function<void(StepWork& work)> work;
@@ -84,8 +84,8 @@ class Runner {
   std::string study_;
   RunnerOptions options_;
   std::vector<StepOutcome>& outcomes_;
-  std::map<std::string, StepStatus> done_;  // by step id
-  std::map<std::string, std::string> blocks_with_;  // by step id: what its failure says to the steps after it
+  std::map<std::string, StepStatus> done_;                   // by step id
+  std::map<std::string, std::string> blocks_with_;           // by step id: what its failure says to the steps after it
   std::map<std::string, std::unique_ptr<Records>> records_;  // by folder
 };
 

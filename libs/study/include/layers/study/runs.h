@@ -14,12 +14,12 @@ namespace layers::study {
 
 // One experiment of a study, resolved.
 struct StudyRun {
-  std::string name, dir;          // dir = <output>/<name>
-  train::ExperimentConfig config; // with run.output = dir, data.dataset = the study's folder
-  std::string config_yaml;        // the resolved experiment (saved as <dir>/experiment.yaml)
-  std::vector<std::string> steps; // train, eval, bench (report is the study's)
+  std::string name, dir;           // dir = <output>/<name>
+  train::ExperimentConfig config;  // with run.output = dir, data.dataset = the study's folder
+  std::string config_yaml;         // the resolved experiment (saved as <dir>/experiment.yaml)
+  std::vector<std::string> steps;  // train, eval, bench (report is the study's)
   std::vector<std::string> eval_splits;
-  std::string checkpoint;         // the checkpoint file eval and bench use
+  std::string checkpoint;            // the checkpoint file eval and bench use
   bool external_checkpoint = false;  // from StudyExperiment::checkpoint (no train step)
 };
 

@@ -34,7 +34,7 @@ struct StudyActions {
   // true when it generated anything. `config` is the resolved path.
   std::function<bool(const StudyDataset& dataset)> dataset;
   std::function<void(const StudyRun& run, bool resume)> train;
-  std::function<void(const StudyRun& run, const std::string& split)> eval;  // -> <dir>/eval-<split>/
+  std::function<void(const StudyRun& run, const std::string& split)> eval;           // -> <dir>/eval-<split>/
   std::function<void(const StudyRun& run, const train::BenchOptions& bench)> bench;  // -> <dir>/bench.json
   std::function<void(const StudyConfig& study, const std::vector<std::string>& run_dirs, const std::string& out)>
       report;  // -> <out>/report.md

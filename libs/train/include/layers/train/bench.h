@@ -25,12 +25,12 @@ namespace layers::train {
 // visit() are what a study file may set; sequence and out are set by
 // `layers bench` flags only (a study writes <run>/bench.json).
 struct BenchOptions {
-  std::string sequence;     // default: the first sequence of eval's split
-  int levels = 2;           // subdivision levels 0..levels
-  bool far_body = true;     // also measure with the far body copy
-  bool train = true;        // also time a training step (forward + losses + backward)
-  double min_time = 0.5;    // seconds per measurement
-  std::string out;          // JSON file (default <run.output>/bench.json)
+  std::string sequence;   // default: the first sequence of eval's split
+  int levels = 2;         // subdivision levels 0..levels
+  bool far_body = true;   // also measure with the far body copy
+  bool train = true;      // also time a training step (forward + losses + backward)
+  double min_time = 0.5;  // seconds per measurement
+  std::string out;        // JSON file (default <run.output>/bench.json)
 
   template <class V>
   void visit(V& v) {

@@ -23,9 +23,9 @@ namespace layers::train {
 struct CheckpointState {
   int epochs_done = 0;
   std::int64_t steps = 0;
-  double best_val_mm = -1;    // < 0: no validation yet
-  std::string model_name;     // the registered model it belongs to
-  std::string checksum;       // on load: the verified fnv1a64 of the archive ("" for one without)
+  double best_val_mm = -1;  // < 0: no validation yet
+  std::string model_name;   // the registered model it belongs to
+  std::string checksum;     // on load: the verified fnv1a64 of the archive ("" for one without)
 };
 
 // `optimizer` may be null (nothing to train, or an evaluation copy).

@@ -27,10 +27,10 @@ class Registry;
 namespace layers::train {
 
 struct EvalOptions {
-  std::string checkpoint = "best";  // best, last, or a file path
-  std::string split;                // overrides eval.split
-  int horizon = -1;                 // overrides eval.horizon when >= 0
-  std::string out_dir;              // default <run.output>/eval-<split>
+  std::string checkpoint = "best";     // best, last, or a file path
+  std::string split;                   // overrides eval.split
+  int horizon = -1;                    // overrides eval.horizon when >= 0
+  std::string out_dir;                 // default <run.output>/eval-<split>
   std::vector<std::string> sequences;  // only these ids (default: the whole split)
   bool progress = true;
 };

@@ -58,19 +58,19 @@ struct LossConfig {
 
 struct TrainConfig {
   int epochs = 10;
-  int batch_size = 4;           // windows (each one scene) per optimiser step
-  int windows_per_epoch = 0;    // 0: every window of the split once
-  int window_stride = 1;        // start frames of training windows, every n-th
+  int batch_size = 4;         // windows (each one scene) per optimiser step
+  int windows_per_epoch = 0;  // 0: every window of the split once
+  int window_stride = 1;      // start frames of training windows, every n-th
   double lr = 1e-3;
-  double lr_decay = 0.5;        // multiply the learning rate by this ...
-  int lr_decay_every = 2;       // ... every n epochs
-  double grad_clip = 1.0;       // max gradient norm; 0 = off
-  bool two_step = true;         // loss on t+1 and t+2 (predicted t+1 fed back)
-  int curriculum_max = 4;       // epoch k rolls min(k-1, this) steps without gradient first
-  double noise_std = 0.0;       // m: Gaussian noise on each window's start positions (0 = off)
-  int prefetch = 4;             // batches loaded ahead by the loader thread
-  int val_horizon = 10;         // rollout length of the per-epoch validation
-  int val_sequences = 8;        // sequences of the validation split used; 0 = all
+  double lr_decay = 0.5;   // multiply the learning rate by this ...
+  int lr_decay_every = 2;  // ... every n epochs
+  double grad_clip = 1.0;  // max gradient norm; 0 = off
+  bool two_step = true;    // loss on t+1 and t+2 (predicted t+1 fed back)
+  int curriculum_max = 4;  // epoch k rolls min(k-1, this) steps without gradient first
+  double noise_std = 0.0;  // m: Gaussian noise on each window's start positions (0 = off)
+  int prefetch = 4;        // batches loaded ahead by the loader thread
+  int val_horizon = 10;    // rollout length of the per-epoch validation
+  int val_sequences = 8;   // sequences of the validation split used; 0 = all
 
   template <class V>
   void visit(V& v) {
@@ -93,9 +93,9 @@ struct TrainConfig {
 };
 
 struct EvalConfig {
-  std::string split;        // empty: data.test_split
-  int horizon = 35;         // rollout frames; 0 = whole sequences
-  double diverge_mm = 1000; // a frame error above this (or non-finite) is divergence
+  std::string split;         // empty: data.test_split
+  int horizon = 35;          // rollout frames; 0 = whole sequences
+  double diverge_mm = 1000;  // a frame error above this (or non-finite) is divergence
   bool save_predictions = true;
 
   template <class V>

@@ -17,8 +17,8 @@
 namespace layers::train {
 
 struct LossSum {
-  at::Tensor total;                      // scalar, differentiable
-  std::map<std::string, double> terms;   // unweighted values, for logs
+  at::Tensor total;                     // scalar, differentiable
+  std::map<std::string, double> terms;  // unweighted values, for logs
 };
 
 // `pred` and `truth`: one [V,3] per garment of `seq`; `body`: [Vb,3] at the

@@ -20,31 +20,31 @@
 namespace layers::train {
 
 struct RolloutOptions {
-  std::int64_t start = 1;     // row of `frames` with the last ground-truth state
-  std::int64_t steps = -1;    // predicted frames; < 0: to the end of `frames`
-  double diverge_mm = 1000;   // error bound of divergence
+  std::int64_t start = 1;    // row of `frames` with the last ground-truth state
+  std::int64_t steps = -1;   // predicted frames; < 0: to the end of `frames`
+  double diverge_mm = 1000;  // error bound of divergence
   bool keep_predictions = false;
   bool truth_collisions = true;  // also measure the ground truth's H/L rates
 };
 
 struct FrameMetrics {
-  std::int64_t frame = 0;                  // absolute frame
-  double error_mm = 0;                     // mean over all garment vertices
-  std::vector<double> garment_error_mm;    // per garment
-  std::vector<double> garment_h_collision; // per garment, share behind the body
-  double h_collision = 0;                  // all garment vertices
+  std::int64_t frame = 0;                                         // absolute frame
+  double error_mm = 0;                                            // mean over all garment vertices
+  std::vector<double> garment_error_mm;                           // per garment
+  std::vector<double> garment_h_collision;                        // per garment, share behind the body
+  double h_collision = 0;                                         // all garment vertices
   double l_collision = std::numeric_limits<double>::quiet_NaN();  // NaN: no inner+outer pair
   double truth_h_collision = std::numeric_limits<double>::quiet_NaN();
   double truth_l_collision = std::numeric_limits<double>::quiet_NaN();
-  bool diverged = false;                   // after divergence: error = bound, collisions NaN
+  bool diverged = false;  // after divergence: error = bound, collisions NaN
 };
 
 struct RolloutResult {
   std::vector<FrameMetrics> frames;
-  std::int64_t diverged_at = -1;           // absolute frame, -1 if stable
+  std::int64_t diverged_at = -1;  // absolute frame, -1 if stable
   std::string diverge_reason;
-  std::vector<at::Tensor> predictions;     // [steps,V,3] per garment (keep_predictions)
-  double model_seconds = 0;                // time spent in Model::step
+  std::vector<at::Tensor> predictions;  // [steps,V,3] per garment (keep_predictions)
+  double model_seconds = 0;             // time spent in Model::step
 };
 
 // `model` must be prepared with `seq`; runs without gradients.

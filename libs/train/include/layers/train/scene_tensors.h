@@ -27,13 +27,13 @@ zoo::SequenceStatic to_model_static(const data::SequenceStatic& s, const Garment
 
 // A window's per-frame arrays, frame axis first (n frames).
 struct FrameTensors {
-  std::int64_t first_frame = 0;       // absolute frame of row 0
-  at::Tensor body;                    // [n,Vb,3]
-  at::Tensor root, root_rot;          // [n,3], [n,4]
-  at::Tensor joints;                  // [n,J,3,4] (undefined when the data has none)
-  at::Tensor wind_rotation;           // [n,4]
-  at::Tensor wind_strength;           // [n]
-  std::vector<at::Tensor> garments;   // selected garments, [n,V,3] each
+  std::int64_t first_frame = 0;      // absolute frame of row 0
+  at::Tensor body;                   // [n,Vb,3]
+  at::Tensor root, root_rot;         // [n,3], [n,4]
+  at::Tensor joints;                 // [n,J,3,4] (undefined when the data has none)
+  at::Tensor wind_rotation;          // [n,4]
+  at::Tensor wind_strength;          // [n]
+  std::vector<at::Tensor> garments;  // selected garments, [n,V,3] each
 
   std::int64_t frames() const { return body.size(0); }
 };

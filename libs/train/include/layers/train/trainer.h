@@ -30,8 +30,8 @@ class Registry;
 namespace layers::train {
 
 struct TrainOptions {
-  bool resume = false;    // continue from checkpoint-last.pt if present
-  bool progress = true;   // progress line on stderr
+  bool resume = false;   // continue from checkpoint-last.pt if present
+  bool progress = true;  // progress line on stderr
 };
 
 struct EpochSummary {
@@ -50,7 +50,7 @@ struct TrainReport {
   int epochs_done = 0;               // in total
   std::int64_t steps = 0;
   std::int64_t trainable_parameters = 0;
-  double first_loss = 0;             // mean loss of the first batch run now
+  double first_loss = 0;  // mean loss of the first batch run now
 };
 
 TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& registry, const TrainOptions& options);

@@ -35,8 +35,8 @@ at::Tensor normal_loss(const at::Tensor& pred, const at::Tensor& truth, const at
 //   garment     [V,3] predicted garment vertices
 //   body        [Vb,3] body vertices at the predicted frame
 //   body_faces  [Fb,3] int64 body triangles
-at::Tensor body_collision_loss(const at::Tensor& garment, const at::Tensor& body,
-                               const at::Tensor& body_faces, double eps);
+at::Tensor body_collision_loss(const at::Tensor& garment, const at::Tensor& body, const at::Tensor& body_faces,
+                               double eps);
 
 // Layer collision: the same term for outer-garment vertices against the
 // inner garment surface (inner vertices and faces; with several inner
@@ -44,8 +44,8 @@ at::Tensor body_collision_loss(const at::Tensor& garment, const at::Tensor& body
 //   outer        [Vo,3] outer-garment vertices
 //   inner        [Vi,3] inner-garment vertices
 //   inner_faces  [Fi,3] int64 inner triangles
-at::Tensor layer_collision_loss(const at::Tensor& outer, const at::Tensor& inner,
-                                const at::Tensor& inner_faces, double eps);
+at::Tensor layer_collision_loss(const at::Tensor& outer, const at::Tensor& inner, const at::Tensor& inner_faces,
+                                double eps);
 
 // Area-weighted vertex normals of a mesh (unit length, [V,3]); a vertex of
 // no face, or only of degenerate faces, gets 0. Differentiable; matches

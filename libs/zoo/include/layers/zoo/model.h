@@ -30,15 +30,15 @@ namespace layers::zoo {
 // any integer type and float tensors any floating type; prepare() stores
 // them as int64 and float32.
 struct GarmentStatic {
-  std::string name;       // e.g. "jacket"
-  std::string type;       // jacket, jacket_hood, dress, dress_belt, jumpsuit, tshirt, pants, skirt
-  std::int64_t layer = 0; // 0 = inner, 1 = outer
-  at::Tensor faces;       // [F,3] vertex indices
-  at::Tensor rest;        // [V,3] rest shape
-  at::Tensor uv;          // [U,2]
-  at::Tensor uv_faces;    // [F,3] indices into uv
-  at::Tensor panel;       // [F] sewing-pattern panel of each face
-  at::Tensor attributes;  // [A] mass, tension, compression, shear, bending, friction, self_friction
+  std::string name;        // e.g. "jacket"
+  std::string type;        // jacket, jacket_hood, dress, dress_belt, jumpsuit, tshirt, pants, skirt
+  std::int64_t layer = 0;  // 0 = inner, 1 = outer
+  at::Tensor faces;        // [F,3] vertex indices
+  at::Tensor rest;         // [V,3] rest shape
+  at::Tensor uv;           // [U,2]
+  at::Tensor uv_faces;     // [F,3] indices into uv
+  at::Tensor panel;        // [F] sewing-pattern panel of each face
+  at::Tensor attributes;   // [A] mass, tension, compression, shear, bending, friction, self_friction
 };
 
 // A sequence's static data. `id` must identify it uniquely (e.g. dataset
@@ -68,12 +68,12 @@ struct GarmentState {
 // Everything a step sees besides the static data.
 struct StepInput {
   std::vector<GarmentState> garments;  // in SequenceStatic::garments order
-  at::Tensor body;           // [Vb,3] body vertices at t
-  at::Tensor body_next;      // [Vb,3] body vertices at t+1
-  at::Tensor root;           // [3,3] pelvis translation at t-1, t, t+1
-  at::Tensor root_rot;       // [3,4] pelvis orientation (w,x,y,z) at t-1, t, t+1
-  at::Tensor wind_rotation;  // [2,4] wind rotation (w,x,y,z) at t, t+1
-  at::Tensor wind_strength;  // [2] wind strength (0..400) at t, t+1
+  at::Tensor body;                     // [Vb,3] body vertices at t
+  at::Tensor body_next;                // [Vb,3] body vertices at t+1
+  at::Tensor root;                     // [3,3] pelvis translation at t-1, t, t+1
+  at::Tensor root_rot;                 // [3,4] pelvis orientation (w,x,y,z) at t-1, t, t+1
+  at::Tensor wind_rotation;            // [2,4] wind rotation (w,x,y,z) at t, t+1
+  at::Tensor wind_strength;            // [2] wind strength (0..400) at t, t+1
   // Joint transforms [R|p] at t and t+1 ([J,3,4], LAYERS-H5 body/joints:
   // a point x of the body's rest pose moves to R (x - rest_joint) + p);
   // undefined when absent. A point moves from t to t+1 with joint j as
@@ -89,8 +89,8 @@ struct StepOutput {
 
 // What the trainer tells a model when it asks for auxiliary losses.
 struct TrainingContext {
-  int epoch = 0;            // 0-based
-  std::int64_t step = 0;    // optimiser steps so far
+  int epoch = 0;          // 0-based
+  std::int64_t step = 0;  // optimiser steps so far
 };
 
 // A named scalar loss term.

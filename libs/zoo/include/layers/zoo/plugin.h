@@ -62,16 +62,16 @@ static inline int run_registration(const PluginAbi* host, PluginAbi* plugin, Reg
 }  // namespace plugin_detail
 }  // namespace layers::zoo
 
-#define LAYERS_PLUGIN(registry)                                                                   \
-  static void layers_plugin_body(::layers::zoo::Registry& registry);                              \
-  extern "C" __attribute__((visibility("default"))) int layers_plugin_register(                   \
-      const ::layers::zoo::PluginAbi* layers_host_abi, ::layers::zoo::PluginAbi* layers_plugin_abi, \
-      ::layers::zoo::Registry* layers_registry);                                                  \
-  static_assert(std::is_same_v<decltype(&layers_plugin_register), ::layers::zoo::PluginEntry>);   \
-  extern "C" int layers_plugin_register(const ::layers::zoo::PluginAbi* layers_host_abi,          \
-                                        ::layers::zoo::PluginAbi* layers_plugin_abi,              \
-                                        ::layers::zoo::Registry* layers_registry) {               \
-    return ::layers::zoo::plugin_detail::run_registration(layers_host_abi, layers_plugin_abi,     \
-                                                          layers_registry, &layers_plugin_body);  \
-  }                                                                                               \
+#define LAYERS_PLUGIN(registry)                                                                                \
+  static void layers_plugin_body(::layers::zoo::Registry& registry);                                           \
+  extern "C" __attribute__((visibility("default"))) int layers_plugin_register(                                \
+      const ::layers::zoo::PluginAbi* layers_host_abi, ::layers::zoo::PluginAbi* layers_plugin_abi,            \
+      ::layers::zoo::Registry* layers_registry);                                                               \
+  static_assert(std::is_same_v<decltype(&layers_plugin_register), ::layers::zoo::PluginEntry>);                \
+  extern "C" int layers_plugin_register(const ::layers::zoo::PluginAbi* layers_host_abi,                       \
+                                        ::layers::zoo::PluginAbi* layers_plugin_abi,                           \
+                                        ::layers::zoo::Registry* layers_registry) {                            \
+    return ::layers::zoo::plugin_detail::run_registration(layers_host_abi, layers_plugin_abi, layers_registry, \
+                                                          &layers_plugin_body);                                \
+  }                                                                                                            \
   static void layers_plugin_body(::layers::zoo::Registry& registry)

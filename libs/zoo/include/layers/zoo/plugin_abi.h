@@ -36,7 +36,7 @@ struct PluginAbi {
   std::uint32_t api_version;  // LAYERS_ZOO_API_VERSION
   std::uint32_t cxx11_abi;    // _GLIBCXX_USE_CXX11_ABI
   std::uint32_t pointer_size;
-  char torch_version[24];     // TORCH_VERSION, e.g. "1.13.0"
+  char torch_version[24];  // TORCH_VERSION, e.g. "1.13.0"
   std::uint32_t type_count;
   PluginAbiType types[kPluginAbiTypes];
 };

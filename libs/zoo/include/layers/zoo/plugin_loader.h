@@ -40,10 +40,10 @@ struct PluginProblem {
 };
 
 struct LoadReport {
-  std::vector<std::string> searched;     // directories, in search order
+  std::vector<std::string> searched;  // directories, in search order
   std::vector<LoadedPlugin> loaded;
-  std::vector<PluginProblem> problems;   // plugins refused (print as warnings)
-  std::vector<PluginProblem> shadowed;   // skipped: same file name found earlier
+  std::vector<PluginProblem> problems;  // plugins refused (print as warnings)
+  std::vector<PluginProblem> shadowed;  // skipped: same file name found earlier
 };
 
 // The directories of the search order above that exist, canonical and

@@ -74,8 +74,8 @@ class Registry {
  private:
   friend struct detail::RegistryLoading;
   std::map<std::string, ModelEntry> entries_;
-  std::string loading_;                      // plugin being loaded, if any
-  std::vector<std::string> plugin_errors_;   // reported while loading it
+  std::string loading_;                     // plugin being loaded, if any
+  std::vector<std::string> plugin_errors_;  // reported while loading it
 };
 
 }  // namespace layers::zoo

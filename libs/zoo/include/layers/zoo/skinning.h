@@ -78,8 +78,7 @@ at::Tensor unskin(const at::Tensor& positions, const at::Tensor& skin_index, con
 //   skin_index   [Vb,4] joint indices
 //   skin_weight  [Vb,4] weights
 //   maps         [J,3,4] T-pose -> frame
-double smallest_blend_determinant(const at::Tensor& skin_index, const at::Tensor& skin_weight,
-                                  const at::Tensor& maps);
+double smallest_blend_determinant(const at::Tensor& skin_index, const at::Tensor& skin_weight, const at::Tensor& maps);
 
 // The root joint: the first joint without a parent (0 when parents are
 // not given).

@@ -50,7 +50,6 @@ struct StepMaps {
 
 // All garments at once (concatenated as in `layout`); the input is already
 // checked by Model::step.
-StepMaps step_maps(const GarmentLayout& layout, const zoo::StepInput& input, const zoo::Normalization& norm,
-                   Base base);
+StepMaps step_maps(const GarmentLayout& layout, const zoo::StepInput& input, const zoo::Normalization& norm, Base base);
 
 }  // namespace layers::mgnet

@@ -16,12 +16,12 @@
 namespace layers::mgnet {
 
 struct GarmentLayout {
-  UvSplat splat;                     // images = garments, vertices = all garments' vertices
-  TangentBasis basis;                // the same vertices
-  std::vector<std::int64_t> sizes;   // vertices of each garment
-  at::Tensor rest_offset;            // [V,3] rest position minus the centre of its garment's rest bounding box
-  at::Tensor rest_normal;            // [V,3] normal of the rest frame
-  at::Tensor layer;                  // [G] float: 0 inner, 1 outer
+  UvSplat splat;                    // images = garments, vertices = all garments' vertices
+  TangentBasis basis;               // the same vertices
+  std::vector<std::int64_t> sizes;  // vertices of each garment
+  at::Tensor rest_offset;           // [V,3] rest position minus the centre of its garment's rest bounding box
+  at::Tensor rest_normal;           // [V,3] normal of the rest frame
+  at::Tensor layer;                 // [G] float: 0 inner, 1 outer
 };
 
 // From prepared (validated, converted) static data; InputError (naming the

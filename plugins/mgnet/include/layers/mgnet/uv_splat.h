@@ -24,15 +24,15 @@
 namespace layers::mgnet {
 
 struct UvSplat {
-  std::int64_t resolution = 0;  // R
-  std::int64_t images = 0;      // one per garment
-  std::int64_t vertices = 0;    // 3D vertices, all garments
-  at::Tensor uv;                // [P,2] normalised UV of each UV point, in [0,1]^2
-  at::Tensor vertex;            // [P] int64: the 3D vertex of each UV point
-  at::Tensor pixel;             // [P,4] int64: flat pixel index in [0, images R R)
-  at::Tensor weight;            // [P,4] float: bilinear weights (each row sums to 1)
-  at::Tensor weight_sum;        // [images R R] float: splat weight landing on each pixel
-  at::Tensor points_per_vertex; // [V] float: UV points of each vertex (0 for a vertex in no face)
+  std::int64_t resolution = 0;   // R
+  std::int64_t images = 0;       // one per garment
+  std::int64_t vertices = 0;     // 3D vertices, all garments
+  at::Tensor uv;                 // [P,2] normalised UV of each UV point, in [0,1]^2
+  at::Tensor vertex;             // [P] int64: the 3D vertex of each UV point
+  at::Tensor pixel;              // [P,4] int64: flat pixel index in [0, images R R)
+  at::Tensor weight;             // [P,4] float: bilinear weights (each row sums to 1)
+  at::Tensor weight_sum;         // [images R R] float: splat weight landing on each pixel
+  at::Tensor points_per_vertex;  // [V] float: UV points of each vertex (0 for a vertex in no face)
 };
 
 // One garment's UV points and weights (images = 1), on the device of its
