@@ -17,7 +17,7 @@ struct Params {
 
 class ConstantVelocity : public zoo::Model {
  public:
-  explicit ConstantVelocity(const Params& p) : Model(kConstantVelocityName) {
+  explicit ConstantVelocity(const Params& p) : Model(kConstantVelocity.name) {
     damping_ = register_parameter("damping", at::scalar_tensor(p.damping, at::kFloat));
   }
 

@@ -4,21 +4,13 @@
 // default 0: pure constant velocity). Torch-free declaration.
 #pragma once
 
-#include <memory>
-
-namespace layers::cfg {
-struct Node;
-}
-namespace layers::zoo {
-class Model;
-}
+#include "layers/zoo/registry.h"
 
 namespace layers::test {
 
-inline constexpr const char* kConstantVelocityName = "test_constant_velocity";
-inline constexpr const char* kConstantVelocityDescription =
-    "test model: constant velocity with one learnable damping scalar";
-
 std::shared_ptr<zoo::Model> make_constant_velocity(const cfg::Node& params);
+inline constexpr zoo::ModelSpec kConstantVelocity{"test_constant_velocity",
+                                                  "test model: constant velocity with one learnable damping scalar",
+                                                  make_constant_velocity};
 
 }  // namespace layers::test

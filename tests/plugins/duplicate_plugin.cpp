@@ -6,6 +6,6 @@
 
 LAYERS_PLUGIN(registry) {
   registry.add("test_duplicate_extra", "registered before the duplicate", layers::test::make_constant_velocity);
-  registry.add(layers::test::kConstantVelocityName, "a second model under the good plugin's name",
+  registry.add(layers::test::kConstantVelocity.name, "a second model under the good plugin's name",
                layers::test::make_constant_velocity);
 }

@@ -6,7 +6,4 @@
 // exports only the entry point (test_plugins checks that dlsym misses it).
 extern "C" __attribute__((visibility("default"))) int layers_test_plugin_private_helper() { return 1; }
 
-LAYERS_PLUGIN(registry) {
-  registry.add(layers::test::kConstantVelocityName, layers::test::kConstantVelocityDescription,
-               layers::test::make_constant_velocity);
-}
+LAYERS_PLUGIN(registry) { registry.add(layers::test::kConstantVelocity); }

@@ -5,5 +5,5 @@
 #include "layers/zoo/plugin.h"
 
 LAYERS_PLUGIN(registry) {
-  registry.add("test_wrong_abi", layers::test::kConstantVelocityDescription, layers::test::make_constant_velocity);
+  registry.add("test_wrong_abi", layers::test::kConstantVelocity.description, layers::test::make_constant_velocity);
 }

@@ -6,5 +6,5 @@
 static_assert(LAYERS_ZOO_API_VERSION == 999, "this test plugin must be built for API v999");
 
 LAYERS_PLUGIN(registry) {
-  registry.add("test_wrong_api", layers::test::kConstantVelocityDescription, layers::test::make_constant_velocity);
+  registry.add("test_wrong_api", layers::test::kConstantVelocity.description, layers::test::make_constant_velocity);
 }

@@ -39,6 +39,8 @@ void Registry::add(const std::string& name, const std::string& description, Mode
   entries_.emplace(name, ModelEntry{name, description, path, std::move(factory)});
 }
 
+void Registry::add(const ModelSpec& spec) { add(spec.name, spec.description, spec.make); }
+
 bool Registry::contains(const std::string& name) const { return entries_.count(name) > 0; }
 
 std::vector<std::string> Registry::names() const {

@@ -23,7 +23,7 @@ constexpr std::array<float, kAttributes> kAttributeHi{0.8f, 100, 100, 100, 200, 
 constexpr double kCm2 = 1e4;  // m^2 -> cm^2
 
 [[noreturn]] void fail(const std::string& field, const std::string& expected, const std::string& got) {
-  throw Error(std::string("model '") + kDeepsdName + "': " + field + ": expected " + expected + ", got " + got);
+  throw Error(std::string("model '") + kDeepsd.name + "': " + field + ": expected " + expected + ", got " + got);
 }
 
 at::Tensor scaled_attributes(const at::Tensor& a) {
@@ -54,7 +54,7 @@ struct DeepsdModel::Inputs : Derived {
   mutable std::int64_t cached_version = -1;
 };
 
-DeepsdModel::DeepsdModel(const DeepsdParams& params) : Model(kDeepsdName), params_(params) {
+DeepsdModel::DeepsdModel(const DeepsdParams& params) : Model(kDeepsd.name), params_(params) {
   std::int64_t width = 6;
   for (std::size_t i = 0; i < params_.graph_widths.size(); ++i) {
     graph_.push_back(

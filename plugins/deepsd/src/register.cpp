@@ -2,6 +2,4 @@
 #include "factory.h"
 #include "layers/zoo/plugin.h"
 
-LAYERS_PLUGIN(registry) {
-  registry.add(layers::deepsd::kDeepsdName, layers::deepsd::kDeepsdDescription, layers::deepsd::make_deepsd_model);
-}
+LAYERS_PLUGIN(registry) { registry.add(layers::deepsd::kDeepsd); }

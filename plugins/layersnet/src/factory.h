@@ -2,23 +2,16 @@
 // factory for the registry, torch-free (register.cpp needs no torch).
 #pragma once
 
-#include <memory>
-
-namespace layers::cfg {
-struct Node;
-}
-namespace layers::zoo {
-class Model;
-}
+#include "layers/zoo/registry.h"
 
 namespace layers::layersnet {
 
-inline constexpr const char* kName = "layersnet";
-inline constexpr const char* kDescription =
-    "LayersNet: UV patches + body/wind/gravity/attribute tokens, TIE attention (E^M and E^W heads), "
-    "acceleration decoder";
-
 // Reads the parameters (InputError naming the key) and builds the model.
 std::shared_ptr<zoo::Model> make_layersnet(const cfg::Node& params);
+inline constexpr zoo::ModelSpec kLayersNet{
+    "layersnet",
+    "LayersNet: UV patches + body/wind/gravity/attribute tokens, TIE attention (E^M and E^W heads), "
+    "acceleration decoder",
+    make_layersnet};
 
 }  // namespace layers::layersnet

@@ -38,7 +38,7 @@ struct LayersNet::Cached : Derived {
 };
 
 LayersNet::LayersNet(const Params& params)
-    : Model(kName), params_(params), base_(params.base), learned_blend_(params.blend == Blend::learned) {
+    : Model(kLayersNet.name), params_(params), base_(params.base), learned_blend_(params.blend == Blend::learned) {
   const std::int64_t d = params.width;
   encode_state_ = register_module("encode_state", zoo::Mlp(zoo::MlpOptions(kState + kKinds, {d}, d)));
   encode_attributes_ = register_module("encode_attributes", zoo::Mlp(zoo::MlpOptions(kAttributes, {d}, d)));

@@ -2,6 +2,4 @@
 #include "factory.h"
 #include "layers/zoo/plugin.h"
 
-LAYERS_PLUGIN(registry) {
-  registry.add(layers::layersnet::kName, layers::layersnet::kDescription, layers::layersnet::make_layersnet);
-}
+LAYERS_PLUGIN(registry) { registry.add(layers::layersnet::kLayersNet); }

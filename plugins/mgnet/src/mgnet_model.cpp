@@ -19,7 +19,7 @@ namespace {
 
 class MGNet : public zoo::Model {
  public:
-  explicit MGNet(const Params& p) : Model(kName), params_(p), base_(p.base) {
+  explicit MGNet(const Params& p) : Model(kMgnet.name), params_(p), base_(p.base) {
     state_encoder_ = register_module("state_encoder",
                                      std::make_shared<UvEncoder>(kStateChannels, p.channels, p.resolution, p.latent));
     dynamic_encoder_ = register_module(

@@ -2,4 +2,4 @@
 #include "layers/mgnet/mgnet.h"
 #include "layers/zoo/plugin.h"
 
-LAYERS_PLUGIN(registry) { registry.add(layers::mgnet::kName, layers::mgnet::kDescription, layers::mgnet::make_mgnet); }
+LAYERS_PLUGIN(registry) { registry.add(layers::mgnet::kMgnet); }

@@ -2,7 +2,4 @@
 #include "layers/zoo/plugin.h"
 #include "skinned_model.h"
 
-LAYERS_PLUGIN(registry) {
-  registry.add(layers::reference::kSkinnedName, layers::reference::kSkinnedDescription,
-               layers::reference::make_skinned_model);
-}
+LAYERS_PLUGIN(registry) { registry.add(layers::reference::kSkinned); }

@@ -15,7 +15,7 @@ namespace layers::reference {
 namespace {
 
 [[noreturn]] void fail(const std::string& field, const std::string& expected, const std::string& got) {
-  throw Error(std::string("model '") + kSkinnedName + "': " + field + ": expected " + expected + ", got " + got);
+  throw Error(std::string("model '") + kSkinned.name + "': " + field + ": expected " + expected + ", got " + got);
 }
 
 // Refuses positions that are not finite; `field` names them.
@@ -26,7 +26,7 @@ void check_finite(const at::Tensor& t, const std::string& field) {
 
 class SkinnedModel : public zoo::Model {
  public:
-  SkinnedModel() : Model(kSkinnedName) {}
+  SkinnedModel() : Model(kSkinned.name) {}
 
   cfg::Node config() const override { return cfg::to_node(zoo::NoParams{}); }
 

@@ -23,22 +23,14 @@
 // Torch-free declaration.
 #pragma once
 
-#include <memory>
-
-namespace layers::cfg {
-struct Node;
-}
-namespace layers::zoo {
-class Model;
-}
+#include "layers/zoo/registry.h"
 
 namespace layers::reference {
 
-inline constexpr const char* kSkinnedName = "skinned";
-inline constexpr const char* kSkinnedDescription =
-    "reference: garment vertices follow their nearest body vertex's skinning (no parameters)";
-
 // `params` must be empty (or absent); any key is a layers::InputError.
 std::shared_ptr<zoo::Model> make_skinned_model(const cfg::Node& params);
+inline constexpr zoo::ModelSpec kSkinned{
+    "skinned", "reference: garment vertices follow their nearest body vertex's skinning (no parameters)",
+    make_skinned_model};
 
 }  // namespace layers::reference

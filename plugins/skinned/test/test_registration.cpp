@@ -5,5 +5,5 @@
 #include "skinned_model.h"
 
 TEST(ReferencePlugins, SkinnedPluginAndConfig) {
-  layers::test::expect_plugin_and_config(layers::reference::kSkinnedName, layers::reference::kSkinnedDescription);
+  layers::test::expect_plugin_and_config(layers::reference::kSkinned.name, layers::reference::kSkinned.description);
 }

@@ -2,7 +2,4 @@
 #include "layers/zoo/plugin.h"
 #include "static_model.h"
 
-LAYERS_PLUGIN(registry) {
-  registry.add(layers::reference::kStaticName, layers::reference::kStaticDescription,
-               layers::reference::make_static_model);
-}
+LAYERS_PLUGIN(registry) { registry.add(layers::reference::kStatic); }

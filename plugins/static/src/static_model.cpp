@@ -12,7 +12,7 @@ namespace {
 
 class StaticModel : public zoo::Model {
  public:
-  StaticModel() : Model(kStaticName) {}
+  StaticModel() : Model(kStatic.name) {}
 
   cfg::Node config() const override { return cfg::to_node(zoo::NoParams{}); }
 

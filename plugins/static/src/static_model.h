@@ -7,22 +7,14 @@
 // Torch-free declaration.
 #pragma once
 
-#include <memory>
-
-namespace layers::cfg {
-struct Node;
-}
-namespace layers::zoo {
-class Model;
-}
+#include "layers/zoo/registry.h"
 
 namespace layers::reference {
 
-inline constexpr const char* kStaticName = "static";
-inline constexpr const char* kStaticDescription =
-    "reference: garments move rigidly with the body root from the last frame (no parameters)";
-
 // `params` must be empty (or absent); any key is a layers::InputError.
 std::shared_ptr<zoo::Model> make_static_model(const cfg::Node& params);
+inline constexpr zoo::ModelSpec kStatic{
+    "static", "reference: garments move rigidly with the body root from the last frame (no parameters)",
+    make_static_model};
 
 }  // namespace layers::reference

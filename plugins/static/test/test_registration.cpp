@@ -4,5 +4,5 @@
 #include "static_model.h"
 
 TEST(ReferencePlugins, StaticPluginAndConfig) {
-  layers::test::expect_plugin_and_config(layers::reference::kStaticName, layers::reference::kStaticDescription);
+  layers::test::expect_plugin_and_config(layers::reference::kStatic.name, layers::reference::kStatic.description);
 }

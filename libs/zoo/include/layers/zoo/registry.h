@@ -25,6 +25,14 @@ class Model;
 // (cfg::read does that for typed parameter structs).
 using ModelFactory = std::function<std::shared_ptr<Model>(const cfg::Node& params)>;
 
+// A model as its plugin declares it (next to the model, torch-free):
+// registry name, one-line description, factory.
+struct ModelSpec {
+  const char* name;
+  const char* description;
+  std::shared_ptr<Model> (*make)(const cfg::Node& params);
+};
+
 struct ModelEntry {
   std::string name;
   std::string description;  // one line, shown by `layers models`
@@ -49,6 +57,9 @@ class Registry {
   // naming both plugin files.
   void add(const std::string& name, const std::string& description, ModelFactory factory,
            const std::string& plugin_path = "");
+
+  // add(spec.name, spec.description, spec.make).
+  void add(const ModelSpec& spec);
 
   bool contains(const std::string& name) const;
   // Registered names, sorted.

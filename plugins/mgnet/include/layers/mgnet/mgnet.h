@@ -3,23 +3,15 @@
 // registration and the tests create it through this factory.
 #pragma once
 
-#include <memory>
-
-namespace layers::cfg {
-struct Node;
-}
-namespace layers::zoo {
-class Model;
-}
+#include "layers/zoo/registry.h"
 
 namespace layers::mgnet {
-
-inline constexpr const char* kName = "mgnet";
-inline constexpr const char* kDescription =
-    "MGNet: UV-image conv encoder/decoder, displacement in tangent frames (garment-specific baseline)";
 
 // Reads the parameters (layers/mgnet/params.h; InputError on bad ones) and
 // builds the model with freshly initialised weights (torch's global RNG).
 std::shared_ptr<zoo::Model> make_mgnet(const cfg::Node& params);
+inline constexpr zoo::ModelSpec kMgnet{
+    "mgnet", "MGNet: UV-image conv encoder/decoder, displacement in tangent frames (garment-specific baseline)",
+    make_mgnet};
 
 }  // namespace layers::mgnet
