@@ -58,7 +58,7 @@ DeepsdModel::DeepsdModel(const DeepsdParams& params) : Model(kDeepsd.name), para
   std::int64_t width = 6;
   for (std::size_t i = 0; i < params_.graph_widths.size(); ++i) {
     graph_.push_back(
-        register_module("graph" + std::to_string(i), std::make_shared<GraphLayer>(width, params_.graph_widths[i])));
+        register_module("graph" + std::to_string(i), GraphLayer(GraphLayerOptions(width, params_.graph_widths[i]))));
     width = params_.graph_widths[i];
   }
   const std::int64_t descriptor = 2 * width + kAttributes;

@@ -85,7 +85,7 @@ class DeepsdModel : public zoo::Model {
   std::vector<at::Tensor> prior_targets(const Inputs& inputs);
 
   DeepsdParams params_;
-  std::vector<std::shared_ptr<GraphLayer>> graph_;
+  std::vector<GraphLayer> graph_;
   zoo::Mlp weight_head_{nullptr}, deformation_head_{nullptr}, pose_head_{nullptr};
 
   // What the last step produced, for auxiliary_losses().

@@ -7,11 +7,11 @@
 
 namespace layers::deepsd {
 
-GraphLayer::GraphLayer(std::int64_t in, std::int64_t out) {
-  linear_ = register_module("linear", torch::nn::Linear(2 * in, out));
+GraphLayerImpl::GraphLayerImpl(const GraphLayerOptions& options) {
+  linear_ = register_module("linear", torch::nn::Linear(2 * options.in(), options.out()));
 }
 
-at::Tensor GraphLayer::forward(const at::Tensor& h, const GarmentGraph& graph) {
+at::Tensor GraphLayerImpl::forward(const at::Tensor& h, const GarmentGraph& graph) {
   return at::relu(linear_->forward(at::cat({h, mean_over_neighbours(h, graph)}, 1)));
 }
 

@@ -11,21 +11,32 @@
 
 #include <cstdint>
 
+#include <torch/arg.h>
 #include <torch/nn/module.h>
 #include <torch/nn/modules/linear.h>
+#include <torch/nn/pimpl.h>
 
 #include "topology.h"
 
 namespace layers::layersnet {
 
-class Decoder : public torch::nn::Module {
+struct DecoderOptions {
+  DecoderOptions(std::int64_t vertex_features, std::int64_t width) : vertex_features_(vertex_features), width_(width) {}
+  TORCH_ARG(std::int64_t, vertex_features);  // per-vertex input features f
+  TORCH_ARG(std::int64_t, width);            // patch token width
+  TORCH_ARG(std::int64_t, outputs) = 3;      // acceleration (3), plus a gate logit (4)
+};
+
+class DecoderImpl : public torch::nn::Module {
  public:
-  Decoder(std::int64_t vertex_features, std::int64_t width, std::int64_t outputs = 3);
+  explicit DecoderImpl(const DecoderOptions& options);
   // vertex_features [V,f], patches [P,width] -> [V,outputs].
   at::Tensor forward(const at::Tensor& vertex_features, const at::Tensor& patches, const SceneTopology& t);
 
  private:
   torch::nn::Linear vertex_in_, patch_in_, hidden_, out_;
 };
+
+TORCH_MODULE(Decoder);
 
 }  // namespace layers::layersnet

@@ -43,11 +43,11 @@ LayersNet::LayersNet(const Params& params)
   encode_state_ = register_module("encode_state", zoo::Mlp(zoo::MlpOptions(kState + kKinds, {d}, d)));
   encode_attributes_ = register_module("encode_attributes", zoo::Mlp(zoo::MlpOptions(kAttributes, {d}, d)));
   encode_wind_ = register_module("encode_wind", zoo::Mlp(zoo::MlpOptions(kWindFeatures, {d}, d)));
-  decoder_ = register_module("decoder", std::make_shared<Decoder>(kState + kNearBody, d, learned_blend_ ? 4 : 3));
+  decoder_ = register_module("decoder", Decoder(DecoderOptions(kState + kNearBody, d).outputs(learned_blend_ ? 4 : 3)));
   gravity_ = register_parameter("gravity", at::randn({1, d}) * 0.1);
   integration_ = make_integration_base(params.base);
   for (std::int64_t b = 0; b < params.blocks; ++b)
-    blocks_.push_back(register_module("block" + std::to_string(b), std::make_shared<TieBlock>(d, params.heads)));
+    blocks_.push_back(register_module("block" + std::to_string(b), TieBlock(TieBlockOptions(d, params.heads))));
 }
 
 LayersNet::~LayersNet() = default;
@@ -177,7 +177,7 @@ LayersNet::Encoded LayersNet::encode(const StepContext& c, const zoo::StepInput&
 }
 
 void LayersNet::process(Encoded& e) {
-  for (const auto& block : blocks_) e.patches = block->forward(e.patches, e.abstract_tokens, e.body_tokens, e.graph);
+  for (auto& block : blocks_) e.patches = block->forward(e.patches, e.abstract_tokens, e.body_tokens, e.graph);
 }
 
 at::Tensor LayersNet::integrate(const StepContext& c, const Encoded& e, const zoo::StepInput& in) {

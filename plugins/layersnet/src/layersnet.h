@@ -67,9 +67,9 @@ class LayersNet : public zoo::Model {
   bool learned_blend_;
   StepCounts counts_;
   zoo::Mlp encode_state_{nullptr}, encode_attributes_{nullptr}, encode_wind_{nullptr};
-  std::shared_ptr<Decoder> decoder_;
+  Decoder decoder_{nullptr};
   at::Tensor gravity_;  // [1,width] learned token
-  std::vector<std::shared_ptr<TieBlock>> blocks_;
+  std::vector<TieBlock> blocks_;
   std::unique_ptr<IntegrationBase> integration_;  // by params_.base
 };
 

@@ -5,21 +5,21 @@
 
 namespace layers::layersnet {
 
-TieBlock::TieBlock(std::int64_t width, std::int64_t heads)
-    : heads_(heads),
-      receiver_(register_module("receiver", torch::nn::Linear(width, width))),
-      sender_(register_module("sender", torch::nn::Linear(width, width))),
-      query_(register_module("query", torch::nn::Linear(width, width))),
-      key_(register_module("key", torch::nn::Linear(width, width))),
-      value_(register_module("value", torch::nn::Linear(width, width))),
-      out_(register_module("out", torch::nn::Linear(width, width))),
-      ffn_in_(register_module("ffn_in", torch::nn::Linear(width, 2 * width))),
-      ffn_out_(register_module("ffn_out", torch::nn::Linear(2 * width, width))),
-      norm_attn_(register_module("norm_attn", torch::nn::LayerNorm(torch::nn::LayerNormOptions({width})))),
-      norm_ffn_(register_module("norm_ffn", torch::nn::LayerNorm(torch::nn::LayerNormOptions({width})))) {}
+TieBlockImpl::TieBlockImpl(const TieBlockOptions& options)
+    : heads_(options.heads()),
+      receiver_(register_module("receiver", torch::nn::Linear(options.width(), options.width()))),
+      sender_(register_module("sender", torch::nn::Linear(options.width(), options.width()))),
+      query_(register_module("query", torch::nn::Linear(options.width(), options.width()))),
+      key_(register_module("key", torch::nn::Linear(options.width(), options.width()))),
+      value_(register_module("value", torch::nn::Linear(options.width(), options.width()))),
+      out_(register_module("out", torch::nn::Linear(options.width(), options.width()))),
+      ffn_in_(register_module("ffn_in", torch::nn::Linear(options.width(), 2 * options.width()))),
+      ffn_out_(register_module("ffn_out", torch::nn::Linear(2 * options.width(), options.width()))),
+      norm_attn_(register_module("norm_attn", torch::nn::LayerNorm(torch::nn::LayerNormOptions({options.width()})))),
+      norm_ffn_(register_module("norm_ffn", torch::nn::LayerNorm(torch::nn::LayerNormOptions({options.width()})))) {}
 
-at::Tensor TieBlock::forward(const at::Tensor& patches, const at::Tensor& abstract, const at::Tensor& body,
-                             const SenderGraph& graph) {
+at::Tensor TieBlockImpl::forward(const at::Tensor& patches, const at::Tensor& abstract, const at::Tensor& body,
+                                 const SenderGraph& graph) {
   TieSenders senders;
   senders.dense = sender_->forward(at::cat({patches, abstract}, 0));
   senders.dense_mask = graph.dense_mask;

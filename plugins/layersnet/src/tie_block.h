@@ -9,9 +9,11 @@
 
 #include <cstdint>
 
+#include <torch/arg.h>
 #include <torch/nn/module.h>
 #include <torch/nn/modules/linear.h>
 #include <torch/nn/modules/normalization.h>
+#include <torch/nn/pimpl.h>
 
 namespace layers::layersnet {
 
@@ -23,9 +25,15 @@ struct SenderGraph {
   at::Tensor body_mask;   // [2,P,K]
 };
 
-class TieBlock : public torch::nn::Module {
+struct TieBlockOptions {
+  TieBlockOptions(std::int64_t width, std::int64_t heads) : width_(width), heads_(heads) {}
+  TORCH_ARG(std::int64_t, width);  // token width d
+  TORCH_ARG(std::int64_t, heads);  // attention heads: half E^M, half E^W
+};
+
+class TieBlockImpl : public torch::nn::Module {
  public:
-  TieBlock(std::int64_t width, std::int64_t heads);
+  explicit TieBlockImpl(const TieBlockOptions& options);
   // One block over the patch tokens; returns the patches [P,d].
   //   patches   [P,d] patch tokens (receivers)
   //   abstract  [A,d] gravity, wind and attribute tokens
@@ -38,5 +46,7 @@ class TieBlock : public torch::nn::Module {
   torch::nn::Linear receiver_, sender_, query_, key_, value_, out_, ffn_in_, ffn_out_;
   torch::nn::LayerNorm norm_attn_, norm_ffn_;
 };
+
+TORCH_MODULE(TieBlock);
 
 }  // namespace layers::layersnet

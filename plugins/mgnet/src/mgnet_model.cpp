@@ -21,10 +21,10 @@ class MGNet : public zoo::Model {
  public:
   explicit MGNet(const Params& p) : Model(kMgnet.name), params_(p), base_(p.base) {
     state_encoder_ = register_module("state_encoder",
-                                     std::make_shared<UvEncoder>(kStateChannels, p.channels, p.resolution, p.latent));
+                                     UvEncoder(UvEncoderOptions(kStateChannels, p.channels, p.resolution, p.latent)));
     dynamic_encoder_ = register_module(
-        "dynamic_encoder", std::make_shared<UvEncoder>(kDynamicChannels, p.channels, p.resolution, p.latent));
-    decoder_ = register_module("decoder", std::make_shared<UvDecoder>(2 * p.latent, p.channels, p.resolution, 3));
+        "dynamic_encoder", UvEncoder(UvEncoderOptions(kDynamicChannels, p.channels, p.resolution, p.latent)));
+    decoder_ = register_module("decoder", UvDecoder(UvDecoderOptions(2 * p.latent, p.channels, p.resolution, 3)));
   }
 
   cfg::Node config() const override { return cfg::to_node(params_); }
@@ -58,8 +58,8 @@ class MGNet : public zoo::Model {
  private:
   Params params_;
   Base base_;
-  std::shared_ptr<UvEncoder> state_encoder_, dynamic_encoder_;
-  std::shared_ptr<UvDecoder> decoder_;
+  UvEncoder state_encoder_{nullptr}, dynamic_encoder_{nullptr};
+  UvDecoder decoder_{nullptr};
 };
 
 }  // namespace

@@ -23,8 +23,9 @@ at::Tensor zero_bias(torch::nn::Module& m, const std::string& name, std::int64_t
 
 }  // namespace
 
-UvEncoder::UvEncoder(std::int64_t in_channels, const std::vector<std::int64_t>& channels, std::int64_t resolution,
-                     std::int64_t latent) {
+UvEncoderImpl::UvEncoderImpl(const UvEncoderOptions& options) {
+  const std::vector<std::int64_t>& channels = options.channels();
+  const std::int64_t in_channels = options.in_channels(), resolution = options.resolution(), latent = options.latent();
   std::int64_t in = in_channels, side = resolution;
   for (std::size_t i = 0; i < channels.size(); ++i) {
     const std::string id = std::to_string(i);
@@ -38,15 +39,16 @@ UvEncoder::UvEncoder(std::int64_t in_channels, const std::vector<std::int64_t>& 
   head_bias_ = zero_bias(*this, "head_bias", latent);
 }
 
-at::Tensor UvEncoder::forward(const at::Tensor& images) const {
+at::Tensor UvEncoderImpl::forward(const at::Tensor& images) const {
   at::Tensor x = images;
   for (std::size_t i = 0; i < weight_.size(); ++i) x = at::silu(at::conv2d(x, weight_[i], bias_[i], 2, 1));
   return at::linear(x.flatten(1), head_weight_, head_bias_);
 }
 
-UvDecoder::UvDecoder(std::int64_t code_size, const std::vector<std::int64_t>& channels, std::int64_t resolution,
-                     std::int64_t out_channels)
-    : coarse_(resolution >> channels.size()) {
+UvDecoderImpl::UvDecoderImpl(const UvDecoderOptions& options)
+    : coarse_(options.resolution() >> options.channels().size()) {
+  const std::vector<std::int64_t>& channels = options.channels();
+  const std::int64_t code_size = options.code_size(), out_channels = options.out_channels();
   const std::int64_t last = channels.back(), flat = last * coarse_ * coarse_;
   head_weight_ = he_uniform(*this, "head_weight", {flat, code_size}, double(code_size));
   head_bias_ = zero_bias(*this, "head_bias", flat);
@@ -63,7 +65,7 @@ UvDecoder::UvDecoder(std::int64_t code_size, const std::vector<std::int64_t>& ch
   out_bias_ = zero_bias(*this, "out_bias", out_channels);
 }
 
-at::Tensor UvDecoder::forward(const at::Tensor& code) const {
+at::Tensor UvDecoderImpl::forward(const at::Tensor& code) const {
   at::Tensor x = at::silu(at::linear(code, head_weight_, head_bias_));
   x = x.reshape({code.size(0), -1, coarse_, coarse_});
   for (std::size_t i = 0; i < weight_.size(); ++i) x = at::silu(at::conv_transpose2d(x, weight_[i], bias_[i], 2, 1));

@@ -9,19 +9,31 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include <ATen/ATen.h>
+#include <torch/arg.h>
 #include <torch/nn/module.h>
+#include <torch/nn/pimpl.h>
 
 namespace layers::mgnet {
 
-class UvEncoder : public torch::nn::Module {
+struct UvEncoderOptions {
+  UvEncoderOptions(std::int64_t in_channels, std::vector<std::int64_t> channels, std::int64_t resolution,
+                   std::int64_t latent)
+      : in_channels_(in_channels), channels_(std::move(channels)), resolution_(resolution), latent_(latent) {}
+  TORCH_ARG(std::int64_t, in_channels);
+  TORCH_ARG(std::vector<std::int64_t>, channels);  // per stride-2 stage
+  TORCH_ARG(std::int64_t, resolution);             // image side, divisible by 2^stages
+  TORCH_ARG(std::int64_t, latent);
+};
+
+class UvEncoderImpl : public torch::nn::Module {
  public:
   // Images of `in_channels` x resolution x resolution; channels per stage
   // (resolution divisible by 2^stages, checked by read_params()).
-  UvEncoder(std::int64_t in_channels, const std::vector<std::int64_t>& channels, std::int64_t resolution,
-            std::int64_t latent);
+  explicit UvEncoderImpl(const UvEncoderOptions& options);
   // [G,in,R,R] -> [G,latent]
   at::Tensor forward(const at::Tensor& images) const;
 
@@ -30,12 +42,23 @@ class UvEncoder : public torch::nn::Module {
   at::Tensor head_weight_, head_bias_;
 };
 
-class UvDecoder : public torch::nn::Module {
+TORCH_MODULE(UvEncoder);
+
+struct UvDecoderOptions {
+  UvDecoderOptions(std::int64_t code_size, std::vector<std::int64_t> channels, std::int64_t resolution,
+                   std::int64_t out_channels)
+      : code_size_(code_size), channels_(std::move(channels)), resolution_(resolution), out_channels_(out_channels) {}
+  TORCH_ARG(std::int64_t, code_size);
+  TORCH_ARG(std::vector<std::int64_t>, channels);  // the mirrored encoder's stages
+  TORCH_ARG(std::int64_t, resolution);
+  TORCH_ARG(std::int64_t, out_channels);
+};
+
+class UvDecoderImpl : public torch::nn::Module {
  public:
   // A code of `code_size` -> `out_channels` x resolution x resolution,
   // mirroring an encoder with these stage channels.
-  UvDecoder(std::int64_t code_size, const std::vector<std::int64_t>& channels, std::int64_t resolution,
-            std::int64_t out_channels);
+  explicit UvDecoderImpl(const UvDecoderOptions& options);
   // [G,code] -> [G,out,R,R]
   at::Tensor forward(const at::Tensor& code) const;
 
@@ -45,5 +68,7 @@ class UvDecoder : public torch::nn::Module {
   std::vector<at::Tensor> weight_, bias_;  // transposed convolutions
   at::Tensor out_weight_, out_bias_;
 };
+
+TORCH_MODULE(UvDecoder);
 
 }  // namespace layers::mgnet
