@@ -18,14 +18,13 @@ if ! command -v "$formatter" >/dev/null; then
 fi
 cd "$root"
 mapfile -d '' files < <(find apps bench libs plugins tests -type f \( -name '*.cpp' -o -name '*.h' \) -print0 | sort -z)
-bad=()
-for f in "${files[@]}"; do
-  if [ "$fix" = 1 ]; then
-    "$formatter" --style=file -i "$f"
-  elif ! "$formatter" --style=file "$f" | cmp -s - "$f"; then
-    bad+=("$f")
-  fi
-done
+if [ "$fix" = 1 ]; then
+  "$formatter" --style=file -i "${files[@]}"
+  exit 0
+fi
+# One formatter process for the whole tree; it names each file that differs.
+report="$("$formatter" --style=file --dry-run "${files[@]}" 2>&1 || true)"
+mapfile -t bad < <(printf '%s\n' "$report" | sed -n 's/^\(.*\):[0-9]*:[0-9]*: warning: code should be clang-formatted.*/\1/p' | sort -u)
 if [ ${#bad[@]} -gt 0 ]; then
   echo "check_format: ${#bad[@]} of ${#files[@]} files differ from .clang-format ($("$formatter" --version | head -1)):" >&2
   printf '  %s\n' "${bad[@]}" >&2

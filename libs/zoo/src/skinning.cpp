@@ -94,11 +94,15 @@ at::Tensor nearest_body_vertex(const at::Tensor& points, const at::Tensor& body)
   return at::from_blob(nearest.data(), {nearest.size()}, at::kInt).to(points.device(), at::kLong);
 }
 
+SkinBinding skin_of_rows(const at::Tensor& rows, const at::Tensor& skin_index, const at::Tensor& skin_weight) {
+  const at::Tensor r = rows.to(skin_index.device());
+  const at::Tensor w = skin_weight.index_select(0, r);
+  return {skin_index.index_select(0, r), w / w.sum(1, /*keepdim=*/true)};
+}
+
 SkinBinding bind_to_nearest_skin(const at::Tensor& points, const at::Tensor& body, const at::Tensor& skin_index,
                                  const at::Tensor& skin_weight) {
-  const at::Tensor rows = nearest_body_vertex(points, body).to(skin_index.device());
-  const at::Tensor w = skin_weight.index_select(0, rows);
-  return {skin_index.index_select(0, rows), w / w.sum(1, /*keepdim=*/true)};
+  return skin_of_rows(nearest_body_vertex(points, body), skin_index, skin_weight);
 }
 
 }  // namespace layers::zoo

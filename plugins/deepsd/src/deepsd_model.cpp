@@ -203,8 +203,16 @@ std::vector<at::Tensor> DeepsdModel::prior_targets(const Inputs& in) {
   if (!at::isfinite(body).all().item<bool>())
     fail("weight prior", "a body that maps back to the T-pose (invertible blended joint rotations)", "NaN");
   const at::Tensor weights = zoo::dense_weights(s.skin_index, s.skin_weight, params_.joints);
-  for (const Inputs::Garment& g : in.garments)
-    in.prior_targets.push_back(weights.index_select(0, zoo::nearest_body_vertex(g.rest, body).to(weights.device())));
+  if (in.garments.empty()) return in.prior_targets;
+  // One k-d tree over the T-pose body for every garment's rest vertices.
+  std::vector<at::Tensor> rests;
+  std::vector<std::int64_t> sizes;
+  for (const Inputs::Garment& g : in.garments) {
+    rests.push_back(g.rest);
+    sizes.push_back(g.rest.size(0));
+  }
+  const at::Tensor rows = zoo::nearest_body_vertex(at::cat(rests), body).to(weights.device());
+  for (const at::Tensor& r : rows.split_with_sizes(sizes)) in.prior_targets.push_back(weights.index_select(0, r));
   return in.prior_targets;
 }
 

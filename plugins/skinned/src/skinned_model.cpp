@@ -67,7 +67,7 @@ class SkinnedModel : public zoo::Model {
                            "a sum of " + std::to_string(smallest));
         }
       }
-      zoo::SkinBinding b = zoo::bind_to_nearest_skin(current, in.body, s.skin_index, s.skin_weight);
+      zoo::SkinBinding b = zoo::skin_of_rows(rows, s.skin_index, s.skin_weight);
       if (rows.size(0) > 0) {
         lo = std::min(lo, b.joint.min().item<std::int64_t>());
         binding->max_joint = std::max(binding->max_joint, b.joint.max().item<std::int64_t>());

@@ -96,9 +96,12 @@ struct SkinBinding {
   at::Tensor weight;  // [V,4], rows sum to 1
 };
 
-// Binds each point to the four skinning joints and weights of its nearest
-// body vertex, weights renormalised per row. The caller checks that every
+// The skinning joints and weights of body vertices `rows` [V] (int64),
+// weights renormalised per row. The caller checks that every selected
 // weight sum is positive (SkinBinding::weight is finite then).
+SkinBinding skin_of_rows(const at::Tensor& rows, const at::Tensor& skin_index, const at::Tensor& skin_weight);
+
+// skin_of_rows of each point's nearest body vertex.
 //   points       [V,3] where the points are, in the body's frame
 //   body         [Vb,3] body vertices in that frame
 //   skin_index   [Vb,4] int64 joint indices
