@@ -7,8 +7,8 @@
 #include <filesystem>
 
 #include "file_bytes.h"
-#include "regression_paths.h"
 #include "run_command.h"
+#include "synthetic_fixture.h"
 #include "temp_dir.h"
 
 namespace fs = std::filesystem;
@@ -28,8 +28,7 @@ test::CommandResult train(const std::string& experiment, const std::string& extr
 
 TEST(CliTrain, ExistingRunIsNeverOverwrittenOrLost) {
   test::TempDir dir("layers-cli-train");
-  const std::string data = regression::unpack_fixture(dir.path());
-  ASSERT_FALSE(data.empty());
+  const std::string data = regression::write_fixture(dir.path());
   const std::string run = dir.file("run");
   const std::string experiment =
       dir.write("exp.yaml",

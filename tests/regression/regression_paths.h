@@ -1,5 +1,5 @@
 // tests/regression/regression_paths.h -- where the regression tests find
-// their committed inputs (the fixture dataset, goldens, tolerances), the
+// their committed inputs (generator settings, goldens, tolerances), the
 // switch that rewrites goldens on purpose, and the sha256 they print so
 // that two machines can compare the data they used.
 #pragma once
@@ -14,9 +14,8 @@
 namespace layers::regression {
 
 inline std::string regression_dir() { return test::source_dir() + "/tests/regression"; }
-// The committed dataset the model goldens run on (docs/studies.md): a
-// folder `fixture/` packed with tar + xz by make_fixture.sh.
-inline std::string fixture_archive() { return regression_dir() + "/fixture.tar.xz"; }
+// The generator settings of the generator's regression (tiny's scenes).
+inline std::string generator_config() { return regression_dir() + "/generator.yaml"; }
 inline std::string golden_file(const std::string& run) { return regression_dir() + "/goldens/" + run + ".json"; }
 inline std::string tolerances_file() { return regression_dir() + "/tolerances.yaml"; }
 
@@ -24,20 +23,6 @@ inline std::string tolerances_file() { return regression_dir() + "/tolerances.ya
 inline bool updating_goldens() {
   const char* v = std::getenv("LAYERS_UPDATE_GOLDENS");
   return v && *v && std::string(v) != "0";
-}
-
-// Unpacks the fixture into <parent>/fixture (kept when already there);
-// returns that folder, or "" after printing why it failed.
-inline std::string unpack_fixture(const std::string& parent) {
-  const std::string dir = parent + "/fixture";
-  if (test::run_command("test -f '" + dir + "/dataset.yaml'").exit_code == 0) return dir;
-  const test::CommandResult r =
-      test::run_command("mkdir -p '" + parent + "' && tar -xJf '" + fixture_archive() + "' -C '" + parent + "'");
-  if (r.exit_code != 0) {
-    std::fprintf(stderr, "cannot unpack %s: %s\n", fixture_archive().c_str(), r.output.c_str());
-    return "";
-  }
-  return dir;
 }
 
 // Hex sha256 of a file (coreutils' sha256sum), or "unreadable".

@@ -1,6 +1,6 @@
 // The CI regression test of the models (docs/studies.md): `layers run
-// tests/regression/study.yaml` in a temporary folder on a copy of the
-// committed fixture dataset (tests/regression/fixture.tar.xz, 7 MB), a very
+// tests/regression/study.yaml` in a temporary folder on the synthetic
+// fixture dataset the test writes there (synthetic_fixture.h), a very
 // short deterministic train -> eval of every model whose plugin is built,
 // then each run's eval-test/metrics.json against goldens/<run>.json within
 // tolerances.yaml. The data are fixed, so the goldens depend only on the
@@ -34,6 +34,7 @@
 #include "layers/zoo/registry.h"
 #include "regression_paths.h"
 #include "run_command.h"
+#include "synthetic_fixture.h"
 #include "temp_dir.h"
 
 namespace fs = std::filesystem;
@@ -53,7 +54,7 @@ std::string layers_command(const std::string& args) {
 struct Regression {
   std::unique_ptr<test::TempDir> temp;
   std::string work;                             // output and data live here
-  std::string data;                             // the unpacked fixture dataset
+  std::string data;                             // the written fixture dataset
   std::map<std::string, std::string> model_of;  // run -> model name
   std::set<std::string> built;                  // runs whose model is registered
   test::CommandResult result;
@@ -80,9 +81,8 @@ struct Regression {
         r.temp = std::make_unique<test::TempDir>("layers-regression");
         r.work = r.temp->path();
       }
-      // The committed fixture, unpacked here: nothing in the source tree is written.
-      r.data = regression::unpack_fixture(r.work);
-      if (r.data.empty()) throw Error("cannot unpack " + regression::fixture_archive());
+      // The synthetic fixture, written here: nothing in the source tree is written.
+      r.data = regression::write_fixture(r.work);
       for (const char* f : {"shard-00000.h5", "splits.yaml"})
         std::printf("regression data: %s sha256 %s\n", f, regression::sha256_of(r.data + "/" + f).c_str());
       zoo::Registry registry;
