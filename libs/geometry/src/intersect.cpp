@@ -142,4 +142,12 @@ MeshCrossings crossings(const TriMesh& a, const FaceTree& tree) {
   return out;
 }
 
+MeshCrossings body_crossings(const std::vector<TriMesh>& garments, const TriMesh& body) {
+  return crossings(concatenate(garments), body);
+}
+
+MeshCrossings layer_crossings(const std::vector<TriMesh>& outer, const std::vector<TriMesh>& inner) {
+  return crossings(concatenate(outer), concatenate(inner));
+}
+
 }  // namespace layers::geometry

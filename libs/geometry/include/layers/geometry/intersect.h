@@ -74,4 +74,15 @@ struct MeshCrossings {
 MeshCrossings crossings(const TriMesh& a, const FaceTree& b);
 inline MeshCrossings crossings(const TriMesh& a, const TriMesh& b) { return crossings(a, FaceTree(b)); }
 
+// The two crossing measures of docs/metrics.md, shared by the generator's
+// validation, `layers validate --physics` and every evaluation:
+//  - body crossings: every garment (as one mesh, vertices in order) against
+//    the body; a_vertex_share() is the share of garment vertices on a
+//    garment face that passes through the body surface.
+//  - layer crossings: the outer garments against the inner ones; the share
+//    of outer vertices on an outer face that passes through an inner face.
+//    Garments of one layer are not tested against each other.
+MeshCrossings body_crossings(const std::vector<TriMesh>& garments, const TriMesh& body);
+MeshCrossings layer_crossings(const std::vector<TriMesh>& outer, const std::vector<TriMesh>& inner);
+
 }  // namespace layers::geometry
