@@ -119,10 +119,7 @@ double MeshCrossings::a_vertex_share() const {
   return static_cast<double>(a_vertices_on_crossings()) / static_cast<double>(a_vertices.size());
 }
 
-MeshCrossings crossings(const TriMesh& a, const FaceTree& tree) {
-  MeshCrossings out;
-  out.a_faces.assign(static_cast<std::size_t>(a.num_faces()), 0);
-  out.a_vertices.assign(static_cast<std::size_t>(a.num_vertices()), 0);
+void visit_crossings(const TriMesh& a, const FaceTree& tree, const std::function<void(int, int)>& visit) {
   const TriMesh& b = tree.mesh();
   for (int f = 0; f < a.num_faces(); ++f) {
     const Vec3d a0 = corner(a, f, 0), a1 = corner(a, f, 1), a2 = corner(a, f, 2);
@@ -130,15 +127,21 @@ MeshCrossings crossings(const TriMesh& a, const FaceTree& tree) {
     Eigen::AlignedBox3f box(a0.cast<float>());
     box.extend(a1.cast<float>());
     box.extend(a2.cast<float>());
-    std::int64_t hits = 0;
     tree.visit(box, [&](int g) {
-      if (triangles_cross(a0, a1, a2, corner(b, g, 0), corner(b, g, 1), corner(b, g, 2))) ++hits;
+      if (triangles_cross(a0, a1, a2, corner(b, g, 0), corner(b, g, 1), corner(b, g, 2))) visit(f, g);
     });
-    if (hits == 0) continue;
-    out.pairs += hits;
+  }
+}
+
+MeshCrossings crossings(const TriMesh& a, const FaceTree& tree) {
+  MeshCrossings out;
+  out.a_faces.assign(static_cast<std::size_t>(a.num_faces()), 0);
+  out.a_vertices.assign(static_cast<std::size_t>(a.num_vertices()), 0);
+  visit_crossings(a, tree, [&](int f, int) {
+    ++out.pairs;
     out.a_faces[f] = 1;
     for (int k = 0; k < 3; ++k) out.a_vertices[a.faces(f, k)] = 1;
-  }
+  });
   return out;
 }
 

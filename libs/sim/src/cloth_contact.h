@@ -4,13 +4,60 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
+#include "layers/geometry/mesh.h"
 #include "layers/sim/cloth.h"
 #include "spatial_hash.h"
 
 namespace layers::sim::detail {
+
+// Edge-edge proximity of an inner and an outer garment: an outer edge and
+// an inner edge closer than `thickness` are pushed apart along the line
+// between their closest points as it was at the start of the substep, so
+// that two edges cannot pass through each other between the vertex tests
+// (vertex-triangle contact alone lets a fold of one layer slip through the
+// other edge first). Mass-weighted by the points' barycentric weights; no
+// friction; inner vertices with zero weight in `inner_inv_mass` stay.
+class EdgeContact {
+ public:
+  void collide(const Cloth& inner, Cloth::State& inner_state, const std::vector<double>& inner_inv_mass,
+               const Cloth& outer, Cloth::State& outer_state, double thickness, Vec3s& inner_push, Vec3s& outer_push);
+
+  // Inner edges filed under the grid cells their boxes overlap (a cell may
+  // share its slot with others: callers test the boxes).
+  struct Cells {
+    double inv_cell = 1;
+    std::uint64_t mask = 0;
+    std::vector<int> start, fill, entries;
+    void build(const geometry::Edges& edges, const Vec3s& x, double grow, double cell);
+    template <class F>
+    void for_cells(const Vec3& lo, const Vec3& hi, F&& f) const {
+      const auto c = [&](double v) { return static_cast<std::int64_t>(std::floor(v * inv_cell)); };
+      for (std::int64_t ix = c(lo.x()); ix <= c(hi.x()); ++ix)
+        for (std::int64_t iy = c(lo.y()); iy <= c(hi.y()); ++iy)
+          for (std::int64_t iz = c(lo.z()); iz <= c(hi.z()); ++iz) {
+            const std::uint64_t h = static_cast<std::uint64_t>(ix) * 73856093ULL ^
+                                    static_cast<std::uint64_t>(iy) * 19349663ULL ^
+                                    static_cast<std::uint64_t>(iz) * 83492791ULL;
+            f(static_cast<std::uint32_t>(h & mask));
+          }
+    }
+    template <class F>
+    void visit(const Vec3& lo, const Vec3& hi, F&& f) const {
+      if (entries.empty() || !lo.allFinite() || !hi.allFinite()) return;
+      for_cells(lo, hi, [&](std::uint32_t s) {
+        for (int k = start[s]; k < start[s + 1]; ++k) f(entries[k]);
+      });
+    }
+  };
+
+ private:
+  Cells cells_;
+  std::vector<int> seen_;  // per inner edge: the outer edge that last met it
+};
 
 // Two-way contact between an inner and an outer garment.
 //  - projection: keeps the outer garment's vertices `thickness` outside the
@@ -22,7 +69,8 @@ namespace layers::sim::detail {
 //    hem that legitimately tucks under is not pushed through a sheet; an
 //    open boundary (a hem, a cuff) is a thin rod to keep `thickness` from.
 //    Layers that start crossed are not untangled: the warm-up must begin
-//    from separated garments.
+//    from separated garments. Then edge-edge proximity (EdgeContact) at
+//    `edge_thickness` (0: off).
 //  - support: an outer vertex touching an inner garment at the start of a
 //    frame is kept, in the outer garment's elastic solve, outside the plane
 //    of the inner face it touches (a one-sided attachment like the body
@@ -53,8 +101,8 @@ class LayerContact {
   // Normal pushes are added to `inner_push` and `outer_push`.
   void collide(int inner_index, const Cloth& inner, Cloth::State& inner_state, Memory& inner_memory, int outer_index,
                const Cloth& outer, Cloth::State& outer_state, Memory& outer_memory,
-               const std::vector<std::uint8_t>& backed, double thickness, double mu, Vec3s& inner_push,
-               Vec3s& outer_push);
+               const std::vector<std::uint8_t>& backed, double thickness, double edge_thickness, double mu,
+               Vec3s& inner_push, Vec3s& outer_push);
 
   // After the body has had its say: the outer garment's vertices alone are
   // pushed back outside the inner one (the inner garment does not move), so
@@ -78,6 +126,7 @@ class LayerContact {
 
  private:
   SpatialHash grid_;
+  EdgeContact edges_;
   std::vector<double> inner_inv_mass_;
   Vec3s no_push_;
 };

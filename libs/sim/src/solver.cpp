@@ -226,7 +226,8 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
     for (Vec3s& p : m.push) std::fill(p.begin(), p.end(), Vec3::Zero());
     for_each_layer_pair([&](int a, int b, double mu) {
       m.layers.collide(a, cloths_[a], cloths_[a].state_, m.layer_memory[a], b, cloths_[b], cloths_[b].state_,
-                       m.layer_memory[b], m.body_memory[a].touching, c.layer_thickness, mu, m.push[a], m.push[b]);
+                       m.layer_memory[b], m.body_memory[a].touching, c.layer_thickness, c.layer_edge_thickness, mu,
+                       m.push[a], m.push[b]);
     });
     timings_.layer_contact += seconds_since(t);
 
