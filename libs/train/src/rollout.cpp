@@ -64,9 +64,11 @@ struct FrameRates {
 
 // The paper's vertex-normal H- and L-collision and the exact H- and
 // L-crossing (geometry/intersect.h) of one frame. `faces`: each garment's
-// faces; outer garments are those of a layer other than 0, as for L-collision.
+// faces; outer garments are those of a layer other than 0, as for
+// L-collision. `body_tree`: the body's faces, built once per frame for the
+// prediction and the ground truth.
 FrameRates frame_rates(const zoo::SequenceStatic& seq, const std::vector<geometry::Faces>& faces,
-                       const std::vector<at::Tensor>& garments, const geometry::TriMesh& body_mesh,
+                       const std::vector<at::Tensor>& garments, const geometry::FaceTree& body_tree,
                        const geometry::Surface& body) {
   FrameRates r;
   double behind = 0, total = 0;
@@ -88,7 +90,7 @@ FrameRates frame_rates(const zoo::SequenceStatic& seq, const std::vector<geometr
   }
   // body_crossings() takes the garments as one mesh, vertices in order:
   // each garment's share is its slice of the per-vertex flags.
-  const geometry::MeshCrossings h = geometry::body_crossings(meshes, body_mesh);
+  const geometry::MeshCrossings h = geometry::body_crossings(meshes, body_tree);
   r.h_crossing = h.a_vertex_share();
   std::size_t first = 0;
   for (const geometry::TriMesh& m : meshes) {
@@ -157,17 +159,22 @@ RolloutResult rollout(zoo::Model& model, const zoo::SequenceStatic& seq, const F
       record_diverged();
       continue;
     }
-    geometry::TriMesh body_mesh{points_of(frames.body[i + 1]), body_faces};
-    const geometry::Surface body = geometry::Surface::from_mesh(body_mesh, "body");
-    FrameRates predicted = frame_rates(seq, garment_faces, out.garments, body_mesh, body);
-    m.h_collision = predicted.h_collision, m.l_collision = predicted.l_collision;
-    m.h_crossing = predicted.h_crossing, m.l_crossing = predicted.l_crossing;
-    m.garment_h_collision = std::move(predicted.garment_h_collision);
-    m.garment_h_crossing = std::move(predicted.garment_h_crossing);
-    if (options.truth_collisions) {
-      const FrameRates t = frame_rates(seq, garment_faces, truth, body_mesh, body);
-      m.truth_h_collision = t.h_collision, m.truth_l_collision = t.l_collision;
-      m.truth_h_crossing = t.h_crossing, m.truth_l_crossing = t.l_crossing;
+    if (options.rates) {
+      geometry::TriMesh body_mesh{points_of(frames.body[i + 1]), body_faces};
+      const geometry::Surface body = geometry::Surface::from_mesh(body_mesh, "body");
+      const geometry::FaceTree body_tree(body_mesh);
+      FrameRates predicted = frame_rates(seq, garment_faces, out.garments, body_tree, body);
+      m.h_collision = predicted.h_collision, m.l_collision = predicted.l_collision;
+      m.h_crossing = predicted.h_crossing, m.l_crossing = predicted.l_crossing;
+      m.garment_h_collision = std::move(predicted.garment_h_collision);
+      m.garment_h_crossing = std::move(predicted.garment_h_crossing);
+      if (options.truth_collisions) {
+        const FrameRates t = frame_rates(seq, garment_faces, truth, body_tree, body);
+        m.truth_h_collision = t.h_collision, m.truth_l_collision = t.l_collision;
+        m.truth_h_crossing = t.h_crossing, m.truth_l_crossing = t.l_crossing;
+      }
+    } else {
+      m.h_collision = m.h_crossing = kNaN;
     }
     result.frames.push_back(m);
     for (std::size_t k = 0; k < kept.size(); ++k) {

@@ -239,6 +239,17 @@ TEST_F(Fixture, RolloutMeasuresPlantedCrossings) {
     EXPECT_DOUBLE_EQ(m.h_crossing, 0.0) << "both layers stay clear of the body";
     EXPECT_DOUBLE_EQ(m.truth_l_crossing, 0.0);
   }
+  // Without rates (training's validation): the same errors, every rate NaN.
+  {
+    ExperimentConfig c = config("norates", "through_body");
+    Session s = open_session(c, registry);
+    const RolloutResult plain = rollout_sequence(s, "s4", 3, 1e6, false, /*rates=*/false).result;
+    ASSERT_EQ(plain.frames.size(), 3u);
+    EXPECT_DOUBLE_EQ(plain.frames[0].error_mm, body.frames[0].error_mm);
+    EXPECT_TRUE(std::isnan(plain.frames[0].h_crossing));
+    EXPECT_TRUE(std::isnan(plain.frames[0].h_collision));
+    EXPECT_TRUE(std::isnan(plain.frames[0].truth_l_crossing));
+  }
   // After divergence no crossing rate, like the collision rates.
   const RolloutResult boom = roll("exploding", 0, 1000.0);
   ASSERT_TRUE(boom.frames.back().diverged);

@@ -26,6 +26,7 @@ struct RolloutOptions {
   double diverge_mm = 1000;  // error bound of divergence
   bool keep_predictions = false;
   bool truth_collisions = true;  // also measure the ground truth's H/L collision and crossing rates
+  bool rates = true;             // false: errors only, every rate NaN (training's validation)
 };
 
 struct FrameMetrics {
