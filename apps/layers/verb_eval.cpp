@@ -46,14 +46,17 @@ VerbRun register_eval(CLI::App& app, const Global&) {
     std::printf("%s on %s: %lld sequences, %lld frames, %lld diverged, %.2f ms per frame\n", r.model.c_str(),
                 r.split.c_str(), static_cast<long long>(r.sequences), static_cast<long long>(r.frames),
                 static_cast<long long>(r.diverged), r.ms_per_frame);
-    std::printf("%-14s %22s %10s %10s\n", "", "error (mm)", "H-coll", "L-coll");
-    std::printf("%-14s %22s %10s %10s\n", "overall", zoo::format(r.overall.error_mm).c_str(),
-                percent(r.overall.h_collision).c_str(), percent(r.overall.l_collision).c_str());
+    std::printf("%-14s %22s %10s %10s %10s %10s\n", "", "error (mm)", "H-coll", "L-coll", "H-cross", "L-cross");
+    std::printf("%-14s %22s %10s %10s %10s %10s\n", "overall", zoo::format(r.overall.error_mm).c_str(),
+                percent(r.overall.h_collision).c_str(), percent(r.overall.l_collision).c_str(),
+                percent(r.overall.h_crossing).c_str(), percent(r.overall.l_crossing).c_str());
     for (const auto& [type, m] : r.per_type)
-      std::printf("%-14s %22s %10s %10s\n", type.c_str(), zoo::format(m.error_mm).c_str(),
-                  percent(m.h_collision).c_str(), percent(m.l_collision).c_str());
-    std::printf("ground truth: H-coll %.2f%%, L-coll %.2f%%\n", 100.0 * r.truth_h_collision,
-                std::isfinite(r.truth_l_collision) ? 100.0 * r.truth_l_collision : 0.0);
+      std::printf("%-14s %22s %10s %10s %10s %10s\n", type.c_str(), zoo::format(m.error_mm).c_str(),
+                  percent(m.h_collision).c_str(), percent(m.l_collision).c_str(), percent(m.h_crossing).c_str(),
+                  percent(m.l_crossing).c_str());
+    const auto pct = [](double v) { return std::isfinite(v) ? 100.0 * v : 0.0; };
+    std::printf("ground truth: H-coll %.2f%%, L-coll %.2f%%, H-cross %.2f%%, L-cross %.2f%%\n",
+                pct(r.truth_h_collision), pct(r.truth_l_collision), pct(r.truth_h_crossing), pct(r.truth_l_crossing));
     std::printf("written: %s/%s, %s%s%s\n", r.out_dir.c_str(), data::run_layout::kMetrics, data::run_layout::kSequences,
                 loaded.typed.eval.save_predictions ? ", " : "",
                 loaded.typed.eval.save_predictions ? data::run_layout::kPredictions : "");

@@ -17,7 +17,8 @@ namespace layers::regression {
 using Metrics = std::map<std::string, double>;
 
 // The compared metrics of a metrics.json text: overall and per garment type
-// error, H- and L-collision (means over sequences), the number of
+// error, H- and L-collision, H- and L-crossing (means over sequences; a
+// metrics.json without crossings has none), the number of
 // diverged sequences and the mean error growth rate. InputError naming
 // `file` for malformed JSON or a missing overall section.
 Metrics metrics_from_json(const std::string& json_text, const std::string& file);

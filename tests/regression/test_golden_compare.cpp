@@ -49,6 +49,13 @@ TEST(GoldenCompare, ExtractsOverallPerTypeDivergenceAndGrowth) {
   EXPECT_DOUBLE_EQ(m.at("diverged"), 1.0);
   EXPECT_DOUBLE_EQ(m.at("error_growth_mm_per_frame"), 0.5);
   EXPECT_TRUE(std::isnan(m.at("overall.l_collision")));
+  EXPECT_EQ(m.count("overall.h_crossing"), 0u) << "a metrics.json without crossings has none";
+  const auto x = regression::metrics_from_json(
+      R"({"overall": {"error_mm": {"mean": 1, "std": 0, "count": 1}, "h_crossing": {"mean": 0.25, "std": 0, "count": 1},
+          "l_crossing": {"mean": null, "std": null, "count": 0}}})",
+      "x.json");
+  EXPECT_DOUBLE_EQ(x.at("overall.h_crossing"), 0.25);
+  EXPECT_TRUE(std::isnan(x.at("overall.l_crossing")));
   EXPECT_THROW(regression::metrics_from_json("{\"model\": 1}", "x.json"), InputError);
   EXPECT_THROW(regression::metrics_from_json("{oops", "x.json"), InputError);
 }

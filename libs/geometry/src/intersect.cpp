@@ -146,6 +146,10 @@ MeshCrossings crossings(const TriMesh& a, const FaceTree& tree) {
 }
 
 MeshCrossings body_crossings(const std::vector<TriMesh>& garments, const TriMesh& body) {
+  return body_crossings(garments, FaceTree(body));
+}
+
+MeshCrossings body_crossings(const std::vector<TriMesh>& garments, const FaceTree& body) {
   return crossings(concatenate(garments), body);
 }
 

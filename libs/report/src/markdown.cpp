@@ -30,8 +30,9 @@ void models_table(std::ostringstream& md, const std::vector<RunResults>& runs) {
   const std::vector<bool> front = runs_on_front(runs);
   md << "## Models\n\n"
      << "| run | model | parameters | split (sequences) | error (mm) | H-collision | L-collision | "
-        "ground truth H / L | diverged | ms / frame | Pareto front |\n"
-     << "|---|---|---:|---|---:|---:|---:|---:|---:|---:|:---:|\n";
+        "ground truth H / L | H-crossing | L-crossing | ground truth H / L crossing | diverged | ms / frame | "
+        "Pareto front |\n"
+     << "|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|:---:|\n";
   std::vector<const RunResults*> missing;
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const RunResults& r = runs[i];
@@ -43,13 +44,18 @@ void models_table(std::ostringstream& md, const std::vector<RunResults>& runs) {
     md << "| " << md_cell(r.name) << " | " << md_cell(r.model) << " | " << e.parameters << " | " << md_cell(e.split)
        << " (" << e.sequences << ") | " << mean_pm_std(e.overall.error_mm.mean, e.overall.error_mm.std) << " | "
        << percent(e.overall.h_collision.mean) << " | " << percent(e.overall.l_collision.mean) << " | "
-       << percent(e.truth_h_collision) << " / " << percent(e.truth_l_collision) << " | " << divergence(e) << " | "
+       << percent(e.truth_h_collision) << " / " << percent(e.truth_l_collision) << " | "
+       << percent(e.overall.h_crossing.mean) << " | " << percent(e.overall.l_crossing.mean) << " | "
+       << percent(e.truth_h_crossing) << " / " << percent(e.truth_l_crossing) << " | " << divergence(e) << " | "
        << ms(e.ms_per_frame) << " | " << (front[i] ? "yes" : "") << " |\n";
   }
   md << "\nError: mean Euclidean distance between predicted and true garment vertices, averaged over each "
         "rollout, mean ± std over sequences. H-collision: share of garment vertices behind the body surface; "
         "L-collision: share of outer-garment vertices behind the inner garment; the ground truth's own rates "
-        "are given for reference (the simulator is not perfect either). ms / frame: time in the model per "
+        "are given for reference (the simulator is not perfect either). H-crossing, L-crossing: exact "
+        "measures (docs/metrics.md), the share of garment vertices on faces that pass through a body face, "
+        "and of outer-garment vertices on faces that pass through an inner-garment face; touching does not count "
+        "(\"-\": an evaluation made before they were measured). ms / frame: time in the model per "
         "predicted frame during evaluation.\n\n";
   for (const RunResults* r : missing)
     md << "- `" << r->name << "` is not in the table: it has no readable evaluation (see Notes).\n";
@@ -116,8 +122,8 @@ void divergence_list(std::ostringstream& md, const std::vector<RunResults>& runs
 }
 
 void per_type_table(std::ostringstream& md, const std::vector<RunResults>& runs) {
-  md << "| garment type | run | sequences | error (mm) | H-collision | L-collision |\n"
-     << "|---|---|---:|---:|---:|---:|\n";
+  md << "| garment type | run | sequences | error (mm) | H-collision | L-collision | H-crossing | L-crossing |\n"
+     << "|---|---|---:|---:|---:|---:|---:|---:|\n";
   std::vector<std::string> types;
   for (const RunResults& r : runs)
     if (r.eval)
@@ -131,9 +137,10 @@ void per_type_table(std::ostringstream& md, const std::vector<RunResults>& runs)
         if (t == type)
           md << "| " << md_cell(type) << " | " << md_cell(r.name) << " | " << m.error_mm.count << " | "
              << mean_pm_std(m.error_mm.mean, m.error_mm.std) << " | " << percent(m.h_collision.mean) << " | "
-             << percent(m.l_collision.mean) << " |\n";
+             << percent(m.l_collision.mean) << " | " << percent(m.h_crossing.mean) << " | "
+             << percent(m.l_crossing.mean) << " |\n";
     }
-  md << "\nL-collision belongs to the outer garment of a pair (\"-\" for inner garments).\n\n";
+  md << "\nL-collision and L-crossing belong to the outer garment of a pair (\"-\" for inner garments).\n\n";
 }
 
 }  // namespace

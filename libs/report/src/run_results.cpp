@@ -82,7 +82,8 @@ class Reader {
   MetricStats metrics(const json& parent, const std::string& key, const std::string& path, bool require_error) const {
     const json& v = object(parent, key, path);
     return {stat(v, "error_mm", path + ".error_mm", require_error),
-            stat(v, "h_collision", path + ".h_collision", false), stat(v, "l_collision", path + ".l_collision", false)};
+            stat(v, "h_collision", path + ".h_collision", false), stat(v, "l_collision", path + ".l_collision", false),
+            stat(v, "h_crossing", path + ".h_crossing", false), stat(v, "l_crossing", path + ".l_crossing", false)};
   }
 
  private:
@@ -110,6 +111,8 @@ EvalResults parse_metrics_json(const Reader& r, const json& doc, const std::stri
     const json& t = r.object(doc, "truth", "truth");
     e.truth_h_collision = r.number(t, "h_collision", "truth.h_collision");
     e.truth_l_collision = r.number(t, "l_collision", "truth.l_collision");
+    e.truth_h_crossing = r.number(t, "h_crossing", "truth.h_crossing");
+    e.truth_l_crossing = r.number(t, "l_crossing", "truth.l_crossing");
   }
   if (doc.contains("per_type") && !doc.at("per_type").is_null()) {
     const json& types = r.object(doc, "per_type", "per_type");
@@ -125,6 +128,8 @@ EvalResults parse_metrics_json(const Reader& r, const json& doc, const std::stri
       s.error_mm = r.number(steps[i], "error_mm", p + ".error_mm");
       s.h_collision = r.number(steps[i], "h_collision", p + ".h_collision");
       s.l_collision = r.number(steps[i], "l_collision", p + ".l_collision");
+      s.h_crossing = r.number(steps[i], "h_crossing", p + ".h_crossing");
+      s.l_crossing = r.number(steps[i], "l_crossing", p + ".l_crossing");
       s.sequences = r.integer(steps[i], "sequences", p + ".sequences");
       e.by_step.push_back(s);
     }

@@ -27,7 +27,9 @@ json to_json(const Stat& s) { return {{"mean", number(s.mean)}, {"std", number(s
 json to_json(const MetricStats& m) {
   return {{"error_mm", to_json(m.error_mm)},
           {"h_collision", to_json(m.h_collision)},
-          {"l_collision", to_json(m.l_collision)}};
+          {"l_collision", to_json(m.l_collision)},
+          {"h_crossing", to_json(m.h_crossing)},
+          {"l_crossing", to_json(m.l_crossing)}};
 }
 
 std::string counters_text(const std::map<std::string, double>& counters) {
@@ -49,7 +51,8 @@ std::string summary_csv(const std::vector<RunResults>& runs) {
   std::ostringstream out;
   out << "run,model,split,sequences,frames,parameters,ms_per_frame,error_mm_mean,error_mm_std,h_collision,"
          "h_collision_std,l_collision,l_collision_std,truth_h_collision,truth_l_collision,diverged,"
-         "first_divergence_step,pareto\n";
+         "first_divergence_step,pareto,h_crossing,h_crossing_std,l_crossing,l_crossing_std,truth_h_crossing,"
+         "truth_l_crossing\n";
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const RunResults& r = runs[i];
     if (!r.eval) continue;
@@ -60,8 +63,10 @@ std::string summary_csv(const std::vector<RunResults>& runs) {
         << ',' << exact(e.overall.error_mm.std) << ',' << exact(e.overall.h_collision.mean) << ','
         << exact(e.overall.h_collision.std) << ',' << exact(e.overall.l_collision.mean) << ','
         << exact(e.overall.l_collision.std) << ',' << exact(e.truth_h_collision) << ',' << exact(e.truth_l_collision)
-        << ',' << e.diverged << ',' << (div >= 0 ? std::to_string(div) : "") << ',' << (front[i] ? "yes" : "no")
-        << '\n';
+        << ',' << e.diverged << ',' << (div >= 0 ? std::to_string(div) : "") << ',' << (front[i] ? "yes" : "no") << ','
+        << exact(e.overall.h_crossing.mean) << ',' << exact(e.overall.h_crossing.std) << ','
+        << exact(e.overall.l_crossing.mean) << ',' << exact(e.overall.l_crossing.std) << ','
+        << exact(e.truth_h_crossing) << ',' << exact(e.truth_l_crossing) << '\n';
   }
   return out.str();
 }
@@ -69,25 +74,28 @@ std::string summary_csv(const std::vector<RunResults>& runs) {
 std::string per_type_csv(const std::vector<RunResults>& runs) {
   std::ostringstream out;
   out << "run,model,type,sequences,error_mm_mean,error_mm_std,h_collision,h_collision_std,l_collision,"
-         "l_collision_std\n";
+         "l_collision_std,h_crossing,h_crossing_std,l_crossing,l_crossing_std\n";
   for (const RunResults& r : runs) {
     if (!r.eval) continue;
     for (const auto& [type, m] : r.eval->per_type)
       out << csv_field(r.name) << ',' << csv_field(r.model) << ',' << csv_field(type) << ',' << m.error_mm.count << ','
           << exact(m.error_mm.mean) << ',' << exact(m.error_mm.std) << ',' << exact(m.h_collision.mean) << ','
-          << exact(m.h_collision.std) << ',' << exact(m.l_collision.mean) << ',' << exact(m.l_collision.std) << '\n';
+          << exact(m.h_collision.std) << ',' << exact(m.l_collision.mean) << ',' << exact(m.l_collision.std) << ','
+          << exact(m.h_crossing.mean) << ',' << exact(m.h_crossing.std) << ',' << exact(m.l_crossing.mean) << ','
+          << exact(m.l_crossing.std) << '\n';
   }
   return out.str();
 }
 
 std::string by_step_csv(const std::vector<RunResults>& runs) {
   std::ostringstream out;
-  out << "run,model,step,error_mm,h_collision,l_collision,sequences\n";
+  out << "run,model,step,error_mm,h_collision,l_collision,sequences,h_crossing,l_crossing\n";
   for (const RunResults& r : runs) {
     if (!r.eval) continue;
     for (const StepMetrics& s : r.eval->by_step)
       out << csv_field(r.name) << ',' << csv_field(r.model) << ',' << s.step << ',' << exact(s.error_mm) << ','
-          << exact(s.h_collision) << ',' << exact(s.l_collision) << ',' << s.sequences << '\n';
+          << exact(s.h_collision) << ',' << exact(s.l_collision) << ',' << s.sequences << ',' << exact(s.h_crossing)
+          << ',' << exact(s.l_crossing) << '\n';
   }
   return out.str();
 }
@@ -118,18 +126,21 @@ std::string summary_json(const std::string& title, const std::vector<RunResults>
       const std::int64_t div = e.first_divergence_step();
       json types = json::object();
       for (const auto& [type, m] : e.per_type) types[type] = to_json(m);
-      row.update(
-          json{{"split", e.split},
-               {"sequences", e.sequences},
-               {"frames", e.frames},
-               {"parameters", e.parameters},
-               {"ms_per_frame", number(e.ms_per_frame)},
-               {"overall", to_json(e.overall)},
-               {"truth", {{"h_collision", number(e.truth_h_collision)}, {"l_collision", number(e.truth_l_collision)}}},
-               {"diverged", e.diverged},
-               {"first_divergence_step", div >= 0 ? json(div) : json(nullptr)},
-               {"pareto", static_cast<bool>(front[i])},
-               {"per_type", types}});
+      row.update(json{{"split", e.split},
+                      {"sequences", e.sequences},
+                      {"frames", e.frames},
+                      {"parameters", e.parameters},
+                      {"ms_per_frame", number(e.ms_per_frame)},
+                      {"overall", to_json(e.overall)},
+                      {"truth",
+                       {{"h_collision", number(e.truth_h_collision)},
+                        {"l_collision", number(e.truth_l_collision)},
+                        {"h_crossing", number(e.truth_h_crossing)},
+                        {"l_crossing", number(e.truth_l_crossing)}}},
+                      {"diverged", e.diverged},
+                      {"first_divergence_step", div >= 0 ? json(div) : json(nullptr)},
+                      {"pareto", static_cast<bool>(front[i])},
+                      {"per_type", types}});
     } else {
       row["overall"] = nullptr;
     }

@@ -48,14 +48,17 @@ json to_json(const zoo::MeanStd& m) { return {{"mean", number(m.mean)}, {"std", 
 json to_json(const MetricSummary& s) {
   return {{"error_mm", to_json(s.error_mm)},
           {"h_collision", to_json(s.h_collision)},
-          {"l_collision", to_json(s.l_collision)}};
+          {"l_collision", to_json(s.l_collision)},
+          {"h_crossing", to_json(s.h_crossing)},
+          {"l_crossing", to_json(s.l_crossing)}};
 }
 
 // Per-sequence values gathered for the summaries.
 struct Values {
-  std::vector<double> error, h, l;
+  std::vector<double> error, h, l, hx, lx;  // hx, lx: crossings
   MetricSummary summary() const {
-    return {zoo::mean_std(error), zoo::mean_std(finite_only(h)), zoo::mean_std(finite_only(l))};
+    return {zoo::mean_std(error), zoo::mean_std(finite_only(h)), zoo::mean_std(finite_only(l)),
+            zoo::mean_std(finite_only(hx)), zoo::mean_std(finite_only(lx))};
   }
 };
 
@@ -144,10 +147,11 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
         (std::filesystem::path(report.out_dir) / data::run_layout::kPredictions).string());
   Values overall, truth;
   std::map<std::string, Values> per_type;
-  std::vector<std::vector<double>> step_error, step_h, step_l;  // [step][sequence]
+  std::vector<std::vector<double>> step_error, step_h, step_l, step_hx, step_lx;  // [step][sequence]
   json sequences = json::array();
   std::ostringstream csv;
-  csv << "sequence,motion,tags,garment,type,layer,error_mm,h_collision,l_collision,diverged_at\n";
+  // New columns go at the end: scripts read the older ones by position.
+  csv << "sequence,motion,tags,garment,type,layer,error_mm,h_collision,l_collision,diverged_at,h_crossing,l_crossing\n";
   std::vector<double> growth_rates;  // mm per frame, per sequence (error growth)
   double model_seconds = 0;
   Progress progress("eval " + report.model + " on " + report.split, ids.size(), "sequences");
@@ -159,43 +163,58 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
     model_seconds += res.model_seconds;
     report.frames += static_cast<std::int64_t>(res.frames.size());
     if (res.diverged_at >= 0) ++report.diverged;
-    std::vector<double> e, h, l, th, tl;
+    std::vector<double> e, h, l, th, tl, hx, lx, thx, tlx;
     for (std::size_t k = 0; k < res.frames.size(); ++k) {
       const FrameMetrics& m = res.frames[k];
       e.push_back(m.error_mm), h.push_back(m.h_collision), l.push_back(m.l_collision);
       th.push_back(m.truth_h_collision), tl.push_back(m.truth_l_collision);
-      if (step_error.size() <= k) step_error.resize(k + 1), step_h.resize(k + 1), step_l.resize(k + 1);
+      hx.push_back(m.h_crossing), lx.push_back(m.l_crossing);
+      thx.push_back(m.truth_h_crossing), tlx.push_back(m.truth_l_crossing);
+      if (step_error.size() <= k) {
+        step_error.resize(k + 1), step_h.resize(k + 1), step_l.resize(k + 1);
+        step_hx.resize(k + 1), step_lx.resize(k + 1);
+      }
       step_error[k].push_back(m.error_mm), step_h[k].push_back(m.h_collision), step_l[k].push_back(m.l_collision);
+      step_hx[k].push_back(m.h_crossing), step_lx[k].push_back(m.l_crossing);
     }
     const double seq_error = zoo::sequence_mean(e), seq_h = finite_mean(h), seq_l = finite_mean(l);
+    const double seq_hx = finite_mean(hx), seq_lx = finite_mean(lx);
     const double growth = error_growth_mm_per_frame(res.frames);
     if (std::isfinite(growth)) growth_rates.push_back(growth);
     overall.error.push_back(seq_error), overall.h.push_back(seq_h), overall.l.push_back(seq_l);
+    overall.hx.push_back(seq_hx), overall.lx.push_back(seq_lx);
     truth.h.push_back(finite_mean(th)), truth.l.push_back(finite_mean(tl));
+    truth.hx.push_back(finite_mean(thx)), truth.lx.push_back(finite_mean(tlx));
     const data::SequenceInfo& info = s.dataset.info(id);
     std::string tags;
     for (const std::string& t : info.tags) tags += (tags.empty() ? "" : " ") + t;
     json garments = json::array();
     for (std::size_t g = 0; g < r.statics->garments.size(); ++g) {
       const zoo::GarmentStatic& gs = r.statics->garments[g];
-      std::vector<double> ge, gh;
+      std::vector<double> ge, gh, ghx;
       for (const FrameMetrics& m : res.frames) {
         ge.push_back(m.garment_error_mm[g]);
         gh.push_back(m.diverged ? kNaN : m.garment_h_collision[g]);
+        ghx.push_back(m.diverged ? kNaN : m.garment_h_crossing[g]);
       }
-      const double g_error = zoo::sequence_mean(ge), g_h = finite_mean(gh);
-      const double g_l = gs.layer == 1 ? seq_l : kNaN;  // L-collision belongs to the outer garment
+      const double g_error = zoo::sequence_mean(ge), g_h = finite_mean(gh), g_hx = finite_mean(ghx);
+      // L-collision and L-crossing belong to the outer garment
+      const double g_l = gs.layer == 1 ? seq_l : kNaN, g_lx = gs.layer == 1 ? seq_lx : kNaN;
       Values& type = per_type[gs.type];
       type.error.push_back(g_error), type.h.push_back(g_h), type.l.push_back(g_l);
+      type.hx.push_back(g_hx), type.lx.push_back(g_lx);
       garments.push_back({{"name", gs.name},
                           {"type", gs.type},
                           {"layer", gs.layer},
                           {"error_mm", number(g_error)},
                           {"h_collision", number(g_h)},
-                          {"l_collision", number(g_l)}});
+                          {"l_collision", number(g_l)},
+                          {"h_crossing", number(g_hx)},
+                          {"l_crossing", number(g_lx)}});
       csv << id << ',' << info.motion << ',' << tags << ',' << gs.name << ',' << gs.type << ',' << gs.layer << ','
           << csv_number(g_error) << ',' << csv_number(g_h) << ',' << csv_number(g_l) << ','
-          << (res.diverged_at >= 0 ? std::to_string(res.diverged_at) : "") << '\n';
+          << (res.diverged_at >= 0 ? std::to_string(res.diverged_at) : "") << ',' << csv_number(g_hx) << ','
+          << csv_number(g_lx) << '\n';
     }
     sequences.push_back({{"id", id},
                          {"motion", info.motion},
@@ -206,6 +225,10 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
                          {"l_collision", number(seq_l)},
                          {"truth_h_collision", number(truth.h.back())},
                          {"truth_l_collision", number(truth.l.back())},
+                         {"h_crossing", number(seq_hx)},
+                         {"l_crossing", number(seq_lx)},
+                         {"truth_h_crossing", number(truth.hx.back())},
+                         {"truth_l_crossing", number(truth.lx.back())},
                          {"diverged_at", res.diverged_at >= 0 ? json(res.diverged_at) : json(nullptr)},
                          {"diverge_reason", res.diverge_reason},
                          {"error_growth_mm_per_frame", number(growth)},
@@ -223,6 +246,8 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
   for (const auto& [type, values] : per_type) report.per_type.emplace_back(type, values.summary());
   report.truth_h_collision = finite_mean(truth.h);
   report.truth_l_collision = finite_mean(truth.l);
+  report.truth_h_crossing = finite_mean(truth.hx);
+  report.truth_l_crossing = finite_mean(truth.lx);
   report.ms_per_frame = report.frames ? 1000.0 * model_seconds / static_cast<double>(report.frames) : 0;
 
   json by_step = json::array();
@@ -231,34 +256,39 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
                        {"error_mm", number(zoo::mean_std(step_error[k]).mean)},
                        {"h_collision", number(finite_mean(step_h[k]))},
                        {"l_collision", number(finite_mean(step_l[k]))},
+                       {"h_crossing", number(finite_mean(step_hx[k]))},
+                       {"l_crossing", number(finite_mean(step_lx[k]))},
                        {"sequences", step_error[k].size()}});
   }
   json types = json::object();
   for (const auto& [type, summary] : report.per_type) types[type] = to_json(summary);
-  json doc = {
-      {"model", report.model},
-      {"checkpoint", report.checkpoint},
-      // Ties these results to the exact checkpoint bytes they came from.
-      {"checkpoint_fnv1a64", state.checksum},
-      {"trained_epochs", state.epochs_done},
-      {"experiment", config.source},
-      {"dataset", config.data.dataset},
-      {"split", report.split},
-      {"subsets", config.data.subsets},
-      {"inner_only", config.data.inner_only},
-      {"horizon", horizon},
-      {"diverge_mm", config.eval.diverge_mm},
-      {"sequences", report.sequences},
-      {"frames", report.frames},
-      {"diverged", report.diverged},
-      {"ms_per_frame", report.ms_per_frame},
-      {"parameters", s.model->info().parameters},
-      {"overall", to_json(report.overall)},
-      {"error_growth_mm_per_frame", to_json(zoo::mean_std(growth_rates))},
-      {"truth", {{"h_collision", number(report.truth_h_collision)}, {"l_collision", number(report.truth_l_collision)}}},
-      {"per_type", types},
-      {"by_step", by_step},
-      {"per_sequence", sequences}};
+  json doc = {{"model", report.model},
+              {"checkpoint", report.checkpoint},
+              // Ties these results to the exact checkpoint bytes they came from.
+              {"checkpoint_fnv1a64", state.checksum},
+              {"trained_epochs", state.epochs_done},
+              {"experiment", config.source},
+              {"dataset", config.data.dataset},
+              {"split", report.split},
+              {"subsets", config.data.subsets},
+              {"inner_only", config.data.inner_only},
+              {"horizon", horizon},
+              {"diverge_mm", config.eval.diverge_mm},
+              {"sequences", report.sequences},
+              {"frames", report.frames},
+              {"diverged", report.diverged},
+              {"ms_per_frame", report.ms_per_frame},
+              {"parameters", s.model->info().parameters},
+              {"overall", to_json(report.overall)},
+              {"error_growth_mm_per_frame", to_json(zoo::mean_std(growth_rates))},
+              {"truth",
+               {{"h_collision", number(report.truth_h_collision)},
+                {"l_collision", number(report.truth_l_collision)},
+                {"h_crossing", number(report.truth_h_crossing)},
+                {"l_crossing", number(report.truth_l_crossing)}}},
+              {"per_type", types},
+              {"by_step", by_step},
+              {"per_sequence", sequences}};
   write_text_atomic((std::filesystem::path(report.out_dir) / data::run_layout::kMetrics).string(), doc.dump(2) + "\n");
   write_text_atomic((std::filesystem::path(report.out_dir) / data::run_layout::kSequences).string(), csv.str());
   return report;

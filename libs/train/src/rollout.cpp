@@ -8,6 +8,7 @@
 
 #include "layers/core/error.h"
 #include "layers/core/progress.h"
+#include "layers/geometry/intersect.h"
 #include "layers/geometry/penetration.h"
 #include "layers/zoo/metrics.h"
 
@@ -54,23 +55,53 @@ at::Tensor outer_points(const zoo::SequenceStatic& seq, const std::vector<at::Te
   return v.empty() ? at::Tensor() : at::cat(v);
 }
 
-// H- and L-collision of one frame's garments.
-std::pair<double, double> collisions(const zoo::SequenceStatic& seq, const std::vector<at::Tensor>& garments,
-                                     const geometry::Surface& body, std::vector<double>* per_garment) {
+// The rates of one frame's garments (shares 0..1; L: NaN without an inner
+// and an outer garment).
+struct FrameRates {
+  double h_collision = 0, l_collision = kNaN, h_crossing = 0, l_crossing = kNaN;
+  std::vector<double> garment_h_collision, garment_h_crossing;
+};
+
+// The paper's vertex-normal H- and L-collision and the exact H- and
+// L-crossing (geometry/intersect.h) of one frame. `faces`: each garment's
+// faces; outer garments are those of a layer other than 0, as for
+// L-collision. `body_tree`: the body's faces, built once per frame for the
+// prediction and the ground truth.
+FrameRates frame_rates(const zoo::SequenceStatic& seq, const std::vector<geometry::Faces>& faces,
+                       const std::vector<at::Tensor>& garments, const geometry::FaceTree& body_tree,
+                       const geometry::Surface& body) {
+  FrameRates r;
   double behind = 0, total = 0;
-  for (const at::Tensor& g : garments) {
-    const double share = zoo::behind_share(points_of(g), body);
-    if (per_garment) per_garment->push_back(share);
-    behind += share * static_cast<double>(g.size(0));
-    total += static_cast<double>(g.size(0));
+  std::vector<geometry::TriMesh> meshes, outer, inner;
+  for (std::size_t k = 0; k < garments.size(); ++k) {
+    geometry::TriMesh mesh{points_of(garments[k]), faces[k]};
+    const double share = zoo::behind_share(mesh.vertices, body);
+    r.garment_h_collision.push_back(share);
+    behind += share * static_cast<double>(mesh.num_vertices());
+    total += static_cast<double>(mesh.num_vertices());
+    (seq.garments[k].layer != 0 ? outer : inner).push_back(mesh);
+    meshes.push_back(std::move(mesh));
   }
-  double l = kNaN;
-  const at::Tensor outer = outer_points(seq, garments);
-  if (outer.defined()) {
-    geometry::TriMesh inner = inner_mesh(seq, garments);
-    if (inner.num_vertices() > 0) l = zoo::l_collision_rate(points_of(outer), inner);
+  r.h_collision = total > 0 ? behind / total : 0.0;
+  const at::Tensor outer_p = outer_points(seq, garments);
+  if (outer_p.defined()) {
+    geometry::TriMesh inner_m = inner_mesh(seq, garments);
+    if (inner_m.num_vertices() > 0) r.l_collision = zoo::l_collision_rate(points_of(outer_p), inner_m);
   }
-  return {total > 0 ? behind / total : 0.0, l};
+  // body_crossings() takes the garments as one mesh, vertices in order:
+  // each garment's share is its slice of the per-vertex flags.
+  const geometry::MeshCrossings h = geometry::body_crossings(meshes, body_tree);
+  r.h_crossing = h.a_vertex_share();
+  std::size_t first = 0;
+  for (const geometry::TriMesh& m : meshes) {
+    const std::size_t n = static_cast<std::size_t>(m.num_vertices());
+    std::int64_t on = 0;
+    for (std::size_t v = first; v < first + n && v < h.a_vertices.size(); ++v) on += h.a_vertices[v] ? 1 : 0;
+    r.garment_h_crossing.push_back(n ? static_cast<double>(on) / static_cast<double>(n) : 0.0);
+    first += n;
+  }
+  if (!outer.empty() && !inner.empty()) r.l_crossing = geometry::layer_crossings(outer, inner).a_vertex_share();
+  return r;
 }
 
 }  // namespace
@@ -84,6 +115,8 @@ RolloutResult rollout(zoo::Model& model, const zoo::SequenceStatic& seq, const F
                 std::to_string(steps) + " steps do not fit a window of " + std::to_string(frames.frames()) + " frames");
   torch::NoGradGuard no_grad;
   const geometry::Faces body_faces = faces_of(seq.body_faces);
+  std::vector<geometry::Faces> garment_faces;
+  for (const zoo::GarmentStatic& g : seq.garments) garment_faces.push_back(faces_of(g.faces));
   RolloutResult result;
   std::vector<std::vector<at::Tensor>> kept(seq.garments.size());
   std::vector<zoo::GarmentState> states = true_states(frames, options.start);
@@ -99,6 +132,7 @@ RolloutResult rollout(zoo::Model& model, const zoo::SequenceStatic& seq, const F
       m.error_mm = options.diverge_mm;
       m.garment_error_mm.assign(seq.garments.size(), options.diverge_mm);
       m.h_collision = m.l_collision = kNaN;
+      m.h_crossing = m.l_crossing = kNaN;
       result.frames.push_back(m);
     };
     if (result.diverged_at >= 0) {
@@ -125,11 +159,23 @@ RolloutResult rollout(zoo::Model& model, const zoo::SequenceStatic& seq, const F
       record_diverged();
       continue;
     }
-    geometry::TriMesh body_mesh{points_of(frames.body[i + 1]), body_faces};
-    const geometry::Surface body = geometry::Surface::from_mesh(body_mesh, "body");
-    std::tie(m.h_collision, m.l_collision) = collisions(seq, out.garments, body, &m.garment_h_collision);
-    if (options.truth_collisions)
-      std::tie(m.truth_h_collision, m.truth_l_collision) = collisions(seq, truth, body, nullptr);
+    if (options.rates) {
+      geometry::TriMesh body_mesh{points_of(frames.body[i + 1]), body_faces};
+      const geometry::Surface body = geometry::Surface::from_mesh(body_mesh, "body");
+      const geometry::FaceTree body_tree(body_mesh);
+      FrameRates predicted = frame_rates(seq, garment_faces, out.garments, body_tree, body);
+      m.h_collision = predicted.h_collision, m.l_collision = predicted.l_collision;
+      m.h_crossing = predicted.h_crossing, m.l_crossing = predicted.l_crossing;
+      m.garment_h_collision = std::move(predicted.garment_h_collision);
+      m.garment_h_crossing = std::move(predicted.garment_h_crossing);
+      if (options.truth_collisions) {
+        const FrameRates t = frame_rates(seq, garment_faces, truth, body_tree, body);
+        m.truth_h_collision = t.h_collision, m.truth_l_collision = t.l_collision;
+        m.truth_h_crossing = t.h_crossing, m.truth_l_crossing = t.l_crossing;
+      }
+    } else {
+      m.h_collision = m.h_crossing = kNaN;
+    }
     result.frames.push_back(m);
     for (std::size_t k = 0; k < kept.size(); ++k) {
       if (options.keep_predictions) kept[k].push_back(out.garments[k].detach());

@@ -38,7 +38,7 @@ Session open_session(const ExperimentConfig& config, const zoo::Registry& regist
 }
 
 SequenceRollout rollout_sequence(Session& s, const std::string& id, std::int64_t horizon, double diverge_mm,
-                                 bool keep_predictions) {
+                                 bool keep_predictions, bool rates) {
   SequenceRollout r;
   r.id = id;
   const std::int64_t n = s.dataset.info(id).n_frames;
@@ -53,6 +53,7 @@ SequenceRollout rollout_sequence(Session& s, const std::string& id, std::int64_t
   options.steps = count - 2;
   options.diverge_mm = diverge_mm;
   options.keep_predictions = keep_predictions;
+  options.rates = rates;
   r.result = rollout(*s.model, s.model->sequence(), to_device(r.frames, s.device), options);
   return r;
 }

@@ -77,14 +77,16 @@ double train_window(Session& s, const Sample& sample, std::int64_t free_steps, s
   return value;
 }
 
-// Mean rollout error (mm) over the validation sequences.
+// Mean rollout error (mm) over the validation sequences (no collision or
+// crossing rates: they cost as much as the rollout and are not used here).
 double validate(Session& s) {
   const TrainConfig& t = s.config.train;
   std::vector<std::string> ids = select_sequences(s.dataset, s.config.data.val_split, s.config.data.subsets);
   if (t.val_sequences > 0 && ids.size() > static_cast<std::size_t>(t.val_sequences)) ids.resize(t.val_sequences);
   std::vector<double> errors;
   for (const std::string& id : ids) {
-    const SequenceRollout r = rollout_sequence(s, id, t.val_horizon, s.config.eval.diverge_mm, false);
+    const SequenceRollout r =
+        rollout_sequence(s, id, t.val_horizon, s.config.eval.diverge_mm, /*keep_predictions=*/false, /*rates=*/false);
     std::vector<double> per_frame;
     for (const FrameMetrics& m : r.result.frames) per_frame.push_back(m.error_mm);
     errors.push_back(zoo::sequence_mean(per_frame));

@@ -2,6 +2,7 @@
 // planted crossings between two grids, and the face tree against brute force.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <set>
 
@@ -116,6 +117,29 @@ TEST(MeshCrossings, ClothThroughAClosedBox) {
   // a sheet wholly inside crosses nothing (it is inside, not crossing).
   EXPECT_GT(g::crossings(moved_grid(7, 0.5f, -0.31f, -0.27f, 1.6f), cube).pairs, 0);
   EXPECT_EQ(g::crossings(moved_grid(7, 0.5f, 0.21f, 0.23f, 0.5f), cube).pairs, 0);
+}
+
+// body_crossings: the garments as one mesh in order, against a body mesh
+// or a body tree built once (the evaluation's prediction and ground truth).
+TEST(MeshCrossings, BodyCrossingsAgainstAMeshOrAPrebuiltTree) {
+  g::TriMesh cube;
+  cube.vertices.resize(8, 3);
+  for (int i = 0; i < 8; ++i) cube.vertices.row(i) << float(i & 1), float((i >> 1) & 1), float((i >> 2) & 1);
+  cube.faces.resize(12, 3);
+  cube.faces << 0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4, 2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7,
+      5;
+  const std::vector<g::TriMesh> garments = {moved_grid(7, 0.5f, 0.21f, 0.23f, 0.5f),
+                                            moved_grid(7, 0.5f, -0.31f, -0.27f, 1.6f)};
+  const g::MeshCrossings by_mesh = g::body_crossings(garments, cube);
+  const g::FaceTree tree(cube);
+  const g::MeshCrossings by_tree = g::body_crossings(garments, tree);
+  EXPECT_GT(by_mesh.pairs, 0);
+  EXPECT_EQ(by_tree.pairs, by_mesh.pairs);
+  EXPECT_EQ(by_tree.a_vertices, by_mesh.a_vertices);
+  ASSERT_EQ(by_mesh.a_vertices.size(), 98u);
+  // The first garment lies inside the box: none of its vertices count.
+  EXPECT_EQ(std::count(by_mesh.a_vertices.begin(), by_mesh.a_vertices.begin() + 49, 1), 0);
+  EXPECT_EQ(g::crossings(garments[1], tree).a_vertices_on_crossings(), by_mesh.a_vertices_on_crossings());
 }
 
 TEST(MeshCrossings, NonFiniteFacesCrossNothing) {

@@ -15,6 +15,10 @@ struct FakeRun {
   double ms_per_frame = 2.0;
   double error = 10.0, error_std = 1.5;
   double h = 0.02, l = 0.05;
+  // Exact crossings (h_crossing, l_crossing); false: a metrics.json written
+  // before the evaluator measured them (no such keys anywhere).
+  bool crossings = true;
+  double hx = 0.004, lx = 0.006;
   std::vector<double> step_errors = {1.0, 2.0, 3.0};
   long diverged_at = -1;  // absolute frame of sequence s2, -1: stable
   std::string dataset = "/nonexistent/dataset";
@@ -22,14 +26,28 @@ struct FakeRun {
 
 inline std::string number_or_null(double v) { return v != v ? "null" : std::to_string(v); }
 
+// `"key": {"mean": m, "std": s, "count": n}` preceded by a comma.
+inline std::string stat_field(const std::string& key, double mean, double std, int count) {
+  return ", \"" + key + "\": {\"mean\": " + std::to_string(mean) + ", \"std\": " + std::to_string(std) +
+         ", \"count\": " + std::to_string(count) + "}";
+}
+
 // metrics.json as the evaluator writes it: two sequences, a jumpsuit
 // (inner, no L-collision: count 0) and a jacket.
 inline std::string metrics_json(const FakeRun& r) {
+  const auto crossing = [&](double hx, double lx, int l_count) {
+    return r.crossings ? stat_field("h_crossing", hx, 0.001, 2) + stat_field("l_crossing", lx, 0.002, l_count)
+                       : std::string();
+  };
   std::string steps;
   for (std::size_t k = 0; k < r.step_errors.size(); ++k)
     steps += std::string(k ? "," : "") + "{\"step\": " + std::to_string(k + 1) +
              ", \"error_mm\": " + std::to_string(r.step_errors[k]) + ", \"h_collision\": " + std::to_string(r.h) +
-             ", \"l_collision\": " + (k == 0 ? "null" : std::to_string(r.l)) + ", \"sequences\": 2}";
+             ", \"l_collision\": " + (k == 0 ? "null" : std::to_string(r.l)) +
+             (r.crossings ? ", \"h_crossing\": " + std::to_string(r.hx) +
+                                ", \"l_crossing\": " + (k == 0 ? "null" : std::to_string(r.lx))
+                          : std::string()) +
+             ", \"sequences\": 2}";
   const std::string diverged = r.diverged_at >= 0 ? std::to_string(r.diverged_at) : "null";
   return R"({
   "model": ")" +
@@ -48,18 +66,20 @@ inline std::string metrics_json(const FakeRun& r) {
               "h_collision": {"mean": )" +
          std::to_string(r.h) + R"(, "std": 0.01, "count": 2},
               "l_collision": {"mean": )" +
-         std::to_string(r.l) + R"(, "std": 0.0, "count": 2}},
-  "truth": {"h_collision": 0.0, "l_collision": 0.0645},
+         std::to_string(r.l) + R"(, "std": 0.0, "count": 2})" + crossing(r.hx, r.lx, 2) + R"(},
+  "truth": {"h_collision": 0.0, "l_collision": 0.0645)" +
+         std::string(r.crossings ? R"(, "h_crossing": 0.0, "l_crossing": 0.0025)" : "") + R"(},
   "per_type": {
     "jacket": {"error_mm": {"mean": )" +
          std::to_string(r.error + 1) + R"(, "std": 0.5, "count": 2},
                "h_collision": {"mean": 0.01, "std": 0.0, "count": 2},
                "l_collision": {"mean": )" +
-         std::to_string(r.l) + R"(, "std": 0.0, "count": 2}},
+         std::to_string(r.l) + R"(, "std": 0.0, "count": 2})" + crossing(0.003, r.lx, 2) + R"(},
     "jumpsuit": {"error_mm": {"mean": )" +
          std::to_string(r.error - 1) + R"(, "std": 0.5, "count": 2},
                  "h_collision": {"mean": 0.03, "std": 0.0, "count": 2},
-                 "l_collision": {"mean": 0.0, "std": 0.0, "count": 0}}},
+                 "l_collision": {"mean": 0.0, "std": 0.0, "count": 0})" +
+         crossing(0.005, 0.0, 0) + R"(}},
   "by_step": [)" +
          steps + R"(],
   "per_sequence": [

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -207,6 +208,92 @@ TEST_F(Fixture, EvaluationWritesMetricsAndPredictions) {
   ASSERT_TRUE(pred.contains("s4"));
   EXPECT_EQ(pred.info("s4").n_frames, 8);  // 2 given + 6 predicted
   EXPECT_TRUE(std::filesystem::exists(r.out_dir + "/sequences.csv"));
+}
+
+// Exact crossings beside the vertex-normal rates: a prediction that pushes
+// garment faces through the body, one that pushes the outer layer through
+// the inner one; the ground truth crosses nothing.
+TEST_F(Fixture, RolloutMeasuresPlantedCrossings) {
+  // The planted models are far from the truth: no divergence bound.
+  const auto roll = [&](const std::string& model, std::int64_t horizon = 3, double bound = 1e6) {
+    ExperimentConfig c = config(model, model);
+    Session s = open_session(c, registry);
+    return rollout_sequence(s, "s4", horizon, bound, false).result;
+  };
+  const RolloutResult body = roll("through_body");
+  ASSERT_EQ(body.frames.size(), 3u);
+  for (const FrameMetrics& m : body.frames) {
+    EXPECT_GT(m.h_crossing, 0.05) << "frame " << m.frame;
+    EXPECT_LT(m.h_crossing, 1.0);
+    EXPECT_DOUBLE_EQ(m.l_crossing, 0.0) << "both layers moved together";
+    ASSERT_EQ(m.garment_h_crossing.size(), 2u);
+    EXPECT_GT(m.garment_h_crossing[0], 0.0);
+    EXPECT_GT(m.garment_h_crossing[1], 0.0);
+    EXPECT_DOUBLE_EQ(m.truth_h_crossing, 0.0);
+    EXPECT_DOUBLE_EQ(m.truth_l_crossing, 0.0);
+    EXPECT_TRUE(std::isfinite(m.h_collision));
+  }
+  const RolloutResult inner = roll("through_inner");
+  for (const FrameMetrics& m : inner.frames) {
+    EXPECT_GT(m.l_crossing, 0.05) << "frame " << m.frame;
+    EXPECT_DOUBLE_EQ(m.h_crossing, 0.0) << "both layers stay clear of the body";
+    EXPECT_DOUBLE_EQ(m.truth_l_crossing, 0.0);
+  }
+  // Without rates (training's validation): the same errors, every rate NaN.
+  {
+    ExperimentConfig c = config("norates", "through_body");
+    Session s = open_session(c, registry);
+    const RolloutResult plain = rollout_sequence(s, "s4", 3, 1e6, false, /*rates=*/false).result;
+    ASSERT_EQ(plain.frames.size(), 3u);
+    EXPECT_DOUBLE_EQ(plain.frames[0].error_mm, body.frames[0].error_mm);
+    EXPECT_TRUE(std::isnan(plain.frames[0].h_crossing));
+    EXPECT_TRUE(std::isnan(plain.frames[0].h_collision));
+    EXPECT_TRUE(std::isnan(plain.frames[0].truth_l_crossing));
+  }
+  // After divergence no crossing rate, like the collision rates.
+  const RolloutResult boom = roll("exploding", 0, 1000.0);
+  ASSERT_TRUE(boom.frames.back().diverged);
+  EXPECT_TRUE(std::isnan(boom.frames.back().h_crossing));
+  EXPECT_TRUE(std::isnan(boom.frames.back().l_crossing));
+}
+
+TEST_F(Fixture, EvaluationReportsPlantedCrossings) {
+  ExperimentConfig c = config("planted", "through_inner");
+  c.eval.diverge_mm = 1e6;
+  {
+    Session s = open_session(c, registry);
+    std::filesystem::create_directories(std::filesystem::path(checkpoint_path(c, "best")).parent_path());
+    CheckpointState state;
+    state.model_name = s.model->name();
+    save_checkpoint(checkpoint_path(c, "best"), *s.model, nullptr, state);
+  }
+  EvalOptions o;
+  o.progress = false;
+  const EvalReport r = run_evaluation(c, registry, o);
+  EXPECT_GT(r.overall.l_crossing.mean, 0.05);
+  EXPECT_EQ(r.overall.l_crossing.count, 1);
+  EXPECT_DOUBLE_EQ(r.overall.h_crossing.mean, 0.0);
+  EXPECT_DOUBLE_EQ(r.truth_h_crossing, 0.0);
+  EXPECT_DOUBLE_EQ(r.truth_l_crossing, 0.0);
+  std::ifstream in(r.out_dir + "/metrics.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_NEAR(j["overall"]["l_crossing"]["mean"].get<double>(), r.overall.l_crossing.mean, 1e-12);
+  EXPECT_EQ(j["overall"]["h_crossing"]["count"], 1);
+  EXPECT_EQ(j["truth"]["l_crossing"], 0.0);
+  EXPECT_TRUE(j["per_type"]["jacket"]["l_crossing"]["mean"].get<double>() > 0.05);
+  EXPECT_EQ(j["per_type"]["tshirt"]["l_crossing"]["count"], 0) << "L belongs to the outer garment";
+  EXPECT_TRUE(j["by_step"][0]["l_crossing"].get<double>() > 0.05);
+  const nlohmann::json& seq = j["per_sequence"][0];
+  EXPECT_NEAR(seq["l_crossing"].get<double>(), r.overall.l_crossing.mean, 1e-12);
+  EXPECT_EQ(seq["truth_l_crossing"], 0.0);
+  EXPECT_TRUE(seq["garments"][1].contains("h_crossing"));
+  std::ifstream csv(r.out_dir + "/sequences.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header,
+            "sequence,motion,tags,garment,type,layer,error_mm,h_collision,l_collision,diverged_at,h_crossing,"
+            "l_crossing")
+      << "new columns at the end";
 }
 
 TEST_F(Fixture, MissingDatasetIsAClearError) {

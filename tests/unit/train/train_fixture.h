@@ -65,12 +65,47 @@ class ExplodingModel : public zoo::Model {
   }
 };
 
+// Planted crossings: puts each garment's rest shape (a cylinder around
+// the synthetic body's axis, 5 cm outside it) on the root of the predicted
+// frame, then moves it along x by `all_dx`, outer garments by `outer_dx`
+// more. all_dx = 0.2 pushes garment faces through the body (radius 0.15);
+// outer_dx = 0.05 pushes the outer cylinder (radius 0.23) through the inner
+// one (0.2) and keeps both clear of the body. The ground truth crosses
+// nothing (write_dataset's garments are concentric, below the body).
+class PlantedModel : public zoo::Model {
+ public:
+  PlantedModel(const std::string& name, double all_dx, double outer_dx)
+      : Model(name), all_dx_(all_dx), outer_dx_(outer_dx) {}
+  cfg::Node config() const override { return cfg::Node(); }
+
+ protected:
+  zoo::StepOutput predict(const zoo::StepInput& in) override {
+    zoo::StepOutput out;
+    const at::Tensor root_next = in.root[2];
+    for (const zoo::GarmentStatic& g : sequence().garments) {
+      const double dx = all_dx_ + (g.layer != 0 ? outer_dx_ : 0.0);
+      const at::Tensor shift = at::tensor({static_cast<float>(dx), 0.0f, 0.0f}, at::kFloat);
+      out.garments.push_back(g.rest + root_next + shift);
+    }
+    return out;
+  }
+
+ private:
+  double all_dx_, outer_dx_;
+};
+
 inline void register_test_models(zoo::Registry& registry) {
   registry.add("tiny", "test model", [](const cfg::Node& params) -> std::shared_ptr<zoo::Model> {
     return std::make_shared<TinyModel>(cfg::read<TinyParams>(params).gain);
   });
   registry.add("exploding", "test model",
                [](const cfg::Node&) -> std::shared_ptr<zoo::Model> { return std::make_shared<ExplodingModel>(); });
+  registry.add("through_body", "test model", [](const cfg::Node&) -> std::shared_ptr<zoo::Model> {
+    return std::make_shared<PlantedModel>("through_body", 0.2, 0.0);
+  });
+  registry.add("through_inner", "test model", [](const cfg::Node&) -> std::shared_ptr<zoo::Model> {
+    return std::make_shared<PlantedModel>("through_inner", 0.0, 0.05);
+  });
 }
 
 // A dataset folder with `n` sequences of `frames` frames: the first n-2 in

@@ -86,6 +86,9 @@ inline MeshCrossings crossings(const TriMesh& a, const TriMesh& b) { return cros
 //    of outer vertices on an outer face that passes through an inner face.
 //    Garments of one layer are not tested against each other.
 MeshCrossings body_crossings(const std::vector<TriMesh>& garments, const TriMesh& body);
+// The same against a body tree built once (e.g. for the predicted and the
+// true garments of one frame).
+MeshCrossings body_crossings(const std::vector<TriMesh>& garments, const FaceTree& body);
 MeshCrossings layer_crossings(const std::vector<TriMesh>& outer, const std::vector<TriMesh>& inner);
 
 }  // namespace layers::geometry

@@ -8,6 +8,9 @@
 // RunResults::problems and leaves the piece empty. A file that exists but
 // is malformed is reported the same way, with the InputError's text.
 // Rates are shares 0..1, errors real-world mm, times ms; NaN = absent.
+// The exact crossing rates (h_crossing, l_crossing) are optional: a
+// metrics.json written before the evaluator measured them still loads,
+// with those values absent.
 #pragma once
 
 #include <cstdint>
@@ -29,6 +32,7 @@ struct Stat {
 
 struct MetricStats {
   Stat error_mm, h_collision, l_collision;
+  Stat h_crossing, l_crossing;  // exact crossings; count 0 when the file has none
 };
 
 // One row of metrics.json's by_step: means over the sequences still rolling
@@ -36,6 +40,7 @@ struct MetricStats {
 struct StepMetrics {
   std::int64_t step = 0;
   double error_mm = kAbsent, h_collision = kAbsent, l_collision = kAbsent;
+  double h_crossing = kAbsent, l_crossing = kAbsent;
   std::int64_t sequences = 0;
 };
 
@@ -53,6 +58,7 @@ struct EvalResults {
   double ms_per_frame = kAbsent, diverge_mm = kAbsent;
   MetricStats overall;
   double truth_h_collision = kAbsent, truth_l_collision = kAbsent;
+  double truth_h_crossing = kAbsent, truth_l_crossing = kAbsent;
   std::vector<std::pair<std::string, MetricStats>> per_type;  // garment type -> stats
   std::vector<StepMetrics> by_step;
   std::vector<SequenceMetrics> per_sequence;

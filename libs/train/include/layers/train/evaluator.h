@@ -4,13 +4,15 @@
 //
 // Writes into the output folder (default <run.output>/eval-<split>):
 //   metrics.json     everything: settings, overall, per type, per sequence,
-//                    error and collision by rollout step (for charts)
+//                    error, collision and crossing by rollout step (charts)
 //   sequences.csv    one row per sequence and garment
 //   predictions.h5   the rollouts as LAYERS-H5 (ground-truth body and wind,
 //                    predicted garments; frames 0 and 1 are the ground truth
 //                    the rollout started from) -- `layers export` reads it
 // Errors are real-world millimetres (the paper's figures are at 10x
-// scale). The ground truth's own H/L rates are reported beside the model's.
+// scale). Collisions are the paper's vertex-normal H/L rates, crossings the
+// exact H/L measures of geometry/intersect.h (docs/metrics.md). The ground
+// truth's own rates are reported beside the model's.
 #pragma once
 
 #include <cstdint>
@@ -37,6 +39,7 @@ struct EvalOptions {
 
 struct MetricSummary {
   zoo::MeanStd error_mm, h_collision, l_collision;  // rates as shares 0..1
+  zoo::MeanStd h_crossing, l_crossing;              // exact crossings, shares 0..1
 };
 
 struct EvalReport {
@@ -45,6 +48,7 @@ struct EvalReport {
   MetricSummary overall;
   std::vector<std::pair<std::string, MetricSummary>> per_type;  // garment type -> summary
   double truth_h_collision = 0, truth_l_collision = 0;          // ground truth, mean over sequences
+  double truth_h_crossing = 0, truth_l_crossing = 0;            // ground truth, mean over sequences
   double ms_per_frame = 0;                                      // Model::step time per predicted frame
 };
 

@@ -1,11 +1,12 @@
 // layers/train/rollout.h -- autoregressive rollouts (docs/metrics.md):
 // start from ground truth, feed predictions back, body and wind stay ground
-// truth; per-frame metrics (Euclidean error, H- and L-collision, also of
-// the ground truth for reference) and divergence detection: a non-finite
+// truth; per-frame metrics (Euclidean error, the paper's vertex-normal H-
+// and L-collision, the exact H- and L-crossing of geometry/intersect.h;
+// also of the ground truth for reference) and divergence detection: a non-finite
 // prediction or a frame error above the bound stops the rollout and is
 // recorded with its frame, never a crash. Frames after divergence count
 // with the bound as their error (a diverged model cannot look better by
-// stopping early) and are left out of the collision rates.
+// stopping early) and are left out of the collision and crossing rates.
 #pragma once
 
 #include <cstdint>
@@ -24,7 +25,8 @@ struct RolloutOptions {
   std::int64_t steps = -1;   // predicted frames; < 0: to the end of `frames`
   double diverge_mm = 1000;  // error bound of divergence
   bool keep_predictions = false;
-  bool truth_collisions = true;  // also measure the ground truth's H/L rates
+  bool truth_collisions = true;  // also measure the ground truth's H/L collision and crossing rates
+  bool rates = true;             // false: errors only, every rate NaN (training's validation)
 };
 
 struct FrameMetrics {
@@ -36,7 +38,14 @@ struct FrameMetrics {
   double l_collision = std::numeric_limits<double>::quiet_NaN();  // NaN: no inner+outer pair
   double truth_h_collision = std::numeric_limits<double>::quiet_NaN();
   double truth_l_collision = std::numeric_limits<double>::quiet_NaN();
-  bool diverged = false;  // after divergence: error = bound, collisions NaN
+  // Exact crossings (docs/metrics.md): share of garment vertices on faces
+  // through the body, of outer vertices on faces through the inner layer.
+  std::vector<double> garment_h_crossing;                        // per garment
+  double h_crossing = 0;                                         // all garment vertices
+  double l_crossing = std::numeric_limits<double>::quiet_NaN();  // NaN: no inner+outer pair
+  double truth_h_crossing = std::numeric_limits<double>::quiet_NaN();
+  double truth_l_crossing = std::numeric_limits<double>::quiet_NaN();
+  bool diverged = false;  // after divergence: error = bound, collisions and crossings NaN
 };
 
 struct RolloutResult {

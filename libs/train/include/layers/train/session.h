@@ -36,7 +36,7 @@ Session open_session(const ExperimentConfig& config, const zoo::Registry& regist
 
 // One rollout per sequence from its first frames: ground truth at frames 0
 // and 1, then `horizon` predicted frames (0 or more than the sequence has:
-// to its end).
+// to its end). `rates` false: errors only (see RolloutOptions::rates).
 struct SequenceRollout {
   std::string id;
   std::shared_ptr<const zoo::SequenceStatic> statics;
@@ -44,6 +44,6 @@ struct SequenceRollout {
   RolloutResult result;
 };
 SequenceRollout rollout_sequence(Session& session, const std::string& id, std::int64_t horizon, double diverge_mm,
-                                 bool keep_predictions);
+                                 bool keep_predictions, bool rates = true);
 
 }  // namespace layers::train
