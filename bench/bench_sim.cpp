@@ -8,10 +8,12 @@
 // thread its own scene, as with `--threads 2`). Set-up and warm-up (a
 // short drape and blend) are not timed; each iteration is one recorded
 // frame (1/30 s of motion). Arguments: edge length in tenths of a mm,
-// substeps. Counters: garment vertices, the solver's own split of the time
+// substeps, edge-edge layer contact (1: the default 6 mm, 0: off; the
+// 25 mm scene runs both ways to price it). Counters: garment vertices, the solver's own split of the time
 // per frame (per thread), the strain cap's sweeps per frame, and the
 // generator's validation measures over the timed frames (measured outside
-// the timing): mean H- and L-penetration (%) and max edge stretch (%).
+// the timing): mean H- and L-penetration (%), mean exact H- and
+// L-crossing (%) and max edge stretch (%).
 #include <benchmark/benchmark.h>
 
 #include <string>
@@ -27,7 +29,7 @@ namespace {
 
 // The scene of one benchmark thread: the given edge length and substeps,
 // the settings of configs/data/small.yaml otherwise (2 iterations).
-gen::SceneSimulation make_scene(double edge_mm, int substeps, int frames) {
+gen::SceneSimulation make_scene(double edge_mm, int substeps, int frames, bool edge_contact) {
   gen::GeneratorConfig config;
   config.name = "bench";
   config.seed = 3;
@@ -41,6 +43,7 @@ gen::SceneSimulation make_scene(double edge_mm, int substeps, int frames) {
   config.wind.strong_weight = 1;
   config.sim.substeps = substeps;
   config.sim.iterations = 2;
+  if (!edge_contact) config.sim.layer_edge_thickness = 0;
   gen::SceneSpec spec = gen::sample_scene(config, 0);
   spec.shape = {};  // the average body
   return gen::SceneSimulation(config, spec);
@@ -49,7 +52,9 @@ gen::SceneSimulation make_scene(double edge_mm, int substeps, int frames) {
 void BM_GeneratorFrame(benchmark::State& state) {
   const double edge_mm = 0.1 * static_cast<double>(state.range(0));
   const int frames = static_cast<int>(state.max_iterations);
-  gen::SceneSimulation scene = make_scene(edge_mm, static_cast<int>(state.range(1)), frames);
+  // Third argument 0: vertex-triangle layer contact only (no edge-edge).
+  const bool edge_contact = state.range(2) != 0;
+  gen::SceneSimulation scene = make_scene(edge_mm, static_cast<int>(state.range(1)), frames, edge_contact);
   if (!scene.usable()) {
     state.SkipWithError(scene.problem().c_str());
     return;
@@ -80,6 +85,8 @@ void BM_GeneratorFrame(benchmark::State& state) {
   state.counters["cap_ms"] = per_frame_ms(t.strain_cap);
   state.counters["H_pct"] = benchmark::Counter(100 * measures.mean_h_penetration(), benchmark::Counter::kAvgThreads);
   state.counters["L_pct"] = benchmark::Counter(100 * measures.mean_l_penetration(), benchmark::Counter::kAvgThreads);
+  state.counters["Lx_pct"] = benchmark::Counter(100 * measures.mean_l_crossing(), benchmark::Counter::kAvgThreads);
+  state.counters["Hx_pct"] = benchmark::Counter(100 * measures.mean_h_crossing(), benchmark::Counter::kAvgThreads);
   state.counters["stretch_pct"] = benchmark::Counter(100 * measures.max_stretch(), benchmark::Counter::kAvgThreads);
   state.counters["cap_sweeps"] = benchmark::Counter(static_cast<double>(t.cap_sweeps) / static_cast<double>(t.frames),
                                                     benchmark::Counter::kAvgThreads);
@@ -88,28 +95,45 @@ void BM_GeneratorFrame(benchmark::State& state) {
 // Iterations are fixed (frames of the walk to record); wall time, since two
 // threads run at once.
 BENCHMARK(BM_GeneratorFrame)
-    ->Args({500, 16})
+    ->Args({500, 16, 1})
     ->Iterations(30)
     ->Threads(1)
     ->Threads(2)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_GeneratorFrame)
-    ->Args({250, 16})
+    ->Args({250, 16, 1})
     ->Iterations(20)
     ->Threads(1)
     ->Threads(2)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_GeneratorFrame)
-    ->Args({125, 16})
+    ->Args({125, 16, 1})
     ->Iterations(8)
     ->Threads(1)
     ->Threads(2)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
-BENCHMARK(BM_GeneratorFrame)->Args({225, 10})->Iterations(20)->Threads(1)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_GeneratorFrame)->Args({225, 16})->Iterations(20)->Threads(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_GeneratorFrame)
+    ->Args({225, 10, 1})
+    ->Iterations(20)
+    ->Threads(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_GeneratorFrame)
+    ->Args({225, 16, 1})
+    ->Iterations(20)
+    ->Threads(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+// The cost of edge-edge layer contact: the 25 mm scene without it.
+BENCHMARK(BM_GeneratorFrame)
+    ->Args({250, 16, 0})
+    ->Iterations(20)
+    ->Threads(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 

@@ -73,8 +73,8 @@ regression::Metrics physical_measures(const std::string& folder) {
           {"generator.h_penetration", all.mean_h_penetration()},
           {"generator.l_penetration", all.mean_l_penetration()},
           {"generator.max_stretch", all.max_stretch()},
-          {"generator.h_crossing", all.mean_h_crossing()},
-          {"generator.l_crossing", all.mean_l_crossing()},
+          {"generator.mean_h_crossing", all.mean_h_crossing()},
+          {"generator.mean_l_crossing", all.mean_l_crossing()},
           {"generator.worst_l_crossing", all.max_l_crossing()},
           {"generator.mean_max_stretch", worst_stretch_sum / n},
           {"generator.garment_speed_mm_per_frame", speed / n}};
