@@ -29,7 +29,10 @@ import sys
 import time
 from array import array
 
-import bpy
+try:
+    import bpy
+except ImportError:  # outside Blender: only the file helpers (tests) are usable
+    bpy = None
 
 LAYER_OUTER_NAMES = ("jacket", "jacket_hood")
 SELF_COLLISION_NAMES = ("skirt", "dress", "jacket_hood")  # as the generator's self-contact
@@ -95,6 +98,8 @@ def load_scene(arg):
         with open(arg) as f:
             scene = json.load(f)
         scene["dir"] = os.path.dirname(os.path.abspath(arg))
+        for g in scene["garments"]:  # an attribute the dataset lacks gets the middle of its range
+            g["attributes"] = dict(DEFAULT_ATTRIBUTES, **g["attributes"])
         return scene
     objs = sorted(n for n in os.listdir(arg) if n.endswith(".obj") and not n.endswith("_rest.obj"))
     body = [n for n in objs if n.endswith("_body.obj")]
