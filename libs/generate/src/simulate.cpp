@@ -190,13 +190,17 @@ SceneResult simulate_scene(const GeneratorConfig& config, const SceneSpec& spec,
   result.mean_h_penetration = measures.mean_h_penetration();
   result.mean_l_penetration = measures.mean_l_penetration();
   result.max_stretch = measures.max_stretch();
+  result.max_h_crossing = measures.max_h_crossing();
+  result.max_l_crossing = measures.max_l_crossing();
   result.violations = measures.violations(config.sim.validation);
   result.ok = result.violations.empty();
   result.seconds = timer.seconds();
   result.cpu_seconds = thread_cpu_seconds() - cpu_start;
-  spdlog::debug("{}: {} frames in {:.1f} s ({:.1f} s CPU), H-pen {:.3f}%, L-pen {:.3f}%, stretch {:.3f}", spec.id,
-                result.simulated_frames, result.seconds, result.cpu_seconds, 100 * result.mean_h_penetration,
-                100 * result.mean_l_penetration, result.max_stretch);
+  spdlog::debug(
+      "{}: {} frames in {:.1f} s ({:.1f} s CPU), H-pen {:.3f}%, L-pen {:.3f}%, worst H-crossing {:.3f}%, worst "
+      "L-crossing {:.3f}%, stretch {:.3f}",
+      spec.id, result.simulated_frames, result.seconds, result.cpu_seconds, 100 * result.mean_h_penetration,
+      100 * result.mean_l_penetration, 100 * result.max_h_crossing, 100 * result.max_l_crossing, result.max_stretch);
   if (!result.ok) return result;
 
   seq.id = spec.id;

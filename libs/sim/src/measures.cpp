@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "layers/geometry/intersect.h"
 #include "layers/sim/contact_topology.h"
 #include "layers/sim/solver.h"
 #include "surface_query.h"
@@ -183,18 +184,32 @@ FrameMeasures measure_frame(const geometry::TriMesh& body, const std::vector<Mea
                             double l_reach) {
   FrameMeasures out;
   std::vector<geometry::Points> all, outer;
-  std::vector<geometry::TriMesh> inner;
+  std::vector<geometry::TriMesh> meshes, inner, outer_meshes;
   for (const MeasuredGarment& g : garments) {
     out.nonfinite += count_nonfinite(g.positions);
     all.push_back(g.positions);
-    if (g.outer)
+    meshes.push_back({g.positions, g.faces});
+    if (g.outer) {
       outer.push_back(g.positions);
-    else
+      outer_meshes.push_back({g.positions, g.faces});
+    } else {
       inner.push_back({g.positions, g.faces});
+    }
   }
   if (out.nonfinite > 0) {
     out.h_penetration = out.l_penetration = out.max_stretch = kNaN;
+    out.h_crossing = out.l_crossing = kNaN;
     return out;
+  }
+  if (body.num_faces() > 0) {
+    const geometry::MeshCrossings h = geometry::body_crossings(meshes, body);
+    out.h_crossing = h.a_vertex_share();
+    out.h_crossing_pairs = h.pairs;
+  }
+  if (!outer_meshes.empty() && !inner.empty()) {
+    const geometry::MeshCrossings l = geometry::layer_crossings(outer_meshes, inner);
+    out.l_crossing = l.a_vertex_share();
+    out.l_crossing_pairs = l.pairs;
   }
   for (const MeasuredGarment& g : garments) {
     out.max_stretch = std::max(out.max_stretch, max_edge_stretch(g.positions, g.edges, g.rest_lengths));
@@ -230,10 +245,16 @@ void SequenceMeasures::add(const FrameMeasures& f) {
   sum_h_ += f.h_penetration;
   sum_l_ += f.l_penetration;
   max_stretch_ = std::max(max_stretch_, f.max_stretch);
+  sum_hx_ += f.h_crossing;
+  sum_lx_ += f.l_crossing;
+  max_h_crossing_ = std::max(max_h_crossing_, f.h_crossing);
+  max_l_crossing_ = std::max(max_l_crossing_, f.l_crossing);
 }
 
 double SequenceMeasures::mean_h_penetration() const { return measured_ ? sum_h_ / measured_ : 0.0; }
 double SequenceMeasures::mean_l_penetration() const { return measured_ ? sum_l_ / measured_ : 0.0; }
+double SequenceMeasures::mean_h_crossing() const { return measured_ ? sum_hx_ / measured_ : 0.0; }
+double SequenceMeasures::mean_l_crossing() const { return measured_ ? sum_lx_ / measured_ : 0.0; }
 
 std::vector<std::string> SequenceMeasures::violations(const ValidationConfig& limits) const {
   std::vector<std::string> out;
@@ -245,6 +266,12 @@ std::vector<std::string> SequenceMeasures::violations(const ValidationConfig& li
   if (mean_l_penetration() > limits.max_l_penetration) {
     out.push_back("mean L-penetration " + percent(mean_l_penetration()) + " exceeds " +
                   percent(limits.max_l_penetration));
+  }
+  if (max_h_crossing_ > limits.max_h_crossing) {
+    out.push_back("H-crossing " + percent(max_h_crossing_) + " in a frame exceeds " + percent(limits.max_h_crossing));
+  }
+  if (max_l_crossing_ > limits.max_l_crossing) {
+    out.push_back("L-crossing " + percent(max_l_crossing_) + " in a frame exceeds " + percent(limits.max_l_crossing));
   }
   if (max_stretch_ > limits.max_stretch) {
     out.push_back("maximum edge stretch " + percent(max_stretch_) + " exceeds " + percent(limits.max_stretch));

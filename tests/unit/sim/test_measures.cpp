@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <set>
 
 #include "scenes.h"
 
@@ -137,6 +139,63 @@ TEST(Measures, SequenceVerdict) {
   EXPECT_EQ(v[0], "5 non-finite coordinates");
   EXPECT_EQ(v[1], "mean H-penetration 1.13% exceeds 0.50%");
   EXPECT_EQ(v[2], "maximum edge stretch 20.00% exceeds 10.00%");
+}
+
+TEST(Measures, CrossingsOfAFrame) {
+  // Body: the floor. Inner sheet 2 cm over it; the outer sheet 4 cm over it,
+  // except one vertex pushed below the inner sheet (its six faces pass
+  // through the inner layer) and, in a second frame, below the floor too.
+  const geometry::TriMesh body = floor_at(0);
+  const geometry::TriMesh inner = test::grid(V3(0.11, 0.02, 0.87), V3(0.77, 0, 0), V3(0, 0, -0.73), 8, 8);
+  geometry::TriMesh outer = test::grid(V3(0.13, 0.04, 0.83), V3(0.71, 0, 0), V3(0, 0, -0.69), 5, 5);
+  // The vertices on faces around outer vertex 14 (an interior one).
+  std::set<int> ring;
+  for (int f = 0; f < outer.num_faces(); ++f)
+    if ((outer.faces.row(f).array() == 14).any())
+      for (int k = 0; k < 3; ++k) ring.insert(outer.faces(f, k));
+  const double n = static_cast<double>(ring.size());
+  const auto garments = [&](const geometry::TriMesh& o) {
+    return std::vector<MeasuredGarment>{{inner.vertices, inner.faces, geometry::Edges(0, 2), Eigen::VectorXd(0), false},
+                                        {o.vertices, o.faces, geometry::Edges(0, 2), Eigen::VectorXd(0), true}};
+  };
+  FrameMeasures clean = measure_frame(body, garments(outer));
+  EXPECT_EQ(clean.h_crossing, 0.0);
+  EXPECT_EQ(clean.l_crossing, 0.0);
+  EXPECT_EQ(clean.l_crossing_pairs, 0);
+
+  outer.vertices(14, 1) = 0.01f;  // an interior vertex, between floor and inner sheet
+  const FrameMeasures through_inner = measure_frame(body, garments(outer));
+  EXPECT_EQ(through_inner.h_crossing, 0.0);
+  EXPECT_GT(through_inner.l_crossing_pairs, 0);
+  EXPECT_DOUBLE_EQ(through_inner.l_crossing, n / 36.0);
+
+  outer.vertices(14, 1) = -0.01f;  // through the floor as well
+  const FrameMeasures through_body = measure_frame(body, garments(outer));
+  EXPECT_GT(through_body.h_crossing_pairs, 0);
+  EXPECT_DOUBLE_EQ(through_body.h_crossing, n / (81.0 + 36.0));
+
+  SequenceMeasures seq;
+  seq.add(clean);
+  seq.add(through_body);
+  EXPECT_DOUBLE_EQ(seq.max_l_crossing(), n / 36.0);
+  EXPECT_DOUBLE_EQ(seq.mean_l_crossing(), n / 72.0);
+  ValidationConfig limits;
+  limits.max_h_crossing = 0.001;
+  limits.max_l_crossing = 0.001;
+  // (The pushed vertex is also behind both surfaces: mean H- and
+  // L-penetration may object too.)
+  const auto v = seq.violations(limits);
+  const auto has = [&](const std::string& text) {
+    for (const std::string& line : v)
+      if (line == text) return true;
+    return false;
+  };
+  char h[64], l[64];
+  std::snprintf(h, sizeof h, "H-crossing %.2f%% in a frame exceeds 0.10%%", 100 * n / 117.0);
+  std::snprintf(l, sizeof l, "L-crossing %.2f%% in a frame exceeds 0.10%%", 100 * n / 36.0);
+  EXPECT_TRUE(has(h)) << h;
+  EXPECT_TRUE(has(l)) << l;
+  EXPECT_TRUE(SequenceMeasures().violations(limits).empty());
 }
 
 TEST(Measures, FrameOfASolverUsesTheTopLayerAsOuter) {

@@ -28,9 +28,10 @@ struct SceneResult {
   data::SequenceData sequence;          // when ok
   std::vector<std::string> violations;  // why it was skipped, when not ok
   double mean_h_penetration = 0, mean_l_penetration = 0, max_stretch = 0;
-  int simulated_frames = 0;  // warm-up included
-  double seconds = 0;        // wall clock
-  double cpu_seconds = 0;    // CPU time of the simulating thread
+  double max_h_crossing = 0, max_l_crossing = 0;  // worst frame
+  int simulated_frames = 0;                       // warm-up included
+  double seconds = 0;                             // wall clock
+  double cpu_seconds = 0;                         // CPU time of the simulating thread
 };
 
 // Called after every simulated frame when given (diagnostics, pictures):

@@ -17,6 +17,8 @@ struct ValidationConfig {
   double max_l_penetration = 0.005;  // mean over frames of the L-penetration rate
   double max_stretch = 0.10;         // max over frames and edges of |l|/l0 - 1
   double l_reach = 0.03;             // only outer vertices this close to the inner layer can be behind it (m)
+  double max_h_crossing = 1.0;       // largest share, in any frame, of garment vertices on faces through the body
+  double max_l_crossing = 1.0;       // largest share, in any frame, of outer vertices on faces through the inner layer
 
   template <class V>
   void visit(V& v) {
@@ -28,6 +30,12 @@ struct ValidationConfig {
     v("l_reach", l_reach,
       cfg::opt().range(0.001, 10).help(
           "L-penetration: outer vertices farther than this from the inner layer are not tested (m)"));
+    v("max_h_crossing", max_h_crossing,
+      cfg::opt().range(0, 1).help(
+          "largest share, in any frame, of garment vertices on faces passing through the body"));
+    v("max_l_crossing", max_l_crossing,
+      cfg::opt().range(0, 1).help(
+          "largest share, in any frame, of outer vertices on faces passing through an inner garment"));
   }
 };
 

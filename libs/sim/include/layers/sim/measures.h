@@ -15,9 +15,14 @@
 //  - maximum edge stretch: max over edges of |l| / l0 - 1 (compression does
 //    not count).
 //  - non-finite count: NaN or infinite coordinates.
-// A sequence passes when the mean H- and L-penetration over its frames and
-// its maximum stretch stay under the ValidationConfig thresholds and no
-// value is non-finite.
+//  - H- and L-crossing (exact, geometry/intersect.h): share of garment
+//    vertices on garment faces that pass through a body face, and share of
+//    outer vertices on outer faces that pass through an inner face, with
+//    the number of crossing face pairs. No heuristic: contact without
+//    crossing never counts, a crossing is never missed.
+// A sequence passes when the mean H- and L-penetration over its frames,
+// the largest H- and L-crossing of any frame and its maximum stretch stay
+// under the ValidationConfig thresholds and no value is non-finite.
 #pragma once
 
 #include <cstdint>
@@ -58,6 +63,9 @@ struct FrameMeasures {
   double l_penetration = 0;  // 0 with a single layer; NaN when not measurable
   double max_stretch = 0;
   std::int64_t nonfinite = 0;
+  double h_crossing = 0;  // NaN when not measurable
+  double l_crossing = 0;  // 0 with a single layer; NaN when not measurable
+  std::int64_t h_crossing_pairs = 0, l_crossing_pairs = 0;
 };
 
 // One garment as measured: its positions, its edges with rest lengths and
@@ -84,6 +92,10 @@ class SequenceMeasures {
   int frames() const { return frames_; }
   double mean_h_penetration() const;  // over measurable frames
   double mean_l_penetration() const;
+  double mean_h_crossing() const;
+  double mean_l_crossing() const;
+  double max_h_crossing() const { return max_h_crossing_; }  // worst frame
+  double max_l_crossing() const { return max_l_crossing_; }
   double max_stretch() const { return max_stretch_; }
   std::int64_t nonfinite() const { return nonfinite_; }
   // Empty when the sequence passes; else one sentence per violated threshold
@@ -93,6 +105,7 @@ class SequenceMeasures {
  private:
   int frames_ = 0, measured_ = 0;
   double sum_h_ = 0, sum_l_ = 0, max_stretch_ = 0;
+  double sum_hx_ = 0, sum_lx_ = 0, max_h_crossing_ = 0, max_l_crossing_ = 0;
   std::int64_t nonfinite_ = 0;
 };
 
