@@ -137,6 +137,11 @@ CrosscheckColumn measure_crosscheck(const data::SequenceData& seq, const Crossch
   col.gen_l = generator.frames() > 0 && l.outer > 0 ? generator.mean_l_penetration() : kNaN;
   col.gen_stretch_max = generator.max_stretch();
   col.nonfinite += generator.nonfinite();
+  const bool measured = generator.frames() > 0, layered = measured && l.outer > 0;
+  col.h_crossing = measured ? generator.mean_h_crossing() : kNaN;
+  col.h_crossing_max = measured ? generator.max_h_crossing() : kNaN;
+  col.l_crossing = layered ? generator.mean_l_crossing() : kNaN;
+  col.l_crossing_max = layered ? generator.max_l_crossing() : kNaN;
   return col;
 }
 
@@ -164,11 +169,10 @@ std::string crosscheck_table(const std::string& title, const std::vector<Crossch
   row("generator's measures: mean H / mean L / max stretch", [](const CrosscheckColumn& c) {
     return percent(c.gen_h) + " / " + percent(c.gen_l) + " / " + percent(c.gen_stretch_max, 1);
   });
-  // Exact intersections (issue 19, deliverable 1): rows for the share of
-  // garment vertices on faces crossing the body and of outer vertices on
-  // faces crossing an inner garment go here once geometry/intersect.h is
-  // on main.
-  row("exact crossings (garment-body / layers)", [](const CrosscheckColumn&) { return std::string("not measured"); });
+  row("garment-body crossings: share of garment vertices on crossing faces, mean (worst frame)",
+      [](const CrosscheckColumn& c) { return percent(c.h_crossing) + " (" + percent(c.h_crossing_max) + ")"; });
+  row("layer crossings: share of outer vertices on crossing faces, mean (worst frame)",
+      [](const CrosscheckColumn& c) { return percent(c.l_crossing) + " (" + percent(c.l_crossing_max) + ")"; });
   row("non-finite coordinates", [](const CrosscheckColumn& c) { return std::to_string(c.nonfinite); });
   return out;
 }

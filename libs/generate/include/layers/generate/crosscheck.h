@@ -15,7 +15,10 @@
 //    distance; means over frames;
 //  - the generator's own measures (sim::measure_frame): mean H, mean L
 //    (its rule: covered test, open-edge rule, 3 cm reach), max stretch;
-//  - exact intersections: a marked row, not measured yet (crosscheck.cpp).
+//  - exact crossings (geometry/intersect.h, through sim::measure_frame):
+//    share of garment vertices on garment faces that pass through a body
+//    face, and of outer vertices on outer faces that pass through an inner
+//    face; mean over frames and worst frame.
 // Non-finite positions make a frame unmeasurable; they are counted.
 #pragma once
 
@@ -45,6 +48,8 @@ struct CrosscheckColumn {
   double h = 0;  // share, 0..1
   double l_1cm = 0, l_3cm = 0, l_all = 0;
   double gen_h = 0, gen_l = 0, gen_stretch_max = 0;
+  double h_crossing = 0, h_crossing_max = 0;  // exact garment-body crossings
+  double l_crossing = 0, l_crossing_max = 0;  // exact layer crossings
 };
 
 // The shares and quantiles of one run over frames [1, n_frames) of `seq`
