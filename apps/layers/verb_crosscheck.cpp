@@ -106,7 +106,8 @@ int run(const Args& a) {
 
   std::vector<generate::CrosscheckColumn> columns;
   for (const auto& r : runs) columns.push_back(generate::measure_crosscheck(seq, r));
-  std::string table = generate::crosscheck_table(title_of(info, frames), columns);
+  const sim::FrameMeasures start = generate::measure_start(seq);
+  std::string table = generate::crosscheck_table(title_of(info, frames), columns, &start);
   table += "\nms per frame: Blender's is the wall time of each frame's step (frames 1..n-1, " +
            std::to_string(a.threads) +
            " Blender thread(s)); ours is n/a: the dataset does not store how long the generator took "

@@ -145,7 +145,17 @@ CrosscheckColumn measure_crosscheck(const data::SequenceData& seq, const Crossch
   return col;
 }
 
-std::string crosscheck_table(const std::string& title, const std::vector<CrosscheckColumn>& columns) {
+sim::FrameMeasures measure_start(const data::SequenceData& seq) {
+  data::SequenceData first = seq;
+  first.n_frames = std::min<std::int64_t>(seq.n_frames, 1);
+  sim::FrameMeasures out;
+  for_each_stored_frame(first,
+                        [&](std::int64_t, const StoredFrame& f) { out = sim::measure_frame(f.body, f.garments); });
+  return out;
+}
+
+std::string crosscheck_table(const std::string& title, const std::vector<CrosscheckColumn>& columns,
+                             const sim::FrameMeasures* start) {
   std::string out = title.empty() ? "" : title + "\n\n";
   auto row = [&](const std::string& name, auto cell) {
     out += "| " + name + " |";
@@ -174,6 +184,12 @@ std::string crosscheck_table(const std::string& title, const std::vector<Crossch
   row("layer crossings: share of outer vertices on crossing faces, mean (worst frame)",
       [](const CrosscheckColumn& c) { return percent(c.l_crossing) + " (" + percent(c.l_crossing_max) + ")"; });
   row("non-finite coordinates", [](const CrosscheckColumn& c) { return std::to_string(c.nonfinite); });
+  if (start) {
+    out += "\nFrame 0 (stored; every column starts from it): H " + percent(start->h_penetration) + ", L (generator) " +
+           percent(start->l_penetration) + ", garment-body crossings " + percent(start->h_crossing) +
+           ", layer crossings " + percent(start->l_crossing) + ", max stretch " + percent(start->max_stretch, 1) +
+           ".\n";
+  }
   return out;
 }
 

@@ -132,6 +132,17 @@ TEST(Crosscheck, TiltedOuterPatchCrossesTheInnerOne) {
   EXPECT_EQ(rest.l_crossing_max, 0.0);
 }
 
+TEST(Crosscheck, StartIsFrameZeroAndGoesBelowTheTable) {
+  data::SequenceData seq = scene();
+  seq.garments[1].positions[4 * 3 + 1] = 1.025f;  // frame 0: outer centre under the inner patch
+  const sim::FrameMeasures start = generate::measure_start(seq);
+  EXPECT_EQ(start.h_penetration, 0.0);
+  generate::CrosscheckColumn ours;
+  ours.label = "ours";
+  const std::string table = generate::crosscheck_table("", {ours}, &start);
+  EXPECT_NE(table.find("\nFrame 0 (stored; every column starts from it): H 0.00%,"), std::string::npos) << table;
+}
+
 TEST(Crosscheck, GarmentVertexBehindTheBody) {
   const data::SequenceData seq = scene();
   CrosscheckRun run = as_stored(seq, "inside");

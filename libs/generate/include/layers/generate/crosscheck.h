@@ -19,6 +19,7 @@
 //    share of garment vertices on garment faces that pass through a body
 //    face, and of outer vertices on outer faces that pass through an inner
 //    face; mean over frames and worst frame.
+// Below the table, the generator's measures of the stored frame 0.
 // Non-finite positions make a frame unmeasurable; they are counted.
 #pragma once
 
@@ -28,6 +29,7 @@
 #include <vector>
 
 #include "layers/data/sequence.h"
+#include "layers/sim/measures.h"
 
 namespace layers::generate {
 
@@ -61,8 +63,13 @@ CrosscheckColumn measure_crosscheck(const data::SequenceData& seq, const Crossch
 // The p-quantile (0..1, nearest rank) of `values` (reordered); 0 when empty.
 double quantile(std::vector<float>& values, double p);
 
+// The generator's measures (with the exact crossings) of the stored frame
+// 0, where every run starts.
+sim::FrameMeasures measure_start(const data::SequenceData& seq);
+
 // Markdown: a header line naming the scene, then one row per measure and
-// one column per run.
-std::string crosscheck_table(const std::string& title, const std::vector<CrosscheckColumn>& columns);
+// one column per run; with `start`, a line on frame 0 below the table.
+std::string crosscheck_table(const std::string& title, const std::vector<CrosscheckColumn>& columns,
+                             const sim::FrameMeasures* start = nullptr);
 
 }  // namespace layers::generate
