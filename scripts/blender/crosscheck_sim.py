@@ -20,9 +20,10 @@
 # frame 0 (the cloth starts there at rest velocity). Writes OUT/<mesh>.pc2
 # per garment (frames 0..N-1, same vertex order) and OUT/timing.txt
 # ("ms_per_frame <mean>" over frames 1..N-1); prints the time of each frame.
+# The garment attributes are used as Blender's cloth settings as they are
+# (the paper's recipe); docs/sim.md tabulates the whole mapping.
 import argparse
 import json
-import math
 import os
 import struct
 import sys
