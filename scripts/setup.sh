@@ -16,6 +16,12 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
 )
 
+# Optional, not installed here (CI and the tests do not need it): Debian's
+# `blender` (3.4.1) for `layers crosscheck`, which re-simulates a stored
+# sequence with Blender's cloth (docs/sim.md "Cross-check against Blender"):
+#   sudo apt-get install blender
+# The crosscheck test that runs Blender is skipped when CMake finds none.
+
 if [ "$(id -u)" -eq 0 ]; then sudo=""; else sudo="sudo"; fi
 
 missing=()

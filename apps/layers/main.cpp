@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
     add(app::register_body);
     add(app::register_info);
     add(app::register_validate);
+    add(app::register_crosscheck);
     add(app::register_stats);
     add(app::register_export);
     add(app::register_models);

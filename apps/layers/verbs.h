@@ -29,6 +29,7 @@ VerbRun register_models(CLI::App& app, const Global& global);
 VerbRun register_info(CLI::App& app, const Global& global);
 VerbRun register_stats(CLI::App& app, const Global& global);
 VerbRun register_validate(CLI::App& app, const Global& global);
+VerbRun register_crosscheck(CLI::App& app, const Global& global);
 VerbRun register_train(CLI::App& app, const Global& global);
 VerbRun register_eval(CLI::App& app, const Global& global);
 VerbRun register_rollout(CLI::App& app, const Global& global);

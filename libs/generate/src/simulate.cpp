@@ -37,10 +37,6 @@ Eigen::Isometry3d rigid_fit(const geometry::Points& from, const geometry::Points
 // Air damping (1/s) while the garments settle in the T-pose (not recorded).
 constexpr double kDrapeDamping = 5.0;
 
-bool wants_self_contact(const std::string& type) {
-  return type == "skirt" || type == "dress" || type == "dress_belt" || type == "jacket_hood";
-}
-
 double thread_cpu_seconds() {
   timespec t{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
@@ -60,6 +56,10 @@ motion::GeneratedBody make_body(const GeneratorConfig& config, const SceneSpec& 
 }
 
 }  // namespace
+
+bool wants_self_contact(const std::string& type) {
+  return type == "skirt" || type == "dress" || type == "dress_belt" || type == "jacket_hood";
+}
 
 SceneSimulation::SceneSimulation(const GeneratorConfig& config, const SceneSpec& spec)
     : config_(config), spec_(spec), generated_(make_body(config, spec)), wind_(spec.wind), solver_(config.sim) {

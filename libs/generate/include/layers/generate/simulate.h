@@ -18,6 +18,11 @@
 
 namespace layers::generate {
 
+// Whether a garment of this type gets self-contact in the solver (folds
+// of skirts, dresses and hoods; `layers crosscheck` gives Blender's
+// separate cloths the same).
+bool wants_self_contact(const std::string& type);
+
 struct SceneResult {
   bool ok = false;
   data::SequenceData sequence;          // when ok

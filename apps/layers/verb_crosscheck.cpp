@@ -1,0 +1,142 @@
+// `layers crosscheck`: one stored sequence re-simulated by Blender's cloth
+// solver from its frame 0 (scripts/blender/crosscheck_sim.py, one run per
+// setup), and a markdown table of the same measures on our ground truth
+// and on each Blender result (docs/sim.md "Cross-check against Blender").
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "blender_runner.h"
+#include "layers/core/error.h"
+#include "layers/data/dataset.h"
+#include "layers/generate/crosscheck.h"
+#include "layers/generate/crosscheck_scene.h"
+#include "verbs.h"
+
+namespace layers::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> parse_setups(const std::string& text) {
+  std::vector<std::string> setups;
+  std::istringstream in(text);
+  for (std::string s; std::getline(in, s, ',');) {
+    if (s != "merged" && s != "separate")
+      throw UsageError("--setups: expected a comma-separated list of merged and separate, got '" + text + "'");
+    setups.push_back(s);
+  }
+  if (setups.empty()) throw UsageError("--setups: expected merged, separate or both");
+  return setups;
+}
+
+// A new work folder: `requested` must not exist yet; "" makes one under
+// the temporary folder.
+std::string make_work_dir(const std::string& requested) {
+  if (requested.empty()) {
+    std::string pattern = (fs::temp_directory_path() / "layers-crosscheck-XXXXXX").string();
+    if (!::mkdtemp(pattern.data()))
+      throw Error("cannot create a work folder under " + fs::temp_directory_path().string());
+    return pattern;
+  }
+  std::error_code ec;
+  if (fs::exists(requested, ec))
+    throw InputError::message(requested, "", "exists; --work must name a new folder (nothing is overwritten)");
+  if (!fs::create_directories(requested, ec) || ec)
+    throw InputError::message(requested, "", "cannot create the work folder: " + ec.message());
+  return requested;
+}
+
+std::string title_of(const data::SequenceInfo& info, std::int64_t frames) {
+  std::string outfit;
+  for (const auto& g : info.garments) outfit += (outfit.empty() ? "" : " + ") + g.type;
+  return "Cross-check of " + info.id + " (" + info.motion + "; " + (outfit.empty() ? "no garment" : outfit) + "; " +
+         std::to_string(frames) + " frames)";
+}
+
+struct Args {
+  std::string dataset, sequence, blender, setups = "merged,separate", work;
+  std::int64_t frames = 0;
+  int threads = 1;
+};
+
+int run(const Args& a) {
+  const std::vector<std::string> setups = parse_setups(a.setups);
+  if (a.frames < 0 || a.frames == 1) throw UsageError("--frames: expected at least 2 (0 = the whole sequence)");
+  const std::string blender = find_blender(a.blender);
+  const data::Dataset dataset = data::Dataset::open(a.dataset);
+  if (!dataset.contains(a.sequence))
+    throw InputError::message(a.dataset, a.sequence, "no such sequence (`layers info " + a.dataset + "` lists them)");
+  const data::SequenceInfo& info = dataset.info(a.sequence);
+  const std::int64_t frames = a.frames == 0 ? info.n_frames : a.frames;
+  if (frames > info.n_frames || frames < 2)
+    throw InputError("--frames", a.sequence, "2.." + std::to_string(info.n_frames), std::to_string(frames));
+  if (info.garments.empty()) throw InputError::message(a.dataset, a.sequence, "has no garment to simulate");
+
+  const std::string work = make_work_dir(a.work);
+  std::fprintf(stderr, "crosscheck: work folder %s\n", work.c_str());
+  const generate::CrosscheckScene scene =
+      generate::write_crosscheck_scene(dataset, a.sequence, frames, (fs::path(work) / "export").string());
+  const std::string script = (fs::path(work) / "crosscheck_sim.py").string();
+  std::ofstream(script) << kCrosscheckScript;
+
+  data::SequenceData seq = dataset.read_sequence(a.sequence);
+  seq.n_frames = frames;
+  std::vector<generate::CrosscheckRun> runs;
+  generate::CrosscheckRun ours{"ours (stored)", std::nan(""), {}};
+  for (const auto& g : seq.garments) ours.garments.push_back(g.positions);
+  runs.push_back(std::move(ours));
+  for (const std::string& setup : setups) {
+    const std::string out = (fs::path(work) / setup).string();
+    fs::create_directories(out);
+    const std::string log = (fs::path(out) / "blender.log").string();
+    std::fprintf(stderr, "crosscheck: Blender, %s, %lld frames (log: %s)\n", setup.c_str(),
+                 static_cast<long long>(frames), log.c_str());
+    const std::string args = "--scene " + shell_quote(scene.manifest) + " --setup " + setup + " --frames " +
+                             std::to_string(frames) + " --out " + shell_quote(out);
+    const int status = run_blender(blender, a.threads, script, args, log);
+    if (status != 0)
+      throw Error("Blender (" + setup + ") failed with exit status " + std::to_string(status) + ": " +
+                  blender_failure(log) + " (log: " + log + ")");
+    runs.push_back(generate::read_crosscheck_run("Blender, " + setup, out, scene, seq));
+  }
+
+  std::vector<generate::CrosscheckColumn> columns;
+  for (const auto& r : runs) columns.push_back(generate::measure_crosscheck(seq, r));
+  const sim::FrameMeasures start = generate::measure_start(seq);
+  std::string table = generate::crosscheck_table(title_of(info, frames), columns, &start);
+  table += "\nms per frame: Blender's is the wall time of each frame's step (frames 1..n-1, " +
+           std::to_string(a.threads) +
+           " Blender thread(s)); ours is n/a: the dataset does not store how long the generator took "
+           "(`layers generate` logs it per scene).\n";
+  std::ofstream(fs::path(work) / "table.md") << table;
+  std::fputs(table.c_str(), stdout);
+  return kOk;
+}
+
+}  // namespace
+
+VerbRun register_crosscheck(CLI::App& app, const Global&) {
+  auto* cmd = app.add_subcommand(
+      "crosscheck", "Re-simulate a stored sequence with Blender's cloth from its frame 0 and compare the measures");
+  auto args = std::make_shared<Args>();
+  cmd->add_option("dataset", args->dataset, "dataset folder or shard .h5 file")->required();
+  cmd->add_option("sequence", args->sequence, "sequence id")->required();
+  cmd->add_option("--blender", args->blender, "Blender executable (default: $LAYERS_BLENDER, else blender on PATH)");
+  cmd->add_option("--setups", args->setups, "merged (all layers one cloth, self-collision), separate, or both")
+      ->capture_default_str();
+  cmd->add_option("--frames", args->frames, "frames 0..N-1 to simulate and compare (0 = the whole sequence)")
+      ->capture_default_str();
+  cmd->add_option("--work", args->work,
+                  "new folder for the export, Blender's results and table.md (default: a new "
+                  "folder under the temporary directory)");
+  cmd->add_option("--blender-threads", args->threads, "threads Blender may use")
+      ->check(CLI::Range(1, 256))
+      ->capture_default_str();
+  return [args]() { return run(*args); };
+}
+
+}  // namespace layers::app
