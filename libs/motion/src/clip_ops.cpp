@@ -2,6 +2,7 @@
 #include "layers/motion/clip_ops.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 
 #include "layers/core/error.h"
@@ -16,8 +17,13 @@ PoseMirror::PoseMirror(const body::Skeleton& skeleton) {
   for (int j = 0; j < n; ++j) {
     const std::string& name = skeleton.names[static_cast<std::size_t>(j)];
     int other = j;
-    if (name.rfind("Left", 0) == 0) other = skeleton.index("Right" + name.substr(4));
-    if (name.rfind("Right", 0) == 0) other = skeleton.index("Left" + name.substr(5));
+    if (name.rfind("Left", 0) == 0) {
+      other = skeleton.index("Right" + name.substr(4));
+    } else if (name.rfind("Right", 0) == 0) {
+      other = skeleton.index("Left" + name.substr(5));
+    } else if (name.size() > 1 && (name[0] == 'L' || name[0] == 'R') && std::isupper(name[1])) {
+      other = skeleton.index((name[0] == 'L' ? "R" : "L") + name.substr(1));  // LHipJoint, RThumb
+    }
     partner_[static_cast<std::size_t>(j)] = other >= 0 ? other : j;
   }
 }

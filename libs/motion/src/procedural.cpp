@@ -169,6 +169,16 @@ double gait_delay(const Context& c, double period, double duty, double phase, do
 
 double radians(double degrees) { return degrees * kPi / 180.0; }
 
+// A swinging foot moves along the chord between its stances; on a curved
+// path the chord cuts inwards by stride^2 * curvature / 8 and, for long
+// strides, into the other leg. Pinned (explicit) motions keep that under
+// 2.5 cm; plain ones keep the curvature they always drew.
+double path_curvature(const Context& c, double drawn, double stride) {
+  if (!c.p.explicit_params) return drawn;
+  const double limit = 8.0 * 0.025 / (stride * stride);
+  return std::clamp(drawn, -limit, limit);
+}
+
 // A kind's discrete choice: the pinned variant, or one drawn from the seed.
 int choose(Context& c, int n) { return c.p.variant >= 0 ? c.p.variant % n : c.rng.pick(n); }
 
@@ -238,8 +248,8 @@ std::vector<PoseTargets> walk(Context& c) {
   Gait g;
   const double sp = c.p.speed, amp = c.p.amplitude;
   const double v = 1.0 * sp * c.scale;
-  const double curvature = c.rng.uniform(-0.2, 0.2);
   g.period = 0.9 / std::sqrt(sp) * c.p.step_length;
+  const double curvature = path_curvature(c, c.rng.uniform(-0.2, 0.2), v * g.period);
   g.duty = 0.58;
   g.phase = c.p.phase;
   auto env = ramp(1.2, gait_delay(c, g.period, g.duty, g.phase, 0.35));
@@ -258,8 +268,11 @@ std::vector<PoseTargets> run(Context& c) {
   Gait g;
   const double sp = c.p.speed, amp = c.p.amplitude;
   const double v = 2.5 * sp * c.scale;
-  const double curvature = c.rng.uniform(-0.1, 0.1);
   g.period = 0.72 / std::pow(sp, 0.3) * c.p.step_length;
+  // Pinned fast runs gain cadence, not stride, past a 2.3 m stride (a
+  // longer one scissors the thighs into each other at the crotch).
+  if (c.p.explicit_params) g.period = std::min(g.period, 2.3 * c.scale / v);
+  const double curvature = path_curvature(c, c.rng.uniform(-0.1, 0.1), v * g.period);
   g.duty = 0.36;
   g.phase = c.p.phase;
   auto env = ramp(1.5, gait_delay(c, g.period, g.duty, g.phase, 0.35));

@@ -114,6 +114,31 @@ TEST(MotionFamilies, MirroredPoseIsTheMirrorImage) {
   EXPECT_GT(moved, 0.2);   // and the mirror is not the original
 }
 
+// Every joint of a mirrored CMU frame sits at the mirror image of its
+// partner (LHipJoint and RThumb pair up too, not only Left* and Right*).
+TEST(MotionFamilies, MirroredClipIsTheMirrorImage) {
+  const body::Body& b = body::test::body();
+  const PoseMirror mirror(b.skeleton);
+  EXPECT_EQ(mirror.partner(b.skeleton.require("LHipJoint")), b.skeleton.require("RHipJoint"));
+  EXPECT_EQ(mirror.partner(b.skeleton.require("RThumb")), b.skeleton.require("LThumb"));
+  MotionSpec spec;
+  spec.frames = 20;
+  spec.motion = "cmu/131_02_start_walk_stop.bvh window=150+20 mirror=0";
+  const auto plain = make_motion(spec, b);
+  spec.motion = "cmu/131_02_start_walk_stop.bvh window=150+20 mirror=1";
+  const auto mirrored = make_motion(spec, b);
+  double worst = 0.0;
+  for (int f : {0, 9, 19}) {
+    const auto a = body::forward_kinematics(b.skeleton, plain->pose(f));
+    const auto c = body::forward_kinematics(b.skeleton, mirrored->pose(f));
+    for (int j = 0; j < b.skeleton.num_joints(); ++j) {
+      const body::Vec3& p = a.position[mirror.partner(j)];
+      worst = std::max(worst, (c.position[j] - body::Vec3(-p.x(), p.y(), p.z())).norm());
+    }
+  }
+  EXPECT_LT(worst, 0.01);
+}
+
 TEST(MotionFamilies, ClipWindowStartsAtRestInsideTheClip) {
   const body::Body& b = body::test::body();
   const auto clip = make_procedural(stress("walk", 120), b);

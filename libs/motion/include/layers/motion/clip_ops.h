@@ -11,7 +11,7 @@
 namespace layers::motion {
 
 // Mirror across the sagittal plane (x = 0; the rig faces +z with +y up):
-// joints named Left* and Right* swap, every rotation is reflected (the
+// joints named Left* and Right* (and L* and R*, as LHipJoint and RThumb) swap, every rotation is reflected (the
 // quaternion (w, x, y, z) becomes (w, x, -y, -z)) and the root's x is
 // negated. Exact for a left-right symmetric rest skeleton, which the
 // body's is up to its rest joint positions.
