@@ -1,7 +1,8 @@
 // layers/generate/scene_spec.h -- what one scene of a dataset is, drawn
 // deterministically from the dataset seed and the scene's index: body
-// shape, motion, outfit with per-garment attributes, wind schedule, the
-// split it belongs to and its subset tags (T, T+W, L, L+W).
+// shape, motion (with body.variation: its drawn parameters, see
+// motion_variation.h), outfit with per-garment attributes, wind schedule,
+// the split it belongs to and its subset tags (T, T+W, L, L+W).
 #pragma once
 
 #include <cstdint>
