@@ -22,6 +22,19 @@ std::string manifest_to_yaml(const DatasetManifest& m) {
   out << YAML::Key << "garments" << YAML::Value << m.n_garments;
   out << YAML::Key << "shards" << YAML::Value << m.n_shards;
   out << YAML::EndMap;
+  if (m.n_distinct_motions >= 0) {
+    out << YAML::Key << "motions" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "distinct" << YAML::Value << m.n_distinct_motions;
+    out << YAML::Key << "families" << YAML::Value << YAML::BeginMap;
+    for (const auto& [family, c] : m.motion_families) {
+      out << YAML::Key << family << YAML::Value << YAML::Flow << YAML::BeginMap;
+      out << YAML::Key << "sequences" << YAML::Value << c.sequences;
+      out << YAML::Key << "distinct" << YAML::Value << c.distinct;
+      out << YAML::Key << "skipped" << YAML::Value << c.skipped;
+      out << YAML::EndMap;
+    }
+    out << YAML::EndMap << YAML::EndMap;
+  }
   if (!m.content_hashes.empty()) {
     out << YAML::Key << "content_hashes" << YAML::Value << YAML::BeginMap;
     for (const auto& [id, hash] : m.content_hashes) out << YAML::Key << id << YAML::Value << hash;
@@ -65,6 +78,23 @@ DatasetManifest read_manifest(const std::string& path) {
     for (const auto& [key, target] : fields) {
       if (counts[key])
         *target = yaml_scalar<std::int64_t>(counts[key], path, std::string("counts.") + key, "an integer");
+    }
+  }
+  if (const YAML::Node motions = root["motions"]) {
+    if (!motions.IsMap()) throw InputError(yaml_where(path, motions), "motions", "a mapping", "something else");
+    m.n_distinct_motions = yaml_scalar<std::int64_t>(motions["distinct"], path, "motions.distinct", "an integer");
+    if (const YAML::Node families = motions["families"]) {
+      if (!families.IsMap())
+        throw InputError(yaml_where(path, families), "motions.families", "a mapping", "something else");
+      for (const auto& kv : families) {
+        const std::string family = kv.first.as<std::string>(), at = "motions.families." + family;
+        MotionFamilyCount& c = m.motion_families[family];
+        if (!kv.second.IsMap()) throw InputError(yaml_where(path, kv.second), at, "a mapping", "something else");
+        const std::pair<const char*, std::int64_t*> fields[] = {
+            {"sequences", &c.sequences}, {"distinct", &c.distinct}, {"skipped", &c.skipped}};
+        for (const auto& [key, target] : fields)
+          if (kv.second[key]) *target = yaml_scalar<std::int64_t>(kv.second[key], path, at + "." + key, "an integer");
+      }
     }
   }
   if (const YAML::Node hashes = root["content_hashes"]) {

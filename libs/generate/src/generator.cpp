@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <map>
 #include <mutex>
+#include <set>
 #include <thread>
 
 #include "layers/core/atomic_file.h"
@@ -75,6 +76,23 @@ void merge_shard(const Layout& layout, int j) {
   for (int i = layout.first(j); i < layout.end(j); ++i) fs::remove(layout.part(scene_id(i)));
 }
 
+// The motions block of dataset.yaml: distinct motions per family among the
+// written sequences, and the scenes of each family that were skipped.
+void count_motions(const Layout& layout, const std::vector<std::string>& motions, data::DatasetManifest& manifest) {
+  std::map<std::string, std::set<std::string>> by_family;
+  for (const std::string& m : motions) {
+    by_family[motion_family(m)].insert(m);
+    ++manifest.motion_families[motion_family(m)].sequences;
+  }
+  std::set<std::string> all(motions.begin(), motions.end());
+  manifest.n_distinct_motions = static_cast<std::int64_t>(all.size());
+  for (const auto& [family, distinct] : by_family)
+    manifest.motion_families[family].distinct = static_cast<std::int64_t>(distinct.size());
+  for (int i = 0; i < layout.config.sequences; ++i)
+    if (fs::exists(layout.skipped(scene_id(i))))
+      ++manifest.motion_families[motion_family(sample_scene(layout.config, i).motion)].skipped;
+}
+
 // dataset.yaml, splits.yaml and stats.h5, once every shard exists.
 bool finalize(const Layout& layout, const std::string& config_yaml) {
   for (int j = 0; j < layout.n_shards(); ++j)
@@ -83,6 +101,7 @@ bool finalize(const Layout& layout, const std::string& config_yaml) {
   // subsets of every sequence that was written.
   std::map<std::string, std::vector<std::string>> splits;
   std::int64_t sequences = 0, frames = 0, garments = 0;
+  std::vector<std::string> motions;
   const std::vector<std::string> split_of = assign_splits(layout.config);
   for (int j = 0; j < layout.n_shards(); ++j) {
     data::Dataset shard = data::Dataset::open(layout.shard(j).string());
@@ -91,6 +110,7 @@ bool finalize(const Layout& layout, const std::string& config_yaml) {
       ++sequences;
       frames += info.n_frames;
       garments += static_cast<std::int64_t>(info.garments.size());
+      motions.push_back(info.motion);
       if (!is_held_out(info.tags)) splits[split_of.at(std::stoi(id.substr(4)))].push_back(id);
       for (const auto& tag : info.tags) splits[tag].push_back(id);
     }
@@ -110,6 +130,8 @@ bool finalize(const Layout& layout, const std::string& config_yaml) {
   manifest.n_garments = garments;
   manifest.n_shards = layout.n_shards();
   manifest.generator_yaml = config_yaml;
+  // Only with parametric motions, so datasets made without them keep their bytes.
+  if (layout.config.body.variation) count_motions(layout, motions, manifest);
   data::write_manifest((layout.out / "dataset.yaml").string(), manifest);
   data::record_content_hashes(layout.out.string());
   if (!out.get("train").empty()) {
@@ -188,8 +210,8 @@ GenerateReport generate_dataset(const GeneratorConfig& config, const std::string
           ++report.written;
         } else {
           ++report.skipped;
-          report.skip_reasons.push_back(spec.id + ": " + reasons);
-          spdlog::warn("{} skipped: {}", spec.id, reasons);
+          report.skip_reasons.push_back(spec.id + " (" + motion_family(spec.motion) + "): " + reasons);
+          spdlog::warn("{} skipped ({}): {}", spec.id, spec.motion, reasons);
         }
         merge_shard(layout, todo[k] / config.sequences_per_shard);
         if (options.progress)

@@ -58,6 +58,7 @@ void check(const GeneratorConfig& c, const std::string& file) {
   check_pair(shape.weight, file, "body.shape.weight");
   check_pair(shape.height, file, "body.shape.height");
   if (c.body.motions.empty()) throw InputError(file, "body.motions", "at least one motion", "an empty list");
+  if (c.body.variation) check(*c.body.variation, file, "body.variation");
   const auto& a = c.garments.attributes;
   check_pair(a.mass, file, "garments.attributes.mass");
   check_pair(a.stiffness, file, "garments.attributes.stiffness");

@@ -42,6 +42,16 @@ std::vector<sim::WindSpan> sample_wind(const WindConfig& w, int frames, const st
   return spans;
 }
 
+// A scene's first draws: its body shape and its body.motions entry.
+std::string draw_body(const GeneratorConfig& config, Rng& rng, body::ShapeParams& out) {
+  const auto& shape = config.body.shape;
+  out.gender = rng.uniform(shape.gender);
+  out.muscle = rng.uniform(shape.muscle);
+  out.weight = rng.uniform(shape.weight);
+  out.height = rng.uniform(shape.height);
+  return config.body.motions.at(rng.integer(0, static_cast<int>(config.body.motions.size()) - 1));
+}
+
 }  // namespace
 
 std::string scene_id(int index) {
@@ -102,13 +112,19 @@ SceneSpec sample_scene(const GeneratorConfig& config, int index) {
   s.id = scene_id(index);
   s.seed = derive_seed(config.seed, static_cast<std::uint64_t>(index) + 1);
   Rng rng(s.seed);
-
-  const auto& shape = config.body.shape;
-  s.shape.gender = rng.uniform(shape.gender);
-  s.shape.muscle = rng.uniform(shape.muscle);
-  s.shape.weight = rng.uniform(shape.weight);
-  s.shape.height = rng.uniform(shape.height);
-  s.motion = config.body.motions.at(rng.integer(0, static_cast<int>(config.body.motions.size()) - 1));
+  s.motion_entry = draw_body(config, rng, s.shape);
+  s.motion = s.motion_entry;
+  if (config.body.variation) {
+    int occurrence = 0;  // earlier scenes playing the same entry (clip windows are drawn without replacement)
+    if (s.motion_entry.rfind("procedural:", 0) != 0) {
+      for (int j = 0; j < index; ++j) {
+        Rng other(derive_seed(config.seed, static_cast<std::uint64_t>(j) + 1));
+        body::ShapeParams unused;
+        occurrence += draw_body(config, other, unused) == s.motion_entry;
+      }
+    }
+    s.motion = vary_motion(*config.body.variation, s.motion_entry, config.frames, s.seed, occurrence, config.seed);
+  }
 
   std::vector<double> weights;
   for (const auto& o : config.garments.outfits) weights.push_back(o.weight);
@@ -130,7 +146,7 @@ SceneSpec sample_scene(const GeneratorConfig& config, int index) {
   auto held = [](const std::vector<std::string>& list, const std::string& name) {
     return std::find(list.begin(), list.end(), name) != list.end();
   };
-  if (held(config.splits.unseen_motions, s.motion)) s.tags.push_back(kUnseenMotion);
+  if (held(config.splits.unseen_motions, s.motion_entry)) s.tags.push_back(kUnseenMotion);
   if (held(config.splits.unseen_outfits, outfit_label(outfit))) s.tags.push_back(kUnseenGarment);
   if (is_held_out(s.tags)) s.split.clear();
   return s;

@@ -8,6 +8,7 @@
 #include "layers/body/body_model.h"
 #include "layers/core/error.h"
 #include "layers/motion/bvh.h"
+#include "layers/motion/clip_ops.h"
 #include "layers/motion/procedural.h"
 #include "layers/motion/retarget.h"
 
@@ -69,7 +70,51 @@ bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-std::string find_bvh(const std::string& path, const std::string& asset_root) {
+// A clip spec split into its path and its window / mirror parameters.
+struct ClipSpec {
+  std::string path;
+  bool explicit_params = false;
+  int start = 0, length = 0;  // length 0: not given
+  bool mirror = false;
+};
+
+ClipSpec parse_clip(const std::string& text) {
+  ClipSpec c;
+  c.path = text;
+  // Parameters are trailing " key=value" tokens (a path may hold spaces).
+  while (true) {
+    const auto space = c.path.find_last_of(' ');
+    if (space == std::string::npos) break;
+    const std::string token = c.path.substr(space + 1);
+    const auto eq = token.find('=');
+    const std::string key = token.substr(0, eq == std::string::npos ? 0 : eq);
+    if (key != "window" && key != "mirror") break;
+    const std::string value = token.substr(eq + 1);
+    if (key == "mirror") {
+      if (value != "0" && value != "1") throw InputError("motion", "mirror", "0 or 1", "'" + value + "'");
+      c.mirror = value == "1";
+    } else {
+      const auto plus = value.find('+');
+      std::size_t a = 0, b = 0;
+      try {
+        c.start = std::stoi(value.substr(0, plus), &a);
+        c.length = plus == std::string::npos ? 0 : std::stoi(value.substr(plus + 1), &b);
+      } catch (const std::exception&) {
+        a = 0;
+      }
+      if (plus == std::string::npos || a != plus || b != value.size() - plus - 1 || c.start < 0 || c.length < 1)
+        throw InputError("motion", "window", "<start>+<frames> (clip frames at 30 fps, start >= 0, frames >= 1)",
+                         "'" + value + "'");
+    }
+    c.explicit_params = true;
+    c.path.erase(space);
+  }
+  return c;
+}
+
+}  // namespace
+
+std::string find_bvh_file(const std::string& path, const std::string& asset_root) {
   namespace fs = std::filesystem;
   if (fs::exists(path)) return path;
   if (fs::path(path).is_relative()) {
@@ -78,6 +123,45 @@ std::string find_bvh(const std::string& path, const std::string& asset_root) {
   }
   throw InputError("motion", "bvh", "an existing BVH file (or one in " + body::motion_asset_dir(asset_root) + ")",
                    "'" + path + "'");
+}
+
+namespace {
+
+// A retargeted clip, optionally mirrored and windowed (see MotionSpec).
+std::unique_ptr<MotionSource> make_clip(const ClipSpec& clip, const MotionSpec& spec, int body_frames,
+                                        const body::Body& body) {
+  const std::string path = find_bvh_file(clip.path, spec.asset_root);
+  // Recorded relative to the asset root, so a dataset does not name the
+  // folder it was made in; a user's own clip elsewhere keeps its path.
+  const auto track = retarget(resample(read_bvh(path), kFramesPerSecond), body);
+  const std::string name = "bvh:" + body::asset_relative_name(path, spec.asset_root);
+  const int clip_frames = track->num_frames();
+  if (!clip.explicit_params) {
+    std::unique_ptr<MotionSource> motion = std::make_unique<PoseTrack>(track->poses(), name);
+    if (body_frames > clip_frames)
+      throw InputError(path, "frames",
+                       "at most " + std::to_string(clip_frames + spec.transition_frames) +
+                           " frames (the clip at 30 fps plus the transition)",
+                       std::to_string(spec.frames));
+    if (body_frames > 0) motion = std::make_unique<Truncated>(std::move(motion), body_frames);
+    return motion;
+  }
+  const int length = clip.length > 0 ? clip.length : body_frames > 0 ? body_frames : clip_frames - clip.start;
+  if (body_frames > 0 && length != body_frames)
+    throw InputError("motion", "window",
+                     std::to_string(body_frames) + " frames (the motion's frames less the transition)",
+                     std::to_string(length));
+  if (clip.start + length > clip_frames)
+    throw InputError(path, "window", "a window inside the clip's " + std::to_string(clip_frames) + " frames at 30 fps",
+                     std::to_string(clip.start) + "+" + std::to_string(length));
+  std::vector<body::Pose> poses = track->poses();
+  if (clip.mirror) {
+    const PoseMirror mirror(body.skeleton);
+    for (body::Pose& p : poses) p = mirror(p);
+  }
+  return std::make_unique<PoseTrack>(clip_window(poses, clip.start, length),
+                                     name + " window=" + std::to_string(clip.start) + "+" + std::to_string(length) +
+                                         " mirror=" + (clip.mirror ? "1" : "0"));
 }
 
 }  // namespace
@@ -108,21 +192,14 @@ std::unique_ptr<MotionSource> make_motion(const MotionSpec& spec, const body::Bo
   const std::string& m = spec.motion;
   std::unique_ptr<MotionSource> motion;
   const int body_frames = spec.frames > 0 ? spec.frames - spec.transition_frames : 0;
+  const ClipSpec clip = parse_clip(m);
   if (m.rfind("procedural:", 0) == 0) {
     const int n = body_frames > 0 ? body_frames : kDefaultProceduralFrames - spec.transition_frames;
-    motion = make_procedural(sample_procedural(m.substr(11), std::max(1, n), spec.seed), body);
-  } else if (m.rfind("bvh:", 0) == 0 || ends_with(m, ".bvh") || ends_with(m, ".BVH")) {
-    const std::string path = find_bvh(m.rfind("bvh:", 0) == 0 ? m.substr(4) : m, spec.asset_root);
-    // Recorded relative to the asset root, so a dataset does not name the
-    // folder it was made in; a user's own clip elsewhere keeps its path.
-    const auto track = retarget(resample(read_bvh(path), kFramesPerSecond), body);
-    motion = std::make_unique<PoseTrack>(track->poses(), "bvh:" + body::asset_relative_name(path, spec.asset_root));
-    if (body_frames > motion->num_frames())
-      throw InputError(path, "frames",
-                       "at most " + std::to_string(motion->num_frames() + spec.transition_frames) +
-                           " frames (the clip at 30 fps plus the transition)",
-                       std::to_string(spec.frames));
-    if (body_frames > 0) motion = std::make_unique<Truncated>(std::move(motion), body_frames);
+    motion = make_procedural(parse_procedural(m.substr(11), std::max(1, n), spec.seed, "motion"), body);
+  } else if (clip.path.rfind("bvh:", 0) == 0 || ends_with(clip.path, ".bvh") || ends_with(clip.path, ".BVH")) {
+    ClipSpec named = clip;
+    if (named.path.rfind("bvh:", 0) == 0) named.path = named.path.substr(4);
+    motion = make_clip(named, spec, body_frames, body);
   } else {
     throw InputError("motion", "motion", "procedural:<kind>, bvh:<path> or a .bvh path", "'" + m + "'");
   }

@@ -149,7 +149,38 @@ struct Gait {
   std::function<double(double)> yaw_rate = [](double) { return 0.0; };
   std::function<double(double)> activity = [](double) { return 1.0; };  // 0..1 scales the periodic motion
   double head_lead = 0.0;  // head turns ahead by this many seconds of yaw rate
+  double phase = 0.0;      // cycle offset (share of a period) of the feet and the periodic motion
 };
+
+// The start-up delay a gait with this cycle offset needs so that it starts
+// at rest: at least `base`, and late enough that a foot caught mid-swing at
+// t = 0 lands where it took off (before the path moves). Plain (seeded)
+// motions keep `base`, as they always had.
+double gait_delay(const Context& c, double period, double duty, double phase, double base) {
+  double delay = base;
+  if (!c.p.explicit_params) return delay;
+  for (double offset : {phase, 0.5 + phase}) {
+    const double k0 = std::ceil(-offset);  // first stance starting at t >= 0
+    const double start = (k0 + offset) * period, prev_end = (k0 - 1 + offset + duty) * period;
+    if (start > 0.0 && prev_end < 0.0) delay = std::max(delay, start + 0.5 * duty * period);
+  }
+  return delay;
+}
+
+double radians(double degrees) { return degrees * kPi / 180.0; }
+
+// A swinging foot moves along the chord between its stances; on a curved
+// path the chord cuts inwards by stride^2 * curvature / 8 and, for long
+// strides, into the other leg. Pinned (explicit) motions keep that under
+// 2.5 cm; plain ones keep the curvature they always drew.
+double path_curvature(const Context& c, double drawn, double stride) {
+  if (!c.p.explicit_params) return drawn;
+  const double limit = 8.0 * 0.025 / (stride * stride);
+  return std::clamp(drawn, -limit, limit);
+}
+
+// A kind's discrete choice: the pinned variant, or one drawn from the seed.
+int choose(Context& c, int n) { return c.p.variant >= 0 ? c.p.variant % n : c.rng.pick(n); }
 
 std::vector<PoseTargets> gait_pass(const Context& c, const Gait& g, const Path& path,
                                    const std::array<std::vector<Stance>, 2>& plan, double bob);
@@ -160,8 +191,8 @@ std::vector<PoseTargets> run_gait(Context& c, const Gait& g) {
   auto yaw = [&](double t) { return path.yaw(t); };
   std::array<std::vector<Stance>, 2> plan;
   for (int s = 0; s < 2; ++s)
-    plan[s] = plan_steps(pos, yaw, g.period, g.duty, s == 0 ? 0.0 : 0.5, c.duration, c.foot_offset(s, g.width),
-                         s == 0 ? g.toe_out : -g.toe_out);
+    plan[s] = plan_steps(pos, yaw, g.period, g.duty, (s == 0 ? 0.0 : 0.5) + g.phase, c.duration,
+                         c.foot_offset(s, g.width), s == 0 ? g.toe_out : -g.toe_out);
   // The pelvis bob must cover the drop the stride geometry needs at
   // double support; a first pass measures it.
   double bob = g.bob;
@@ -181,7 +212,7 @@ std::vector<PoseTargets> gait_pass(const Context& c, const Gait& g, const Path& 
   for (int f = 0; f < c.frames; ++f) {
     const double t = c.time(f);
     const double a = g.activity(t);
-    const double phase = 2 * kPi * t / g.period;
+    const double phase = 2 * kPi * t / g.period + 2 * kPi * g.phase;
     PoseTargets x = c.base();
     const double heading = path.yaw(t);
     const double side = g.sway * a * std::sin(phase - 2 * kPi * (g.duty / 2 - 0.25));
@@ -217,10 +248,11 @@ std::vector<PoseTargets> walk(Context& c) {
   Gait g;
   const double sp = c.p.speed, amp = c.p.amplitude;
   const double v = 1.0 * sp * c.scale;
-  const double curvature = c.rng.uniform(-0.2, 0.2);
-  auto env = ramp(1.2);
-  g.period = 0.9 / std::sqrt(sp);
+  g.period = 0.9 / std::sqrt(sp) * c.p.step_length;
+  const double curvature = path_curvature(c, c.rng.uniform(-0.2, 0.2), v * g.period);
   g.duty = 0.58;
+  g.phase = c.p.phase;
+  auto env = ramp(1.2, gait_delay(c, g.period, g.duty, g.phase, 0.35));
   g.speed = [=](double t) { return v * env(t); };
   g.yaw_rate = [=](double t) { return curvature * v * env(t); };
   g.activity = env;
@@ -236,10 +268,14 @@ std::vector<PoseTargets> run(Context& c) {
   Gait g;
   const double sp = c.p.speed, amp = c.p.amplitude;
   const double v = 2.5 * sp * c.scale;
-  const double curvature = c.rng.uniform(-0.1, 0.1);
-  auto env = ramp(1.5);
-  g.period = 0.72 / std::pow(sp, 0.3);
+  g.period = 0.72 / std::pow(sp, 0.3) * c.p.step_length;
+  // Pinned fast runs gain cadence, not stride, past a 2.3 m stride (a
+  // longer one scissors the thighs into each other at the crotch).
+  if (c.p.explicit_params) g.period = std::min(g.period, 2.3 * c.scale / v);
+  const double curvature = path_curvature(c, c.rng.uniform(-0.1, 0.1), v * g.period);
   g.duty = 0.36;
+  g.phase = c.p.phase;
+  auto env = ramp(1.5, gait_delay(c, g.period, g.duty, g.phase, 0.35));
   g.width = 0.5;
   g.speed = [=](double t) { return v * env(t); };
   g.yaw_rate = [=](double t) { return curvature * v * env(t); };
@@ -280,15 +316,17 @@ std::vector<PoseTargets> turn(Context& c) {
   const double sp = c.p.speed;
   Turns turns;
   const double length = 1.8 / sp, pause = 0.8 / sp;
-  double dir = c.rng.sign();
-  for (double start = 0.5; start < c.duration; start += length + pause) {
-    turns.turns.push_back({dir * c.rng.uniform(0.5 * kPi, kPi) * c.p.amplitude, start, length});
-    if (c.rng.uniform(0, 1) < 0.5) dir = -dir;
-  }
-  const double peak = kPi / length * 1.875;  // largest yaw rate of a 180-degree turn
   Gait g;
   g.period = 0.9 / sp;
   g.duty = 0.65;
+  g.phase = c.p.phase;
+  double dir = c.p.direction != 0 ? c.p.direction : c.rng.sign();
+  for (double start = gait_delay(c, g.period, g.duty, g.phase, 0.5); start < c.duration; start += length + pause) {
+    const double angle = c.p.turn_angle > 0 ? radians(c.p.turn_angle) : c.rng.uniform(0.5 * kPi, kPi) * c.p.amplitude;
+    turns.turns.push_back({dir * angle, start, length});
+    if (c.rng.uniform(0, 1) < 0.5) dir = -dir;
+  }
+  const double peak = kPi / length * 1.875;  // largest yaw rate of a 180-degree turn
   g.width = 0.75;
   g.yaw_rate = [turns](double t) { return turns.rate(t); };
   g.activity = [turns, peak](double t) { return std::min(1.0, std::abs(turns.rate(t)) / peak); };
@@ -305,11 +343,15 @@ std::vector<PoseTargets> turn(Context& c) {
 
 std::vector<PoseTargets> spin(Context& c) {
   const double sp = c.p.speed;
-  const double omega = c.rng.sign() * 2.6 * sp * c.p.amplitude;
-  auto env = ramp(1.2);
+  const double dir = c.p.direction != 0 ? c.p.direction : c.rng.sign();
+  const double omega = dir * (c.p.turn_angle > 0 ? radians(c.p.turn_angle) : 2.6 * sp * c.p.amplitude);
   Gait g;
   g.period = 0.75 / sp;
+  // A pinned rate: each foot turns by at most ~115 degrees a step.
+  if (c.p.turn_angle > 0) g.period = std::min(g.period, 2.0 / std::abs(omega));
   g.duty = 0.6;
+  g.phase = c.p.phase;
+  auto env = ramp(1.2, gait_delay(c, g.period, g.duty, g.phase, 0.35));
   g.width = 0.75;
   g.yaw_rate = [=](double t) { return omega * env(t); };
   g.activity = env;
@@ -325,15 +367,21 @@ std::vector<PoseTargets> spin(Context& c) {
   return run_gait(c, g);
 }
 
-std::vector<PoseTargets> jump(Context& c) {
-  const double sp = c.p.speed, amp = c.p.amplitude;
-  const double crouch = (0.10 + 0.06 * amp) * c.scale;
-  const double height = (0.10 + 0.12 * amp) * c.scale;
-  const double flight = 0.3 + 0.12 * amp;
-  const double forward = c.rng.uniform(0, 1) < 0.5 ? 0.0 : c.rng.uniform(0.15, 0.45) * c.scale;
-  const double every = 2.2 / sp;
+// Repeated two-footed take-offs: a crouch before each, a flight, a landing
+// dip; jump and hop differ in size and timing.
+struct Leaps {
+  double crouch, height, flight;  // m, m, s
+  double every;                   // s between take-offs
+  double prep, prep_length;       // the crouch starts prep s before take-off and lasts prep_length s
+  double land;                    // s of the landing dip
+  double arm_dip, arm_swing;      // arms back in the crouch, forward at take-off (rad)
+  double forward;                 // m travelled per leap
+  double first;                   // s of the first take-off
+};
+
+std::vector<PoseTargets> leaps(Context& c, const Leaps& j) {
   std::vector<double> takeoffs;
-  for (double t0 = 0.85; t0 + flight + 0.5 < c.duration; t0 += every) takeoffs.push_back(t0);
+  for (double t0 = j.first; t0 + j.flight + 0.5 < c.duration; t0 += j.every) takeoffs.push_back(t0);
 
   std::array<std::vector<Stance>, 2> plan;
   for (int s = 0; s < 2; ++s) {
@@ -342,16 +390,16 @@ std::vector<PoseTargets> jump(Context& c) {
       Stance st;
       st.start = start;
       st.end = k < takeoffs.size() ? takeoffs[k] : c.duration + 1.0;
-      st.ball = body::Vec3(0, 0, forward * static_cast<double>(k)) + c.foot_offset(s, 0.7);
+      st.ball = body::Vec3(0, 0, j.forward * static_cast<double>(k)) + c.foot_offset(s, 0.7);
       st.ball.y() = 0.0;
       st.yaw = s == 0 ? 0.08 : -0.08;
       st.min_lift = k > 0 ? 1.0 : 0.0;
       plan[s].push_back(st);
-      if (k < takeoffs.size()) start = takeoffs[k] + flight;
+      if (k < takeoffs.size()) start = takeoffs[k] + j.flight;
     }
   }
   SwingStyle style;
-  style.clearance = 0.5 * height;  // the legs tuck a little below the rising pelvis
+  style.clearance = 0.5 * j.height;  // the legs tuck a little below the rising pelvis
   style.heel_off = 0.5;
   style.heel_share = 0.3;
 
@@ -362,13 +410,14 @@ std::vector<PoseTargets> jump(Context& c) {
     double dip = 0.0, air = 0.0, arms = 0.0, z = 0.0;
     for (std::size_t k = 0; k < takeoffs.size(); ++k) {
       const double t0 = takeoffs[k];
-      const double before = bump((t - (t0 - 0.55)) / 0.6), after = bump((t - (t0 + flight - 0.05)) / 0.55);
+      const double before = bump((t - (t0 - j.prep)) / j.prep_length),
+                   after = bump((t - (t0 + j.flight - 0.05)) / j.land);
       dip += before + 0.8 * after;
-      air += bump((t - t0) / flight);
-      arms += -0.6 * before + 1.6 * amp * bump((t - (t0 - 0.1)) / (flight + 0.3));
-      z += forward * body::smootherstep((t - t0) / flight);
+      air += bump((t - t0) / j.flight);
+      arms += -j.arm_dip * before + j.arm_swing * bump((t - (t0 - 0.1)) / (j.flight + 0.3));
+      z += j.forward * body::smootherstep((t - t0) / j.flight);
     }
-    x.pelvis.y() = c.stand - crouch * dip + height * air;
+    x.pelvis.y() = c.stand - j.crouch * dip + j.height * air;
     x.pelvis.z() = z;
     x.pitch = 0.25 * dip;
     x.spine_flex = 0.3 * dip;
@@ -383,12 +432,58 @@ std::vector<PoseTargets> jump(Context& c) {
   return out;
 }
 
+// The first take-off: `base` seconds, later by the phase's share of what
+// the clip leaves for it (so a phase never pushes the last leap out).
+double first_leap(const Context& c, const Leaps& j, double base) {
+  const double room = std::clamp(c.duration - base - j.flight - 0.55, 0.0, j.every);
+  return base + c.p.phase * room;
+}
+
+std::vector<PoseTargets> jump(Context& c) {
+  const double sp = c.p.speed, amp = c.p.amplitude;
+  Leaps j;
+  j.crouch = (0.10 + 0.06 * amp) * c.scale;
+  j.height = (0.10 + 0.12 * amp) * c.scale;
+  j.flight = 0.3 + 0.12 * amp;
+  if (c.p.variant >= 0)
+    j.forward = choose(c, 2) == 0 ? 0.0 : 0.3 * c.p.step_length * c.scale;  // in_place, forward
+  else
+    j.forward = c.rng.uniform(0, 1) < 0.5 ? 0.0 : c.rng.uniform(0.15, 0.45) * c.scale;
+  j.every = 2.2 / sp;
+  j.prep = 0.55;
+  j.prep_length = 0.6;
+  j.land = 0.55;
+  j.arm_dip = 0.6;
+  j.arm_swing = 1.6 * amp;
+  j.first = first_leap(c, j, 0.85);
+  return leaps(c, j);
+}
+
+// Quick small jumps on both feet, one after the other.
+std::vector<PoseTargets> hop(Context& c) {
+  const double sp = c.p.speed, amp = c.p.amplitude;
+  Leaps j;
+  j.crouch = (0.03 + 0.03 * amp) * c.scale;
+  j.height = (0.04 + 0.05 * amp) * c.scale;
+  j.flight = 0.18 + 0.06 * amp;
+  j.forward = choose(c, 2) == 0 ? 0.0 : 0.12 * c.p.step_length * c.scale;  // in_place, forward
+  j.every = std::max(0.6 / sp, j.flight + 0.22);                           // at least ~7 frames on the ground
+  j.prep = 0.2;
+  j.prep_length = 0.25;
+  j.land = 0.25;
+  j.arm_dip = 0.2;
+  j.arm_swing = 0.5 * amp;
+  j.first = first_leap(c, j, 0.6);
+  return leaps(c, j);
+}
+
 std::vector<PoseTargets> step_down(Context& c) {
   const double sp = c.p.speed;
   const double ledge = (0.12 + 0.13 * c.rng.uniform(0, 1) * c.p.amplitude) * c.scale;
-  const double reach = c.rng.uniform(0.3, 0.45) * c.scale;
-  const int lead = c.rng.pick(2);
-  const double t_lead = 0.8, swing = 0.6 / sp;
+  const double drawn_reach = c.rng.uniform(0.3, 0.45) * c.scale;
+  const double reach = c.p.explicit_params ? 0.375 * c.p.step_length * c.scale : drawn_reach;
+  const int lead = choose(c, 2);  // left, right
+  const double t_lead = 0.8 + 0.6 * c.p.phase, swing = 0.6 / sp;
   const double t_trail = t_lead + swing + 0.3 / sp;
   std::array<std::vector<Stance>, 2> plan;
   for (int s = 0; s < 2; ++s) {
@@ -433,9 +528,17 @@ std::vector<PoseTargets> step_down(Context& c) {
 
 std::vector<PoseTargets> arm_raise(Context& c) {
   const double sp = c.p.speed, amp = c.p.amplitude;
-  const bool front = c.rng.uniform(0, 1) < 0.5;
-  const int which = c.rng.pick(4);  // both, left, right, alternating
+  bool front = false;
+  int which = 0;  // both, left, right, alternating
+  if (c.p.variant >= 0) {
+    front = c.p.variant % 8 < 4;
+    which = c.p.variant % 4;
+  } else {
+    front = c.rng.uniform(0, 1) < 0.5;
+    which = c.rng.pick(4);
+  }
   const double period = 2.6 / sp;
+  const double delay = c.p.phase * std::min(period, c.duration / 3);
   const double top = std::min(2.8, 2.3 * amp + 0.3);
   auto plan = planted(c, body::Vec3::Zero(), 0.0, 0.7, 0.06);
   std::vector<PoseTargets> out;
@@ -443,10 +546,11 @@ std::vector<PoseTargets> arm_raise(Context& c) {
     const double t = c.time(f);
     PoseTargets x = c.base();
     c.idle(x, t);
+    const double u = (t - delay) / period;  // cycles since the first raise began
     for (int s = 0; s < 2; ++s) {
       const bool moves = which == 0 || which == 3 || which == s + 1;
       const double shift = which == 3 && s == 1 ? 0.5 : 0.0;
-      const double r = moves ? plateau(t / period - shift, 0.35, 0.1) * (t / period >= shift ? 1.0 : 0.0) : 0.0;
+      const double r = moves ? plateau(u - shift, 0.35, 0.1) * (u >= shift ? 1.0 : 0.0) : 0.0;
       ArmAngles& a = x.arms[s];
       if (front) {
         a.flexion = top * r;
@@ -466,9 +570,9 @@ std::vector<PoseTargets> arm_raise(Context& c) {
 
 std::vector<PoseTargets> wave(Context& c) {
   const double sp = c.p.speed, amp = c.p.amplitude;
-  const int side = c.rng.pick(2);
+  const int side = choose(c, 2);  // left, right
   const double freq = 1.8 * sp;
-  const double t_up = 0.4, rise = 0.9;
+  const double t_up = 0.4 + 0.6 * c.p.phase, rise = 0.9;
   auto plan = planted(c, body::Vec3::Zero(), 0.0, 0.7, 0.06);
   std::vector<PoseTargets> out;
   for (int f = 0; f < c.frames; ++f) {
@@ -494,12 +598,14 @@ std::vector<PoseTargets> squat(Context& c) {
   const double sp = c.p.speed, amp = c.p.amplitude;
   const double depth = std::min(0.42, (0.22 + 0.12 * amp)) * c.scale;
   const double period = 3.0 / sp;
+  const double delay = c.p.phase * std::min(period, c.duration / 3);
   auto plan = planted(c, body::Vec3::Zero(), 0.0, 1.0, 0.3);
   std::vector<PoseTargets> out;
   for (int f = 0; f < c.frames; ++f) {
     const double t = c.time(f);
     PoseTargets x = c.base();
-    const double r = plateau(t / period, 0.35, 0.08);
+    const double u = (t - delay) / period;
+    const double r = u < 0.0 ? 0.0 : plateau(u, 0.35, 0.08);
     x.pelvis.y() = c.stand - depth * r;
     x.pelvis.z() = -0.35 * depth * r;
     x.pitch = 0.45 * r;
@@ -519,9 +625,9 @@ std::vector<PoseTargets> squat(Context& c) {
 using Generator = std::vector<PoseTargets> (*)(Context&);
 const std::vector<std::pair<std::string, Generator>>& generators() {
   static const std::vector<std::pair<std::string, Generator>> g = {
-      {"walk", walk},           {"run", run},   {"turn", turn},
-      {"spin", spin},           {"jump", jump}, {"step_down", step_down},
-      {"arm_raise", arm_raise}, {"wave", wave}, {"squat", squat}};
+      {"walk", walk}, {"run", run},    {"turn", turn},           {"spin", spin},
+      {"jump", jump}, {"hop", hop},    {"step_down", step_down}, {"arm_raise", arm_raise},
+      {"wave", wave}, {"squat", squat}};
   return g;
 }
 
@@ -546,17 +652,6 @@ const std::vector<std::string>& procedural_kinds() {
   return kinds;
 }
 
-ProceduralParams sample_procedural(const std::string& kind, int frames, std::uint64_t seed) {
-  ProceduralParams p;
-  p.kind = kind;
-  p.frames = frames;
-  p.seed = seed;
-  std::mt19937_64 gen(seed * 0x2545F4914F6CDD1Dull + 17);
-  p.speed = std::uniform_real_distribution<double>(0.8, 1.25)(gen);
-  p.amplitude = std::uniform_real_distribution<double>(0.75, 1.25)(gen);
-  return p;
-}
-
 std::unique_ptr<PoseTrack> make_procedural(const ProceduralParams& params, const body::Body& body) {
   Generator gen = nullptr;
   for (const auto& [name, g] : generators())
@@ -571,6 +666,11 @@ std::unique_ptr<PoseTrack> make_procedural(const ProceduralParams& params, const
   if (!(params.speed > 0.2 && params.speed < 3.0) || !(params.amplitude > 0.0 && params.amplitude < 3.0))
     throw InputError("motion", "procedural:" + params.kind, "speed in (0.2, 3) and amplitude in (0, 3)",
                      std::to_string(params.speed) + ", " + std::to_string(params.amplitude));
+  if (!(params.phase >= 0.0 && params.phase <= 1.0) || !(params.step_length >= 0.2 && params.step_length <= 3.0) ||
+      !(params.turn_angle >= 0.0 && params.turn_angle <= 720.0) || std::abs(params.direction) > 1)
+    throw InputError("motion", "procedural:" + params.kind,
+                     "phase in [0, 1], step in [0.2, 3], turn in [0, 720] degrees, dir left or right",
+                     describe_procedural(params));
   Context c(body, params);
   std::vector<PoseTargets> targets = gen(c);
   keep_feet_reachable(c, targets);
@@ -583,7 +683,7 @@ std::unique_ptr<PoseTrack> make_procedural(const ProceduralParams& params, const
         p.local[j] = body::same_hemisphere(p.local[j], poses.back().local[j]);
     poses.push_back(std::move(p));
   }
-  return std::make_unique<PoseTrack>(std::move(poses), "procedural:" + params.kind);
+  return std::make_unique<PoseTrack>(std::move(poses), describe_procedural(params));
 }
 
 }  // namespace layers::motion

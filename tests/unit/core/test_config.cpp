@@ -223,3 +223,29 @@ TEST(Config, AliasBombAndDeepNestingAreBounded) {
   for (int i = 0; i < 5000; ++i) deeper += "[";
   expect_error([&] { cfg::parse(deeper, "deeper.yaml"); }, {"deeper.yaml:1", "got nesting beyond the parser's limit"});
 }
+
+namespace {
+struct WithOptional {
+  int n = 1;
+  std::optional<Layer> extra;
+  template <class V>
+  void visit(V& v) {
+    v("n", n);
+    v("extra", extra);
+  }
+};
+}  // namespace
+
+TEST(Config, OptionalSectionIsAbsentUnlessGivenAndLeftOutOfTheTree) {
+  WithOptional none = cfg::read<WithOptional>(cfg::parse("n: 2\n", "a.yaml"));
+  EXPECT_FALSE(none.extra.has_value());
+  EXPECT_EQ(cfg::to_yaml(cfg::to_node(none)).find("extra"), std::string::npos);
+  WithOptional some = cfg::read<WithOptional>(cfg::parse("extra: {width: 8}\n", "b.yaml"));
+  ASSERT_TRUE(some.extra.has_value());
+  EXPECT_EQ(some.extra->width, 8);
+  EXPECT_EQ(some.extra->kind, "mlp");  // defaults inside a given section
+  WithOptional again = cfg::read<WithOptional>(cfg::parse(cfg::to_yaml(cfg::to_node(some)), "c.yaml"));
+  ASSERT_TRUE(again.extra.has_value());
+  EXPECT_EQ(again.extra->width, 8);
+  expect_error([] { cfg::read<WithOptional>(cfg::parse("extra: {width: 0}\n", "d.yaml")); }, {"d.yaml", "extra.width"});
+}

@@ -120,6 +120,25 @@ TEST(DataRoundTrip, ManifestSplitsAndInfo) {
   EXPECT_NE(info.shard.find("shard-00001.h5"), std::string::npos);
 }
 
+TEST(DataRoundTrip, ManifestMotionCountsOnlyWhenRecorded) {
+  TempDir dir;
+  DatasetManifest m;
+  m.name = "x";
+  write_manifest(dir.file("plain.yaml"), m);
+  EXPECT_EQ(manifest_to_yaml(m).find("motions"), std::string::npos);
+  EXPECT_EQ(read_manifest(dir.file("plain.yaml")).n_distinct_motions, -1);
+  m.n_distinct_motions = 3;
+  m.motion_families["procedural:walk"] = {2, 2, 1};
+  m.motion_families["bvh:cmu/131_01_start_walk_stop.bvh"] = {1, 1, 0};
+  write_manifest(dir.file("counted.yaml"), m);
+  const DatasetManifest back = read_manifest(dir.file("counted.yaml"));
+  EXPECT_EQ(back.n_distinct_motions, 3);
+  ASSERT_EQ(back.motion_families.size(), 2u);
+  EXPECT_EQ(back.motion_families.at("procedural:walk").sequences, 2);
+  EXPECT_EQ(back.motion_families.at("procedural:walk").skipped, 1);
+  EXPECT_EQ(back.motion_families.at("bvh:cmu/131_01_start_walk_stop.bvh").distinct, 1);
+}
+
 TEST(DataRoundTrip, SingleShardFileOpensDirectly) {
   TempDir dir;
   const auto a = make_sequence("a", 1);

@@ -19,7 +19,7 @@ std::vector<body::JointTransforms> track(const MotionSource& m, const body::Body
 
 TEST(Procedural, ListsTheKinds) {
   const auto& kinds = procedural_kinds();
-  for (const char* k : {"walk", "run", "turn", "spin", "jump", "step_down", "arm_raise", "wave", "squat"})
+  for (const char* k : {"walk", "run", "turn", "spin", "jump", "step_down", "arm_raise", "wave", "squat", "hop"})
     EXPECT_NE(std::find(kinds.begin(), kinds.end(), k), kinds.end()) << k;
 }
 

@@ -19,8 +19,10 @@
 // cfg::to_node(value) turns it back into a tree (the resolved config that
 // every run prints and saves). Field types: bool, integers, float, double,
 // std::string, std::vector<T>, std::map<std::string, T>, nested structs
-// with visit(), enums (below), and cfg::Node (kept raw, e.g. a plugin's own
-// parameters).
+// with visit(), enums (below), cfg::Node (kept raw, e.g. a plugin's own
+// parameters) and std::optional<T> (an optional section: empty when the
+// key is absent, and then left out of to_node(), so adding one does not
+// change the resolved config of files without it).
 //
 // An enum field is written and read by name. Its names are listed once,
 // next to the enum, by a function found through argument-dependent lookup:
@@ -96,6 +98,10 @@ struct is_vector : std::false_type {};
 template <class T>
 struct is_vector<std::vector<T>> : std::true_type {};
 template <class T>
+struct is_optional : std::false_type {};
+template <class T>
+struct is_optional<std::optional<T>> : std::true_type {};
+template <class T>
 struct is_map : std::false_type {};
 template <class T>
 struct is_map<std::map<std::string, T>> : std::true_type {};
@@ -139,6 +145,10 @@ class Reader {
   static void read_value(const Node& n, const std::string& path, T& out, const Opt& o) {
     if constexpr (std::is_same_v<T, Node>) {
       out = n;
+    } else if constexpr (detail::is_optional<T>::value) {
+      typename T::value_type value{};
+      read_value(n, path, value, o);
+      out = std::move(value);
     } else if constexpr (std::is_enum_v<T>) {
       std::string name;
       detail::parse_scalar(n, path, name);
@@ -208,7 +218,12 @@ class Writer {
 
   template <class T>
   void operator()(const char* key, const T& value, const Opt& = Opt()) {
-    node_.map.emplace_back(key, write_value(value));
+    if constexpr (detail::is_optional<T>::value) {
+      if (!value) return;  // an absent optional section stays absent
+      node_.map.emplace_back(key, write_value(*value));
+    } else {
+      node_.map.emplace_back(key, write_value(value));
+    }
   }
 
   template <class T>
@@ -216,6 +231,8 @@ class Writer {
     Node n;
     if constexpr (std::is_same_v<T, Node>) {
       n = value;
+    } else if constexpr (detail::is_optional<T>::value) {
+      if (value) n = write_value(*value);
     } else if constexpr (std::is_same_v<T, bool>) {
       n.kind = Node::Kind::Scalar;
       n.scalar = value ? "true" : "false";

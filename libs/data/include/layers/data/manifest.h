@@ -6,6 +6,7 @@
 //   seed: <generator seed>
 //   sequences_per_shard: <n>
 //   counts: {sequences: n, frames: n, garments: n, shards: n}
+//   motions: {distinct: n, families: {<family>: {sequences: n, distinct: n, skipped: n}}}  # optional
 //   generator: <the generator config, as a YAML mapping; optional>
 //   content_hashes: {<sequence id>: <16 hex digits>, ...}   # optional (content_hash.h)
 #pragma once
@@ -16,14 +17,23 @@
 
 namespace layers::data {
 
+// How many different motions the sequences play, per family (the first
+// word of the `motion` attribute, e.g. procedural:walk); skipped counts the
+// scenes of the family the generator rejected.
+struct MotionFamilyCount {
+  std::int64_t sequences = 0, distinct = 0, skipped = 0;
+};
+
 struct DatasetManifest {
   std::string name;
   std::uint64_t seed = 0;
   std::int64_t format_version = 1;
   std::int64_t sequences_per_shard = 0;
   std::int64_t n_sequences = 0, n_frames = 0, n_garments = 0, n_shards = 0;
-  std::string generator_yaml;                         // YAML text of the generator config; "" if none
-  std::map<std::string, std::string> content_hashes;  // id -> content hash; empty if not recorded
+  std::int64_t n_distinct_motions = -1;                      // -1: not recorded (no motions block)
+  std::map<std::string, MotionFamilyCount> motion_families;  // family -> counts
+  std::string generator_yaml;                                // YAML text of the generator config; "" if none
+  std::map<std::string, std::string> content_hashes;         // id -> content hash; empty if not recorded
 };
 
 std::string manifest_to_yaml(const DatasetManifest& manifest);

@@ -33,7 +33,7 @@ struct GenerateReport {
   int simulated = 0;                      // simulated by this run
   int reused = 0;                         // found finished (resume)
   int written = 0, skipped = 0;           // of those simulated now
-  std::vector<std::string> skip_reasons;  // "<id>: <reason>"
+  std::vector<std::string> skip_reasons;  // "<id> (<motion family>): <reason>"
   int simulated_frames = 0;
   double simulate_seconds = 0;      // summed over scenes (all threads), wall clock
   double simulate_cpu_seconds = 0;  // the same in CPU time of the simulating threads

@@ -4,11 +4,13 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "layers/core/config.h"
 #include "layers/garment/garment.h"
+#include "layers/generate/motion_variation.h"
 #include "layers/motion/body_config.h"
 #include "layers/sim/config.h"
 #include "layers/sim/material.h"
@@ -74,6 +76,7 @@ struct WindConfig {
 struct BodySampling {
   motion::ShapeSampling shape;
   std::vector<std::string> motions{"procedural:walk"};  // drawn uniformly per scene
+  std::optional<MotionVariation> variation;             // parametric families (motion_variation.h); absent: off
   int transition_frames = 10;                           // T-pose -> motion blend (part of warm-up)
   double intersection_tolerance_mm = 4.0;
 
@@ -81,6 +84,7 @@ struct BodySampling {
   void visit(V& v) {
     v("shape", shape);
     v("motions", motions, cfg::opt().help("motion specs: procedural:<kind>, bvh:<path> or a .bvh file"));
+    v("variation", variation, cfg::opt().help("per-scene motion parameters (speed, amplitude, phase, ...)"));
     v("transition_frames", transition_frames,
       cfg::opt().range(1, 300).help("frames blending from the T-pose into the motion"));
     v("intersection_tolerance_mm", intersection_tolerance_mm, cfg::opt().range(0.5, 50));

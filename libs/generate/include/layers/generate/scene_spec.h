@@ -1,7 +1,8 @@
 // layers/generate/scene_spec.h -- what one scene of a dataset is, drawn
 // deterministically from the dataset seed and the scene's index: body
-// shape, motion, outfit with per-garment attributes, wind schedule, the
-// split it belongs to and its subset tags (T, T+W, L, L+W).
+// shape, motion (with body.variation: its drawn parameters, see
+// motion_variation.h), outfit with per-garment attributes, wind schedule,
+// the split it belongs to and its subset tags (T, T+W, L, L+W).
 #pragma once
 
 #include <cstdint>
@@ -26,7 +27,8 @@ struct SceneSpec {
   std::string id;          // "seq-000042"
   std::uint64_t seed = 0;  // the scene's own seed (motion, garment sizes)
   body::ShapeParams shape;
-  std::string motion;
+  std::string motion;                 // the exact motion spec (with body.variation: its drawn parameters)
+  std::string motion_entry;           // the body.motions entry it was drawn from
   std::vector<GarmentSpec> garments;  // inner garments first, then the outer one
   std::string wind_regime;            // calm, strong or mixed
   std::vector<sim::WindSpan> wind;    // over the recorded frames [0, frames)

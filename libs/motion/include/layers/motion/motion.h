@@ -54,6 +54,11 @@ struct MotionSpec {
   // "procedural:<kind>" (see procedural_kinds()), "bvh:<path>" or a path
   // ending in .bvh. A relative BVH path that does not exist is also looked
   // up in the asset folder's motions/ (the shipped clips are cmu/<clip>.bvh).
+  // Either may be followed by parameters, as describe() writes them:
+  // procedural ones (procedural.h: speed=, amplitude=, phase=, ...), and
+  // for clips "window=<start>+<frames>" (clip frames at 30 fps; see
+  // clip_window()) and "mirror=0|1" (clip_ops.h). With any of them the
+  // description lists all of them, so it identifies the motion exactly.
   std::string motion = "procedural:walk";
   int frames = 0;             // 0: the clip's length (BVH) or 150 (procedural)
   std::uint64_t seed = 0;     // randomises procedural speed / amplitude
@@ -65,5 +70,8 @@ struct MotionSpec {
 // when spec.frames > 0 (a BVH clip shorter than that is an InputError).
 // Bad specs and unreadable files raise InputError naming them.
 std::unique_ptr<MotionSource> make_motion(const MotionSpec& spec, const body::Body& body);
+
+// The BVH file a spec's path names (as above); InputError when none exists.
+std::string find_bvh_file(const std::string& path, const std::string& asset_root = "");
 
 }  // namespace layers::motion
