@@ -64,48 +64,35 @@ FaceTree::FaceTree(const TriMesh& mesh) : mesh_(mesh) {
     centres[f] = box.center();
     order_.push_back(f);
   }
+  nodes_.reserve(2 * order_.size() / kLeafSize + 1);
   if (!order_.empty()) build(0, static_cast<int>(order_.size()), centres);
 }
 
 int FaceTree::build(int first, int count, std::vector<Eigen::Vector3f>& centres) {
   const int index = static_cast<int>(nodes_.size());
   nodes_.emplace_back();
-  Eigen::AlignedBox3f box;
-  for (int i = first; i < first + count; ++i) box.extend(boxes_[order_[i]]);
-  nodes_[index].box = box;
   if (count <= kLeafSize) {
+    Eigen::AlignedBox3f box;
+    for (int i = first; i < first + count; ++i) box.extend(boxes_[order_[i]]);
+    nodes_[index].box = box;
     nodes_[index].first = first;
     nodes_[index].count = count;
     return index;
   }
+  // Split at the median centre along the widest axis of the centres (one
+  // pass over them); the node's box is its children's, built bottom-up.
+  Eigen::AlignedBox3f spread;
+  for (int i = first; i < first + count; ++i) spread.extend(centres[order_[i]]);
   int axis = 0;
-  box.sizes().maxCoeff(&axis);
+  spread.sizes().maxCoeff(&axis);
   const auto begin = order_.begin() + first, middle = begin + count / 2, end = begin + count;
   std::nth_element(begin, middle, end, [&](int a, int b) { return centres[a][axis] < centres[b][axis]; });
   const int left = build(first, count / 2, centres);
   const int right = build(first + count / 2, count - count / 2, centres);
   nodes_[index].left = left;
   nodes_[index].right = right;
+  nodes_[index].box = nodes_[left].box.merged(nodes_[right].box);
   return index;
-}
-
-void FaceTree::visit(const Eigen::AlignedBox3f& box, const std::function<void(int)>& visit) const {
-  if (nodes_.empty() || box.isEmpty()) return;
-  int stack[64];
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const Node& node = nodes_[stack[--top]];
-    if (!node.box.intersects(box)) continue;
-    if (node.left < 0) {
-      for (int i = node.first; i < node.first + node.count; ++i) {
-        if (boxes_[order_[i]].intersects(box)) visit(order_[i]);
-      }
-      continue;
-    }
-    stack[top++] = node.left;
-    stack[top++] = node.right;
-  }
 }
 
 std::int64_t MeshCrossings::a_faces_crossing() const { return std::count(a_faces.begin(), a_faces.end(), 1); }

@@ -38,12 +38,7 @@ class EdgeContact {
       const auto c = [&](double v) { return static_cast<std::int64_t>(std::floor(v * inv_cell)); };
       for (std::int64_t ix = c(lo.x()); ix <= c(hi.x()); ++ix)
         for (std::int64_t iy = c(lo.y()); iy <= c(hi.y()); ++iy)
-          for (std::int64_t iz = c(lo.z()); iz <= c(hi.z()); ++iz) {
-            const std::uint64_t h = static_cast<std::uint64_t>(ix) * 73856093ULL ^
-                                    static_cast<std::uint64_t>(iy) * 19349663ULL ^
-                                    static_cast<std::uint64_t>(iz) * 83492791ULL;
-            f(static_cast<std::uint32_t>(h & mask));
-          }
+          for (std::int64_t iz = c(lo.z()); iz <= c(hi.z()); ++iz) f(cell_slot(ix, iy, iz, mask));
     }
     template <class F>
     void visit(const Vec3& lo, const Vec3& hi, F&& f) const {

@@ -13,6 +13,14 @@
 
 namespace layers::sim::detail {
 
+// The table slot of grid cell (ix, iy, iz) in a table of mask + 1 slots (a
+// power of two); every grid of the solver hashes its cells with this.
+inline std::uint32_t cell_slot(std::int64_t ix, std::int64_t iy, std::int64_t iz, std::uint64_t mask) {
+  const std::uint64_t h = static_cast<std::uint64_t>(ix) * 73856093ULL ^ static_cast<std::uint64_t>(iy) * 19349663ULL ^
+                          static_cast<std::uint64_t>(iz) * 83492791ULL;
+  return static_cast<std::uint32_t>(h & mask);
+}
+
 class SpatialHash {
  public:
   // Indexes `points` with cubic cells of side `cell` (> 0). Non-finite
@@ -38,11 +46,7 @@ class SpatialHash {
 
  private:
   std::int64_t coord(double v) const { return static_cast<std::int64_t>(std::floor(v * inv_cell_)); }
-  std::uint32_t slot(std::int64_t ix, std::int64_t iy, std::int64_t iz) const {
-    const std::uint64_t h = static_cast<std::uint64_t>(ix) * 73856093ULL ^
-                            static_cast<std::uint64_t>(iy) * 19349663ULL ^ static_cast<std::uint64_t>(iz) * 83492791ULL;
-    return static_cast<std::uint32_t>(h & mask_);
-  }
+  std::uint32_t slot(std::int64_t ix, std::int64_t iy, std::int64_t iz) const { return cell_slot(ix, iy, iz, mask_); }
 
   double cell_ = 1, inv_cell_ = 1;
   std::uint64_t mask_ = 0;

@@ -43,8 +43,27 @@ class FaceTree {
   explicit FaceTree(const TriMesh& mesh);
 
   const TriMesh& mesh() const { return mesh_; }
-  // Calls visit(face) for every face whose box overlaps `box`.
-  void visit(const Eigen::AlignedBox3f& box, const std::function<void(int)>& visit) const;
+  // Calls visit(face) for every face whose box overlaps `box` (a template:
+  // it runs for every candidate of every query, the measures' hot path).
+  template <class F>
+  void visit(const Eigen::AlignedBox3f& box, F&& visit) const {
+    if (nodes_.empty() || box.isEmpty()) return;
+    int stack[64];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& node = nodes_[stack[--top]];
+      if (!node.box.intersects(box)) continue;
+      if (node.left < 0) {
+        for (int i = node.first; i < node.first + node.count; ++i) {
+          if (boxes_[order_[i]].intersects(box)) visit(order_[i]);
+        }
+        continue;
+      }
+      stack[top++] = node.left;
+      stack[top++] = node.right;
+    }
+  }
 
  private:
   struct Node {
