@@ -1,12 +1,15 @@
 // The moving body collider (see body_collider.h).
 #include "body_collider.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <unordered_map>
 #include <utility>
 
 #include "contact_response.h"
 #include "layers/core/error.h"
+#include "layers/geometry/topology.h"
 #include "surface_query.h"
 
 namespace layers::sim::detail {
@@ -26,6 +29,17 @@ void BodyCollider::reset(const geometry::TriMesh& body) {
   copy_pose(body.vertices, start_, "vertices");
   topology_ = std::move(topology);
   end_ = current_ = previous_ = start_;
+  edges_ = geometry::unique_edges(body.faces);
+  std::unordered_map<std::uint64_t, int> index;
+  const auto key = [](int a, int b) {
+    return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | static_cast<std::uint32_t>(std::max(a, b));
+  };
+  for (Eigen::Index e = 0; e < edges_.rows(); ++e) index.emplace(key(edges_(e, 0), edges_(e, 1)), static_cast<int>(e));
+  face_edges_.resize(topology_.faces.size());
+  for (std::size_t f = 0; f < face_edges_.size(); ++f) {
+    const auto& v = topology_.faces[f];
+    for (int k = 0; k < 3; ++k) face_edges_[f][k] = index.at(key(v[k], v[(k + 1) % 3]));
+  }
 }
 
 void BodyCollider::set_pose(const geometry::Points& pose) {
@@ -48,7 +62,7 @@ void BodyCollider::begin_frame(const geometry::Points* next) {
   copy_pose(*next, end_, "next positions");
 }
 
-void BodyCollider::begin_substep(double s, double cloth_step, double thickness) {
+void BodyCollider::begin_substep(double s, double cloth_step, double thickness, double edge_thickness) {
   std::swap(previous_, current_);
   double motion2 = 0;
   for (std::size_t i = 0; i < start_.size(); ++i) {
@@ -57,6 +71,20 @@ void BodyCollider::begin_substep(double s, double cloth_step, double thickness) 
   }
   radius_ = 1.5 * thickness + topology_.reach() + std::sqrt(motion2) + cloth_step;
   grid_.build(current_, radius_);
+  if (edge_thickness <= 0) return;
+  // Outward direction of each edge: the sum of its faces' area normals.
+  edge_normals_.assign(static_cast<std::size_t>(edges_.rows()), Vec3::Zero());
+  for (std::size_t f = 0; f < face_edges_.size(); ++f) {
+    const auto& v = topology_.faces[f];
+    const Vec3 n = (current_[v[1]] - current_[v[0]]).cross(current_[v[2]] - current_[v[0]]);
+    for (int e : face_edges_[f]) edge_normals_[e] += n;
+  }
+  for (Vec3& n : edge_normals_) {
+    const double len = n.norm();
+    n = len > 0 ? Vec3(n / len) : Vec3::Zero();
+  }
+  edge_contact_.file({&edges_, &previous_, nullptr, &current_, nullptr, nullptr, &edge_normals_}, edge_thickness,
+                     0.5 * topology_.max_edge_length);
 }
 
 void BodyCollider::end_frame() {
@@ -166,6 +194,13 @@ double BodyCollider::collide(Cloth::State& state, Memory& memory, double thickne
     largest = std::max(largest, depth);
   }
   return largest;
+}
+
+double BodyCollider::collide_edges(const Cloth& cloth, Cloth::State& state, double edge_thickness, Vec3s& push) {
+  if (edge_thickness <= 0 || edges_.rows() == 0) return 0.0;
+  const EdgeContact::Side body{&edges_, &previous_, nullptr, &current_, nullptr, nullptr, &edge_normals_};
+  const EdgeContact::Side garment{&cloth.edges(), &state.x_start, &state.x, nullptr, &state.inv_mass, &push};
+  return edge_contact_.collide(body, garment, edge_thickness);
 }
 
 }  // namespace layers::sim::detail

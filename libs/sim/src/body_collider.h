@@ -21,6 +21,10 @@
 //    `thickness` of the surface is pushed out along the body normal, with
 //    position-based Coulomb friction relative to the body's own motion
 //    (for supported vertices the friction budget is their support force).
+//  - edges (optional): garment edges are kept `edge_thickness` from the
+//    body's edges (EdgeContact, the body side fixed, outward = the mean
+//    normal of an edge's faces), so a ridge of the body (a shoulder, an
+//    elbow) cannot poke between the vertices of a coarser garment.
 // Because the body advances only 1/substeps of a frame per substep and
 // contacts are found afresh every substep, fast limbs cannot skip over a
 // vertex unless they move more than the search radius in one substep.
@@ -30,6 +34,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "cloth_contact.h"
 #include "layers/geometry/mesh.h"
 #include "layers/sim/cloth.h"
 #include "layers/sim/contact_topology.h"
@@ -62,8 +67,9 @@ class BodyCollider {
   void set_pose(const geometry::Points& pose);
   void begin_frame(const geometry::Points* next);
   // Interpolates to fraction s in (0, 1] of the frame and rebuilds the grid;
-  // `cloth_step` bounds how far any cloth vertex can have moved.
-  void begin_substep(double s, double cloth_step, double thickness);
+  // `cloth_step` bounds how far any cloth vertex can have moved. With
+  // edge_thickness > 0 it also files the body's edges for collide_edges().
+  void begin_substep(double s, double cloth_step, double thickness, double edge_thickness = 0);
   void end_frame();
 
   // At the start of a frame: supports the vertices that ended the last
@@ -86,6 +92,9 @@ class BodyCollider {
   // The projection pass (see above); h is the substep. Returns the largest
   // push along the normal it gave a vertex.
   double collide(Cloth::State& state, Memory& memory, double thickness, double mu, double h) const;
+  // The edge pass (see above; after begin_substep with the same
+  // edge_thickness): the pushes are added to `push`. Returns the largest.
+  double collide_edges(const Cloth& cloth, Cloth::State& state, double edge_thickness, Vec3s& push);
 
  private:
   bool nearest_point(const Vec3& p, int& nearest, SurfaceHit& hit) const;
@@ -95,6 +104,10 @@ class BodyCollider {
   Vec3s current_, previous_;  // this substep's pose and the one before
   double radius_ = 0;         // this substep's search radius (= grid cell)
   SpatialHash grid_;
+  geometry::Edges edges_;                       // unique edges
+  std::vector<std::array<int, 3>> face_edges_;  // per face: its edges (corner k to k+1)
+  Vec3s edge_normals_;                          // this substep's outward direction per edge
+  EdgeContact edge_contact_;
 };
 
 }  // namespace layers::sim::detail

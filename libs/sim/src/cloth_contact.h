@@ -14,17 +14,35 @@
 
 namespace layers::sim::detail {
 
-// Edge-edge proximity of an inner and an outer garment: an outer edge and
-// an inner edge closer than `thickness` are pushed apart along the line
-// between their closest points as it was at the start of the substep, so
-// that two edges cannot pass through each other between the vertex tests
-// (vertex-triangle contact alone lets a fold of one layer slip through the
-// other edge first). Mass-weighted by the points' barycentric weights; no
-// friction; inner vertices with zero weight in `inner_inv_mass` stay.
+// Edge-edge proximity of two surfaces, an inner one (a garment, or the
+// body) and an outer garment: an outer edge and an inner edge closer than
+// `thickness` are pushed apart along the line between their closest points
+// as it was at the start of the substep, so that two edges cannot pass
+// through each other between the vertex tests (vertex-triangle contact
+// alone lets a fold of one layer, or a ridge of the body, slip through the
+// other's edge first). Where the inner side gives an outward direction per
+// edge (the body), an outer edge found on its inside is pushed outwards
+// instead (it has crossed: put it back). Mass-weighted by the points'
+// barycentric weights; no friction; vertices with zero inverse mass stay.
 class EdgeContact {
  public:
-  void collide(const Cloth& inner, Cloth::State& inner_state, const std::vector<double>& inner_inv_mass,
-               const Cloth& outer, Cloth::State& outer_state, double thickness, Vec3s& inner_push, Vec3s& outer_push);
+  // One surface's edges and positions for a substep.
+  struct Side {
+    const geometry::Edges* edges = nullptr;
+    const Vec3s* start = nullptr;                   // positions at the start of the substep
+    Vec3s* x = nullptr;                             // positions now, moved by the contact ...
+    const Vec3s* fixed = nullptr;                   // ... or now, for a side that never moves (x null)
+    const std::vector<double>* inv_mass = nullptr;  // per vertex (ignored for a fixed side)
+    Vec3s* push = nullptr;                          // the pushes are added here (moving sides)
+    const Vec3s* outward = nullptr;                 // per edge, unit (optional; inner side only)
+    const Vec3s& now() const { return x != nullptr ? *x : *fixed; }
+  };
+  // Files the inner side's edges (positions now, boxes grown by thickness)
+  // in a grid of cells of size `cell`; then collide() meets them.
+  void file(const Side& inner, double thickness, double cell);
+  // Pushes apart every pair of an outer edge and a filed inner edge closer
+  // than thickness. Returns the largest move it gave an outer vertex.
+  double collide(const Side& inner, const Side& outer, double thickness);
 
   // Inner edges filed under the grid cells their boxes overlap (a cell may
   // share its slot with others: callers test the boxes).

@@ -99,7 +99,12 @@ void LayerContact::collide(int inner_index, const Cloth& inner, Cloth::State& in
   points_against_surface(inner_state, inner_inv_mass_, outer, outer_state, outer_state.inv_mass, grid_, -1.0, thickness,
                          mu, outer_index, inner_memory, false, inner_push, outer_push);
   if (edge_thickness > 0) {
-    edges_.collide(inner, inner_state, inner_inv_mass_, outer, outer_state, edge_thickness, inner_push, outer_push);
+    const EdgeContact::Side in{&inner.edges(), &inner_state.x_start, &inner_state.x,
+                               nullptr,        &inner_inv_mass_,     &inner_push};
+    const EdgeContact::Side out{&outer.edges(), &outer_state.x_start,  &outer_state.x,
+                                nullptr,        &outer_state.inv_mass, &outer_push};
+    edges_.file(in, edge_thickness, 0.5 * inner.topology().max_edge_length);
+    edges_.collide(in, out, edge_thickness);
   }
 }
 

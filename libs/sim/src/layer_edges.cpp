@@ -1,5 +1,5 @@
-// Edge-edge proximity between an inner and an outer garment (see
-// cloth_contact.h, EdgeContact).
+// Edge-edge proximity between an inner surface (a garment or the body) and
+// an outer garment (see cloth_contact.h, EdgeContact).
 #include <algorithm>
 #include <cmath>
 
@@ -30,62 +30,82 @@ void closest_on_segments(const Vec3& p0, const Vec3& p1, const Vec3& q0, const V
 
 }  // namespace
 
-void EdgeContact::collide(const Cloth& inner, Cloth::State& in, const std::vector<double>& w_in, const Cloth& outer,
-                          Cloth::State& out, double thickness, Vec3s& inner_push, Vec3s& outer_push) {
-  const geometry::Edges& ei = inner.edges();
-  const geometry::Edges& eo = outer.edges();
-  if (ei.rows() == 0 || eo.rows() == 0) return;
+void EdgeContact::file(const Side& inner, double thickness, double cell) {
+  cells_.build(*inner.edges, inner.now(), thickness, std::max(cell, 1e-6));
+  seen_.assign(static_cast<std::size_t>(inner.edges->rows()), -1);
+}
+
+double EdgeContact::collide(const Side& inner, const Side& outer, double thickness) {
+  const geometry::Edges& ei = *inner.edges;
+  const geometry::Edges& eo = *outer.edges;
+  if (ei.rows() == 0 || eo.rows() == 0 || outer.x == nullptr) return 0.0;
   // Broad phase: each inner edge's box (grown by the thickness) is filed
-  // under every grid cell it overlaps; an outer edge meets the inner edges
-  // filed under the cells of its own box (each once: `seen_`).
-  const double cell = std::max(0.5 * inner.topology().max_edge_length, 1e-6);
-  cells_.build(ei, in.x, thickness, cell);
-  seen_.assign(static_cast<std::size_t>(ei.rows()), -1);
-  const std::vector<double>& w_out = out.inv_mass;
+  // under every grid cell it overlaps (file()); an outer edge meets the
+  // inner edges filed under the cells of its own box (each once: `seen_`).
+  std::fill(seen_.begin(), seen_.end(), -1);
+  Vec3s& xo = *outer.x;
+  const Vec3s& xi = inner.now();
+  const Vec3s &so = *outer.start, &si = *inner.start;
+  const std::vector<double>& w_out = *outer.inv_mass;
+  const bool inner_moves = inner.x != nullptr;
+  const auto w_in = [&](int v) { return inner_moves ? (*inner.inv_mass)[v] : 0.0; };
+  double largest = 0;
   for (Eigen::Index k = 0; k < eo.rows(); ++k) {
     const int a = eo(k, 0), b = eo(k, 1);
-    const Vec3 lo = out.x[a].cwiseMin(out.x[b]), hi = out.x[a].cwiseMax(out.x[b]);
+    const Vec3 lo = xo[a].cwiseMin(xo[b]), hi = xo[a].cwiseMax(xo[b]);
     cells_.visit(lo, hi, [&](int e) {
       if (seen_[e] == k) return;
       seen_[e] = static_cast<int>(k);
       const int c = ei(e, 0), d = ei(e, 1);
       // Boxes (the inner one grown by the thickness) must overlap.
-      const Vec3 ilo = in.x[c].cwiseMin(in.x[d]).array() - thickness;
-      const Vec3 ihi = in.x[c].cwiseMax(in.x[d]).array() + thickness;
+      const Vec3 ilo = xi[c].cwiseMin(xi[d]).array() - thickness;
+      const Vec3 ihi = xi[c].cwiseMax(xi[d]).array() + thickness;
       if ((lo.array() > ihi.array()).any() || (hi.array() < ilo.array()).any()) return;
       double s, t;
-      closest_on_segments(out.x[a], out.x[b], in.x[c], in.x[d], s, t);
-      const Vec3 p = out.x[a] + s * (out.x[b] - out.x[a]), q = in.x[c] + t * (in.x[d] - in.x[c]);
+      closest_on_segments(xo[a], xo[b], xi[c], xi[d], s, t);
+      const Vec3 p = xo[a] + s * (xo[b] - xo[a]), q = xi[c] + t * (xi[d] - xi[c]);
       const Vec3 delta = p - q;
       if (delta.squaredNorm() >= thickness * thickness) return;
       // Which side the outer edge was on at the start of the substep, at
       // the same pair of points: it must stay there.
-      const Vec3 p0 = out.x_start[a] + s * (out.x_start[b] - out.x_start[a]);
-      const Vec3 q0 = in.x_start[c] + t * (in.x_start[d] - in.x_start[c]);
+      const Vec3 p0 = so[a] + s * (so[b] - so[a]);
+      const Vec3 q0 = si[c] + t * (si[d] - si[c]);
       Vec3 n = p0 - q0;
       double len = n.norm();
       if (!(len > 1e-9)) {
         n = delta;
         len = n.norm();
-        if (!(len > 1e-9)) return;
       }
+      if (inner.outward != nullptr) {
+        // An edge already on the inner surface's inside goes out.
+        const Vec3& out = (*inner.outward)[e];
+        if (out.squaredNorm() > 0 && (!(len > 1e-9) || n.dot(out) < 0)) {
+          n = out;
+          len = 1;
+        }
+      }
+      if (!(len > 1e-9)) return;
       n /= len;
       const double depth = thickness - delta.dot(n);
       if (depth <= 0) return;
       const double weight =
-          w_out[a] * (1 - s) * (1 - s) + w_out[b] * s * s + w_in[c] * (1 - t) * (1 - t) + w_in[d] * t * t;
+          w_out[a] * (1 - s) * (1 - s) + w_out[b] * s * s + w_in(c) * (1 - t) * (1 - t) + w_in(d) * t * t;
       if (!(weight > 0)) return;
       const double lambda = depth / weight;
-      const auto move = [&](Vec3s& x, Vec3s& push, int v, double amount) {
+      const auto move = [&](Vec3s& x, Vec3s* push, int v, double amount) {
         x[v] += amount * n;
-        push[v] += amount * n;
+        if (push != nullptr) (*push)[v] += amount * n;
       };
-      move(out.x, outer_push, a, w_out[a] * (1 - s) * lambda);
-      move(out.x, outer_push, b, w_out[b] * s * lambda);
-      move(in.x, inner_push, c, -w_in[c] * (1 - t) * lambda);
-      move(in.x, inner_push, d, -w_in[d] * t * lambda);
+      move(xo, outer.push, a, w_out[a] * (1 - s) * lambda);
+      move(xo, outer.push, b, w_out[b] * s * lambda);
+      largest = std::max(largest, std::max(w_out[a] * (1 - s), w_out[b] * s) * lambda);
+      if (inner_moves) {
+        move(*inner.x, inner.push, c, -w_in(c) * (1 - t) * lambda);
+        move(*inner.x, inner.push, d, -w_in(d) * t * lambda);
+      }
     });
   }
+  return largest;
 }
 
 void EdgeContact::Cells::build(const geometry::Edges& edges, const Vec3s& x, double grow, double cell) {

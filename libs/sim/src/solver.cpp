@@ -182,7 +182,8 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
     timings_.predict += seconds_since(t);
 
     if (body) {
-      m.body.begin_substep(static_cast<double>(k + 1) / n, 2 * std::sqrt(step2) + c.body_thickness, c.body_thickness);
+      m.body.begin_substep(static_cast<double>(k + 1) / n, 2 * std::sqrt(step2) + c.body_thickness, c.body_thickness,
+                           c.body_edge_thickness);
       for (std::size_t ci = 0; ci < cloths_.size(); ++ci) m.body.locate_supports(cloths_[ci].state_, m.body_memory[ci]);
     }
     timings_.body_contact += seconds_since(t);
@@ -245,8 +246,10 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
     body_push.assign(cloths_.size(), 0.0);
     if (body) {
       for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
+        Cloth::State& s = cloths_[ci].state_;
+        body_push[ci] = m.body.collide(s, m.body_memory[ci], c.body_thickness, cloths_[ci].material().friction, h);
         body_push[ci] =
-            m.body.collide(cloths_[ci].state_, m.body_memory[ci], c.body_thickness, cloths_[ci].material().friction, h);
+            std::max(body_push[ci], m.body.collide_edges(cloths_[ci], s, c.body_edge_thickness, m.push[ci]));
       }
     }
     timings_.body_contact += seconds_since(t);

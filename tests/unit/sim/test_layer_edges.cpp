@@ -25,6 +25,15 @@ void move_edge(Cloth::State& state, const V3& by) {
   state.x[1] += by;
 }
 
+// Files the inner garment's edges and meets the outer one's.
+double collide(detail::EdgeContact& contact, const Cloth& inner, Cloth::State& in, const std::vector<double>& w_in,
+               const Cloth& outer, Cloth::State& out, double thickness, Vec3s& in_push, Vec3s& out_push) {
+  const detail::EdgeContact::Side i{&inner.edges(), &in.x_start, &in.x, nullptr, &w_in, &in_push};
+  const detail::EdgeContact::Side o{&outer.edges(), &out.x_start, &out.x, nullptr, &out.inv_mass, &out_push};
+  contact.file(i, thickness, 0.5 * inner.topology().max_edge_length);
+  return contact.collide(i, o, thickness);
+}
+
 TEST(LayerEdges, AnEdgeThatPassedThroughIsPutBack) {
   // Inner edge along x; outer edge along z, 2 mm above it, then moved 5 mm
   // down: through the inner edge, with neither triangle's vertices near the
@@ -35,7 +44,7 @@ TEST(LayerEdges, AnEdgeThatPassedThroughIsPutBack) {
   move_edge(out, V3(0, -0.005, 0));
   Vec3s in_push(3, Vec3::Zero()), out_push(3, Vec3::Zero());
   detail::EdgeContact contact;
-  contact.collide(inner, in, in.inv_mass, outer, out, 0.004, in_push, out_push);
+  collide(contact, inner, in, in.inv_mass, outer, out, 0.004, in_push, out_push);
   // The closest points (the middle of the outer edge, 60% along the inner
   // one) are back 4 mm apart, the outer one above: both sides moved along y.
   const double above = 0.5 * (out.x[0].y() + out.x[1].y());
@@ -56,7 +65,7 @@ TEST(LayerEdges, HeldInnerVerticesStayAndEdgesApartAreLeftAlone) {
   std::vector<double> held(3, 0.0);  // all inner vertices held by the body
   Vec3s in_push(3, Vec3::Zero()), out_push(3, Vec3::Zero());
   detail::EdgeContact contact;
-  contact.collide(inner, in, held, outer, out, 0.004, in_push, out_push);
+  collide(contact, inner, in, held, outer, out, 0.004, in_push, out_push);
   EXPECT_EQ(in.x[0], inner.state().x[0]);
   EXPECT_EQ(in.x[1], inner.state().x[1]);
   EXPECT_NEAR(out.x[0].y(), 0.004, 1e-9);
@@ -66,7 +75,7 @@ TEST(LayerEdges, HeldInnerVerticesStayAndEdgesApartAreLeftAlone) {
   move_edge(far_out, V3(0, 0.004, 0));
   far_out.x_start = far_out.x;
   const Vec3s before = far_out.x;
-  contact.collide(inner, far_in, far_in.inv_mass, outer, far_out, 0.004, in_push, out_push);
+  collide(contact, inner, far_in, far_in.inv_mass, outer, far_out, 0.004, in_push, out_push);
   EXPECT_EQ(far_out.x, before);
   EXPECT_EQ(far_in.x, inner.state().x);
 }
