@@ -9,7 +9,10 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
+#include "layers/core/config_node.h"
+#include "layers/core/text_file.h"
 #include "run_command.h"
 #include "temp_dir.h"
 
@@ -192,6 +195,83 @@ TEST(CliGenerate, BadShardUsage) {
   EXPECT_EQ(both.exit_code, 2) << both.output;
   EXPECT_NE(both.output.find("excludes"), std::string::npos) << both.output;
   EXPECT_FALSE(fs::exists(out)) << "a usage error must not start the folder";
+}
+
+// The Kubernetes manifests (scripts/k8s) run for real minus Kubernetes:
+// each pod's exact command and arguments, with the environment an Indexed
+// Job gives pod k (JOB_COMPLETION_INDEX=k and the manifest's env), the
+// image's paths mapped onto this checkout and a temporary volume.
+namespace {
+
+struct Pod {
+  std::string command;  // shell words, paths mapped
+  std::string env;      // "NAME=value " pairs from the manifest
+  const cfg::Node* spec = nullptr;
+};
+
+Pod read_pod(const cfg::Node& job, const std::string& volume) {
+  const cfg::Node* containers = job.find("spec")->find("template")->find("spec")->find("containers");
+  EXPECT_TRUE(containers && containers->seq.size() == 1);
+  const cfg::Node& c = containers->seq.at(0);
+  Pod pod;
+  pod.spec = job.find("spec");
+  auto map_path = [&](std::string word) {
+    const std::string image_configs = "/opt/layers/share/layers/configs/";
+    if (word.rfind(image_configs, 0) == 0) return test::source_dir() + "/configs/" + word.substr(image_configs.size());
+    if (word.rfind("/data/", 0) == 0) return volume + word.substr(5);
+    return word;
+  };
+  std::vector<std::string> words;
+  for (const auto& w : c.find("command")->seq) words.push_back(w.scalar);
+  EXPECT_EQ(words.at(0), "layers");
+  words[0] = test::layers_bin();
+  for (const auto& w : c.find("args")->seq) words.push_back(map_path(w.scalar));
+  for (const auto& w : words) pod.command += "'" + w + "' ";
+  if (const cfg::Node* env = c.find("env"))
+    for (const auto& e : env->seq) pod.env += e.find("name")->scalar + "=" + e.find("value")->scalar + " ";
+  return pod;
+}
+
+}  // namespace
+
+TEST(CliGenerate, KubernetesIndexedJobManifestsMakeTheDataset) {
+  test::TempDir dir;
+  const std::string k8s = test::source_dir() + "/scripts/k8s/";
+  const cfg::Node gen_job = cfg::parse(read_text_file(k8s + "generate-job.yaml"), "generate-job.yaml");
+  const cfg::Node fin_job = cfg::parse(read_text_file(k8s + "finalize-job.yaml"), "finalize-job.yaml");
+  const Pod gen = read_pod(gen_job, dir.path()), fin = read_pod(fin_job, dir.path());
+  ASSERT_EQ(gen.spec->find("completionMode")->scalar, "Indexed");
+  const int completions = std::stoi(gen.spec->find("completions")->scalar);
+  EXPECT_NE(gen.env.find("LAYERS_SHARD_COUNT=" + std::to_string(completions) + " "), std::string::npos)
+      << "LAYERS_SHARD_COUNT must equal completions: " << gen.env;
+  EXPECT_NE(gen.command.find("'--shard' 'auto'"), std::string::npos) << gen.command;
+  // The finalize pod names the same config, settings and folder.
+  const std::string same = gen.command.substr(0, gen.command.find("'--shard'"));
+  EXPECT_EQ(fin.command, same + "'--finalize' ") << fin.command;
+
+  auto pod = [&](int k) {
+    return "env -u SLURM_ARRAY_TASK_ID JOB_COMPLETION_INDEX=" + std::to_string(k) + " " + gen.env + gen.command;
+  };
+  // All pods but the last, at once; the finalize Job applied too early fails.
+  std::string some = "status=0; pids=; ";
+  for (int k = 0; k + 1 < completions; ++k) some += pod(k) + " & pids=\"$pids $!\"; ";
+  auto first = run_command("(" + some + "for p in $pids; do wait $p || status=1; done; exit $status)");
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  auto early = run_command(fin.env + fin.command);
+  EXPECT_EQ(early.exit_code, 1) << early.output;
+  EXPECT_NE(early.output.find("shards missing: " + std::to_string(completions - 1) + " (of " +
+                              std::to_string(completions) + ")"),
+            std::string::npos)
+      << early.output;
+  auto last = run_command(pod(completions - 1));
+  ASSERT_EQ(last.exit_code, 0) << last.output;
+  EXPECT_FALSE(fs::exists(dir.file("tiny/dataset.yaml"))) << "pods must leave finalizing to the finalize Job";
+  auto done = run_command(fin.env + fin.command);
+  ASSERT_EQ(done.exit_code, 0) << done.output;
+  EXPECT_NE(done.output.find("dataset complete: " + std::to_string(completions) + " shards"), std::string::npos)
+      << done.output;
+  auto valid = run_command(test::layers_bin() + " validate " + dir.file("tiny"));
+  EXPECT_EQ(valid.exit_code, 0) << valid.output;
 }
 
 // `layers run` makes its dataset with the generator when the folder is
