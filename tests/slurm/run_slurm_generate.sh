@@ -64,6 +64,7 @@ fi
 say "$(slurmctld -V), munge $(munged -V 2>&1 | head -1 | awk '{print $1}')"
 
 # --- A private single-node cluster ---------------------------------------
+cluster_start=$(date +%s)
 work="$(mktemp -d "${TMPDIR:-/tmp}/layers-slurm.XXXXXX")"
 chmod 755 "$work"  # munged wants every folder above its socket searchable
 pids=()            # daemons this script started, stopped in this order
@@ -175,7 +176,7 @@ for _ in $(seq 120); do
   sleep 0.5
 done
 [ "$state" = idle ] || die "the node did not come up idle within 60 s (state '${state:-none}')"
-say "private Slurm up in $(elapsed) s: node $node, $(nproc) CPUs, ports $ctld_port/$slurmd_port, $work"
+say "private Slurm up in $(($(date +%s) - cluster_start)) s: node $node, $(nproc) CPUs, ports $ctld_port/$slurmd_port, $work"
 
 # --- The dataset through Slurm -------------------------------------------
 out="$work/slurm/tiny"
@@ -227,14 +228,14 @@ say "single-process run in $(($(date +%s) - single_start)) s"
 
 files="$(cd "$single" && find . -type f | sort)"
 [ "$files" = "$(cd "$out" && find . -type f | sort)" ] ||
-  die "the file lists differ: single $(echo $files), slurm $(cd "$out" && find . -type f | sort | tr '\n' ' ')"
+  die "the file lists differ: single $(tr '\n' ' ' <<<"$files"), slurm $(cd "$out" && find . -type f | sort | tr '\n' ' ')"
 for f in dataset.yaml splits.yaml stats.h5 generator.yaml $(for j in $(seq 0 $((shards - 1))); do printf 'shard-%05d.h5 ' "$j"; done); do
   grep -qx "./$f" <<<"$files" || die "$f is missing from the dataset"
 done
-n_files=0
+names=()
 while IFS= read -r f; do
   cmp -s "$single/$f" "$out/$f" || die "$f differs between the Slurm run and the single-process run"
-  n_files=$((n_files + 1))
+  names+=("${f#./}")
 done <<<"$files"
-say "passed: $n_files files byte for byte identical to the single-process run ($(echo $files | sed 's|\./||g'));" \
+say "passed: ${#names[@]} files byte for byte identical to the single-process run (${names[*]});" \
   "jobs $jobs_seconds s, total $(elapsed) s"
