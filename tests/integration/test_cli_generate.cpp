@@ -1,5 +1,7 @@
 // `layers generate` end to end on a very small config: shards, resume,
-// determinism, the dataset files, and config mismatch on resume. The
+// determinism, the dataset files, config mismatch on resume, and the
+// batch-scheduler path (--shard auto from the environment, --no-finalize,
+// then --finalize). The
 // validation thresholds are opened wide here: these tests are about the
 // pipeline; the physics checks live in the sim and generator tests.
 #include <gtest/gtest.h>
@@ -7,7 +9,10 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
+#include "layers/core/config_node.h"
+#include "layers/core/text_file.h"
 #include "run_command.h"
 #include "temp_dir.h"
 
@@ -106,11 +111,167 @@ TEST(CliGenerate, BadConfigAndMismatchedResume) {
   EXPECT_EQ(outfit.exit_code, 1) << outfit.output;
   EXPECT_NE(outfit.output.find("garments.outfits[0].inner"), std::string::npos) << outfit.output;
   auto shard = run_command(generate(dir.file("x"), "--shard 2/2"));
-  EXPECT_EQ(shard.exit_code, 1) << shard.output;
+  EXPECT_EQ(shard.exit_code, 2) << shard.output;  // a flag value out of its range: usage
   EXPECT_NE(shard.output.find("--shard"), std::string::npos) << shard.output;
   auto unknown = run_command(generate(dir.file("x"), "--set sim.substep=3"));
   EXPECT_EQ(unknown.exit_code, 1) << unknown.output;
   EXPECT_NE(unknown.output.find("sim.substep"), std::string::npos) << unknown.output;
+}
+
+// What an array job does: each task picks its shard from the scheduler's
+// environment and leaves the dataset files alone; --finalize refuses while
+// a shard is missing, then writes them. The result is the same bytes as
+// one process's run.
+TEST(CliGenerate, SchedulerShardsThenFinalizeMatchOneRun) {
+  test::TempDir dir;
+  auto one = run_command(generate(dir.file("one")));
+  ASSERT_EQ(one.exit_code, 0) << one.output;
+
+  const std::string out = dir.file("arr");
+  const std::string finalize = generate(out, "--finalize");
+  auto nothing = run_command(finalize);  // no run started this folder
+  EXPECT_EQ(nothing.exit_code, 1) << nothing.output;
+  EXPECT_NE(nothing.output.find("generator.yaml: not found"), std::string::npos) << nothing.output;
+  EXPECT_FALSE(fs::exists(out + "/dataset.yaml"));
+
+  auto slurm = run_command(
+      "env -u JOB_COMPLETION_INDEX -u LAYERS_SHARD_COUNT SLURM_ARRAY_TASK_ID=1 SLURM_ARRAY_TASK_COUNT=2 "
+      "SLURM_ARRAY_TASK_MIN=0 SLURM_ARRAY_TASK_MAX=1 " +
+      generate(out, "--shard auto --no-finalize"));
+  ASSERT_EQ(slurm.exit_code, 0) << slurm.output;
+  EXPECT_NE(slurm.output.find("1 scenes in shard 1/2: 1 simulated now"), std::string::npos) << slurm.output;
+  EXPECT_NE(slurm.output.find("not finalized (--no-finalize)"), std::string::npos) << slurm.output;
+  auto missing = run_command(finalize);
+  EXPECT_EQ(missing.exit_code, 1) << missing.output;
+  EXPECT_NE(missing.output.find(out + ": shards missing: 0 (of 2)"), std::string::npos) << missing.output;
+  EXPECT_FALSE(fs::exists(out + "/dataset.yaml"));
+
+  auto k8s = run_command("env -u SLURM_ARRAY_TASK_ID JOB_COMPLETION_INDEX=0 LAYERS_SHARD_COUNT=2 " +
+                         generate(out, "--shard auto --no-finalize --threads 2"));
+  ASSERT_EQ(k8s.exit_code, 0) << k8s.output;
+  EXPECT_NE(k8s.output.find("2 scenes in shard 0/2: 2 simulated now"), std::string::npos) << k8s.output;
+  EXPECT_FALSE(fs::exists(out + "/dataset.yaml"));
+  EXPECT_FALSE(fs::exists(out + "/stats.h5"));
+
+  auto other = run_command(generate(out, "--finalize --set seed=7"));
+  EXPECT_EQ(other.exit_code, 1) << other.output;
+  EXPECT_NE(other.output.find("different generator config"), std::string::npos) << other.output;
+  auto done = run_command(finalize);
+  ASSERT_EQ(done.exit_code, 0) << done.output;
+  EXPECT_NE(done.output.find("dataset complete: 2 shards, 3 sequences, 18 frames"), std::string::npos) << done.output;
+  for (const char* f :
+       {"shard-00000.h5", "shard-00001.h5", "stats.h5", "splits.yaml", "dataset.yaml", "generator.yaml"})
+    EXPECT_EQ(bytes(dir.file(std::string("one/") + f)), bytes(out + "/" + f)) << f;
+  EXPECT_FALSE(fs::exists(out + "/parts"));
+  auto again = run_command(finalize);  // the same bytes again
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_EQ(bytes(dir.file("one/dataset.yaml")), bytes(out + "/dataset.yaml"));
+
+  // A run stopped after its shard's last scene but before merging it:
+  // --finalize merges the finished parts (shard 1 is the one scene
+  // seq-000002, so its part holds what the shard holds).
+  const std::string shard1 = bytes(out + "/shard-00001.h5");
+  fs::remove(out + "/shard-00001.h5");
+  fs::create_directories(out + "/parts");
+  fs::copy_file(dir.file("one/shard-00001.h5"), out + "/parts/seq-000002.h5");
+  auto merged = run_command(finalize);
+  ASSERT_EQ(merged.exit_code, 0) << merged.output;
+  EXPECT_EQ(bytes(out + "/shard-00001.h5"), shard1);
+  EXPECT_FALSE(fs::exists(out + "/parts"));
+  EXPECT_EQ(run_command(test::layers_bin() + " validate " + out).exit_code, 0);
+}
+
+TEST(CliGenerate, BadShardUsage) {
+  test::TempDir dir;
+  const std::string out = dir.file("x");
+  auto none = run_command("env -u SLURM_ARRAY_TASK_ID -u JOB_COMPLETION_INDEX " + generate(out, "--shard auto"));
+  EXPECT_EQ(none.exit_code, 2) << none.output;
+  EXPECT_NE(none.output.find("--shard auto: expected SLURM_ARRAY_TASK_ID"), std::string::npos) << none.output;
+  auto beyond = run_command("env -u SLURM_ARRAY_TASK_ID JOB_COMPLETION_INDEX=4 " + generate(out, "--shard auto/3"));
+  EXPECT_EQ(beyond.exit_code, 2) << beyond.output;
+  EXPECT_NE(beyond.output.find("JOB_COMPLETION_INDEX: expected a shard index below the count 3"), std::string::npos)
+      << beyond.output;
+  auto both = run_command(generate(out, "--finalize --shard 0/2"));
+  EXPECT_EQ(both.exit_code, 2) << both.output;
+  EXPECT_NE(both.output.find("excludes"), std::string::npos) << both.output;
+  EXPECT_FALSE(fs::exists(out)) << "a usage error must not start the folder";
+}
+
+// The Kubernetes manifests (scripts/k8s) run for real minus Kubernetes:
+// each pod's exact command and arguments, with the environment an Indexed
+// Job gives pod k (JOB_COMPLETION_INDEX=k and the manifest's env), the
+// image's paths mapped onto this checkout and a temporary volume.
+namespace {
+
+struct Pod {
+  std::string command;  // shell words, paths mapped
+  std::string env;      // "NAME=value " pairs from the manifest
+  const cfg::Node* spec = nullptr;
+};
+
+Pod read_pod(const cfg::Node& job, const std::string& volume) {
+  const cfg::Node* containers = job.find("spec")->find("template")->find("spec")->find("containers");
+  EXPECT_TRUE(containers && containers->seq.size() == 1);
+  const cfg::Node& c = containers->seq.at(0);
+  Pod pod;
+  pod.spec = job.find("spec");
+  auto map_path = [&](std::string word) {
+    const std::string image_configs = "/opt/layers/share/layers/configs/";
+    if (word.rfind(image_configs, 0) == 0) return test::source_dir() + "/configs/" + word.substr(image_configs.size());
+    if (word.rfind("/data/", 0) == 0) return volume + word.substr(5);
+    return word;
+  };
+  std::vector<std::string> words;
+  for (const auto& w : c.find("command")->seq) words.push_back(w.scalar);
+  EXPECT_EQ(words.at(0), "layers");
+  words[0] = test::layers_bin();
+  for (const auto& w : c.find("args")->seq) words.push_back(map_path(w.scalar));
+  for (const auto& w : words) pod.command += "'" + w + "' ";
+  if (const cfg::Node* env = c.find("env"))
+    for (const auto& e : env->seq) pod.env += e.find("name")->scalar + "=" + e.find("value")->scalar + " ";
+  return pod;
+}
+
+}  // namespace
+
+TEST(CliGenerate, KubernetesIndexedJobManifestsMakeTheDataset) {
+  test::TempDir dir;
+  const std::string k8s = test::source_dir() + "/scripts/k8s/";
+  const cfg::Node gen_job = cfg::parse(read_text_file(k8s + "generate-job.yaml"), "generate-job.yaml");
+  const cfg::Node fin_job = cfg::parse(read_text_file(k8s + "finalize-job.yaml"), "finalize-job.yaml");
+  const Pod gen = read_pod(gen_job, dir.path()), fin = read_pod(fin_job, dir.path());
+  ASSERT_EQ(gen.spec->find("completionMode")->scalar, "Indexed");
+  const int completions = std::stoi(gen.spec->find("completions")->scalar);
+  EXPECT_NE(gen.env.find("LAYERS_SHARD_COUNT=" + std::to_string(completions) + " "), std::string::npos)
+      << "LAYERS_SHARD_COUNT must equal completions: " << gen.env;
+  EXPECT_NE(gen.command.find("'--shard' 'auto'"), std::string::npos) << gen.command;
+  // The finalize pod names the same config, settings and folder.
+  const std::string same = gen.command.substr(0, gen.command.find("'--shard'"));
+  EXPECT_EQ(fin.command, same + "'--finalize' ") << fin.command;
+
+  auto pod = [&](int k) {
+    return "env -u SLURM_ARRAY_TASK_ID JOB_COMPLETION_INDEX=" + std::to_string(k) + " " + gen.env + gen.command;
+  };
+  // All pods but the last, at once; the finalize Job applied too early fails.
+  std::string some = "status=0; pids=; ";
+  for (int k = 0; k + 1 < completions; ++k) some += pod(k) + " & pids=\"$pids $!\"; ";
+  auto first = run_command("(" + some + "for p in $pids; do wait $p || status=1; done; exit $status)");
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  auto early = run_command(fin.env + fin.command);
+  EXPECT_EQ(early.exit_code, 1) << early.output;
+  EXPECT_NE(early.output.find("shards missing: " + std::to_string(completions - 1) + " (of " +
+                              std::to_string(completions) + ")"),
+            std::string::npos)
+      << early.output;
+  auto last = run_command(pod(completions - 1));
+  ASSERT_EQ(last.exit_code, 0) << last.output;
+  EXPECT_FALSE(fs::exists(dir.file("tiny/dataset.yaml"))) << "pods must leave finalizing to the finalize Job";
+  auto done = run_command(fin.env + fin.command);
+  ASSERT_EQ(done.exit_code, 0) << done.output;
+  EXPECT_NE(done.output.find("dataset complete: " + std::to_string(completions) + " shards"), std::string::npos)
+      << done.output;
+  auto valid = run_command(test::layers_bin() + " validate " + dir.file("tiny"));
+  EXPECT_EQ(valid.exit_code, 0) << valid.output;
 }
 
 // `layers run` makes its dataset with the generator when the folder is

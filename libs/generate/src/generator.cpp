@@ -46,19 +46,24 @@ struct Layout {
   }
 };
 
+// Whether a run saved its resolved config in the folder; InputError when
+// that config is not `config_yaml`.
+bool check_saved_config(const Layout& layout, const std::string& config_yaml) {
+  const fs::path saved = layout.out / "generator.yaml";
+  if (!fs::exists(saved)) return false;
+  if (read_text_file(saved.string()) != config_yaml)
+    throw InputError::message(saved.string(), "",
+                              "this dataset folder was started with a different generator config; use the same "
+                              "config (and --set values) to resume or finalize, or another --out");
+  return true;
+}
+
 // Saves the resolved config, or checks it against the one a previous run
 // of this folder saved.
 void claim_folder(const Layout& layout, const std::string& config_yaml) {
   fs::create_directories(layout.out / "parts");
-  fs::path saved = layout.out / "generator.yaml";
-  if (fs::exists(saved)) {
-    if (read_text_file(saved.string()) != config_yaml)
-      throw InputError::message(saved.string(), "",
-                                "this dataset folder was started with a different generator config; use the same "
-                                "config to resume, or another --out");
-    return;
-  }
-  write_text_atomic(saved.string(), config_yaml);
+  if (!check_saved_config(layout, config_yaml))
+    write_text_atomic((layout.out / "generator.yaml").string(), config_yaml);
 }
 
 // Merges the finished parts of shard j into its shard file (if all its
@@ -94,9 +99,12 @@ void count_motions(const Layout& layout, const std::vector<std::string>& motions
 }
 
 // dataset.yaml, splits.yaml and stats.h5, once every shard exists.
-bool finalize(const Layout& layout, const std::string& config_yaml) {
+FinalizeReport finalize(const Layout& layout, const std::string& config_yaml) {
+  FinalizeReport report;
+  report.shards = layout.n_shards();
   for (int j = 0; j < layout.n_shards(); ++j)
-    if (!fs::exists(layout.shard(j))) return false;
+    if (!fs::exists(layout.shard(j))) report.missing.push_back(j);
+  if (!report.missing.empty()) return report;
   // Index every shard once (metadata only): counts, and the split and
   // subsets of every sequence that was written.
   std::map<std::string, std::vector<std::string>> splits;
@@ -137,29 +145,18 @@ bool finalize(const Layout& layout, const std::string& config_yaml) {
   if (!out.get("train").empty()) {
     data::Dataset ds = data::Dataset::open(layout.out.string());
     data::write_stats((layout.out / "stats.h5").string(), data::compute_stats(ds));
+    report.stats = true;
   } else {
     spdlog::warn("{}: no train sequence was written; stats.h5 not computed", layout.out.string());
   }
   std::error_code ec;
   fs::remove(layout.out / "parts", ec);  // only when empty (skipped markers stay)
-  return true;
+  report.sequences = sequences;
+  report.frames = frames;
+  return report;
 }
 
 }  // namespace
-
-std::pair<int, int> parse_shard(const std::string& text) {
-  auto slash = text.find('/');
-  try {
-    if (slash != std::string::npos) {
-      std::size_t a = 0, b = 0;
-      int k = std::stoi(text.substr(0, slash), &a);
-      int n = std::stoi(text.substr(slash + 1), &b);
-      if (a == slash && b == text.size() - slash - 1 && n >= 1 && k >= 0 && k < n) return {k, n};
-    }
-  } catch (const std::exception&) {
-  }
-  throw InputError("--shard", "", "k/n with 0 <= k < n (e.g. 0/4)", "'" + text + "'");
-}
 
 GenerateReport generate_dataset(const GeneratorConfig& config, const std::string& config_yaml,
                                 const GenerateOptions& options) {
@@ -232,9 +229,22 @@ GenerateReport generate_dataset(const GeneratorConfig& config, const std::string
   if (failure) std::rethrow_exception(failure);
   if (options.progress && !todo.empty()) progress.finish();
 
-  report.finalized = finalize(layout, config_yaml);
+  if (options.finalize) report.finalized = finalize(layout, config_yaml).done();
   report.seconds = wall.seconds();
   return report;
+}
+
+FinalizeReport finalize_dataset(const GeneratorConfig& config, const std::string& config_yaml, const std::string& out) {
+  const Layout layout{out, config};
+  if (!check_saved_config(layout, config_yaml))
+    throw InputError::message((layout.out / "generator.yaml").string(), "",
+                              "not found: no `layers generate` run has started this dataset folder; generate its "
+                              "shards first (same --config, --set and --out)");
+  // Shards whose scenes are all finished but were not merged (a run
+  // stopped in between). Only here: a generate run merges only its own
+  // shards, so that two runs never merge the same one at once.
+  for (int j = 0; j < layout.n_shards(); ++j) merge_shard(layout, j);
+  return finalize(layout, config_yaml);
 }
 
 bool dataset_complete(const std::string& folder, const GeneratorConfig& config) {

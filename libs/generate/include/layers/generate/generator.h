@@ -5,14 +5,19 @@
 // kept at once as parts/<id>.h5 (or parts/<id>.skipped with the reasons it
 // failed validation), so an interrupted run resumes where it stopped; when
 // every scene of a shard is done, its parts are merged into
-// shard-NNNNN.h5 (atomically) and removed. `--shard k/n` makes this
-// process do only the shards j with j % n == k, so several processes or
-// machines can share the work; whichever finds every shard present writes
-// dataset.yaml, splits.yaml (train/val/test and the T, T+W, L, L+W
-// subsets) and stats.h5 (train split only). The resolved config is saved
-// as generator.yaml; resuming with a different config is an error.
+// shard-NNNNN.h5 (atomically) and removed; a shard "exists" once that
+// file does. `--shard k/n` (shard.h) makes this process do only the
+// shards j with j % n == k, so several processes or machines can share
+// the work. finalize_dataset() writes dataset.yaml, splits.yaml
+// (train/val/test and the T, T+W, L, L+W subsets) and stats.h5 (train
+// split only) once every shard exists: a generate run calls it at its end
+// (unless told not to), and `layers generate --finalize` calls it alone,
+// e.g. as a batch scheduler's job after the shards' jobs. The resolved
+// config is saved as generator.yaml; resuming or finalizing with a
+// different config is an error.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -26,6 +31,7 @@ struct GenerateOptions {
   int shard_count = 1;  // n
   int threads = 1;      // scenes simulated in parallel
   bool progress = true;
+  bool finalize = true;  // finalize_dataset() at the end (when every shard exists)
 };
 
 struct GenerateReport {
@@ -41,12 +47,25 @@ struct GenerateReport {
   bool finalized = false;           // dataset.yaml, splits.yaml and stats.h5 written
 };
 
+struct FinalizeReport {
+  int shards = 0;            // of the whole dataset
+  std::vector<int> missing;  // shards not present (ascending); nothing was written then
+  std::int64_t sequences = 0, frames = 0;
+  bool stats = false;  // stats.h5 written (false when the train split is empty)
+  bool done() const { return missing.empty(); }
+};
+
 // `config_yaml` is the resolved config (saved and compared on resume).
 GenerateReport generate_dataset(const GeneratorConfig& config, const std::string& config_yaml,
                                 const GenerateOptions& options);
 
-// "k/n" -> (k, n); InputError naming --shard otherwise.
-std::pair<int, int> parse_shard(const std::string& text);
+// dataset.yaml, splits.yaml and stats.h5 of the dataset folder `out` when
+// every shard exists (a shard whose scenes are all finished but not yet
+// merged is merged first); otherwise writes nothing and lists the missing
+// shards. InputError when `out` holds no generator.yaml or one saved from
+// another config than `config_yaml`. Writing the same shards again gives
+// the same bytes, so finalizing twice is harmless.
+FinalizeReport finalize_dataset(const GeneratorConfig& config, const std::string& config_yaml, const std::string& out);
 
 // Whether `folder` holds every file a finished generate_dataset(config)
 // leaves: all shards, splits.yaml, dataset.yaml and (when the train split
