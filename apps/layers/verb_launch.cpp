@@ -3,9 +3,11 @@
 // would give them (RANK, WORLD_SIZE, LOCAL_RANK, LOCAL_WORLD_SIZE,
 // MASTER_ADDR=127.0.0.1, MASTER_PORT: a free port unless --master-port),
 // waits for them, and when one fails stops the others (SIGTERM, SIGKILL
-// after a grace period) and exits with the failed rank's code.
+// after a grace period) and exits with the failed rank's code. Ranks stop
+// when the launcher dies (PR_SET_PDEATHSIG); SIGINT/SIGTERM are forwarded.
 #include <netinet/in.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -103,6 +105,7 @@ VerbRun register_launch(CLI::App& app, const Global& global) {
     ::sigaction(SIGTERM, &forward, nullptr);
     ::sigaction(SIGINT, &forward, nullptr);
     g_children.assign(static_cast<std::size_t>(a->nproc), -1);
+    const pid_t launcher = ::getpid();
     for (int rank = 0; rank < a->nproc; ++rank) {
       const pid_t pid = ::fork();
       if (pid < 0) {
@@ -115,6 +118,8 @@ VerbRun register_launch(CLI::App& app, const Global& global) {
         ::setenv("WORLD_SIZE", n.c_str(), 1), ::setenv("LOCAL_WORLD_SIZE", n.c_str(), 1);
         ::setenv("MASTER_ADDR", "127.0.0.1", 1), ::setenv("MASTER_PORT", p.c_str(), 1);
         ::signal(SIGTERM, SIG_DFL), ::signal(SIGINT, SIG_DFL);
+        ::prctl(PR_SET_PDEATHSIG, SIGTERM);       // the launcher killed: the ranks stop too
+        if (::getppid() != launcher) ::_exit(1);  // ...even if that happened before prctl
         ::execv(self.c_str(), argv.data());
         std::fprintf(stderr, "layers launch: cannot start %s: %s\n", self.c_str(), std::strerror(errno));
         ::_exit(127);
