@@ -3,11 +3,15 @@
 // 13,340-vertex body, with the patch, body-token and edge counts each step
 // used; a "far body" variant adds as many body vertices again far from the
 // garment (the counts and the output do not change, only the box test).
+// LAYERS_BENCH_DEVICE=cuda runs model and inputs on the GPU (CUDA builds of
+// LibTorch; scripts/gpu-check.sh), each step then waits for the device.
 #include <benchmark/benchmark.h>
 
 #include <ATen/core/grad_mode.h>
 #include <torch/optim/adam.h>
 #include <cmath>
+#include <cstdlib>
+#include <string>
 
 #include "layers/core/config_node.h"
 #include "layersnet.h"
@@ -16,6 +20,27 @@
 namespace ln = layers::layersnet;
 
 namespace {
+
+// The device of LAYERS_BENCH_DEVICE (cpu when unset).
+at::Device bench_device() {
+  const char* d = std::getenv("LAYERS_BENCH_DEVICE");
+  return at::Device(d && std::string(d) == "cuda" ? at::kCUDA : at::kCPU);
+}
+
+void move_input(layers::zoo::StepInput& in, const at::Device& device) {
+  for (layers::zoo::GarmentState& g : in.garments) g = {g.prev.to(device), g.current.to(device)};
+  for (at::Tensor* t : {&in.body, &in.body_next, &in.root, &in.root_rot, &in.wind_rotation, &in.wind_strength,
+                        &in.joints, &in.joints_next})
+    if (t->defined()) *t = t->to(device);
+}
+
+// Waits for the device (a no-op on the CPU) so that a step's time is all in.
+void finish(const at::Tensor& out) {
+  if (out.is_cuda())
+    benchmark::DoNotOptimize(out.sum().item<float>());
+  else
+    benchmark::DoNotOptimize(out.data_ptr<float>());
+}
 
 struct Fixture {
   ln::testing::SyntheticScene scene;
@@ -36,6 +61,7 @@ Fixture make_fixture(std::int64_t vertices, bool far_body) {
   at::manual_seed(0);
   f.model = std::dynamic_pointer_cast<ln::LayersNet>(ln::make_layersnet(layers::cfg::Node{}));
   f.model->set_normalization(ln::testing::scene_normalization(f.scene));
+  f.model->to(bench_device());
   f.model->prepare(f.scene.statics);
   f.input = f.scene.input(5);  // wind blowing
   if (far_body) {
@@ -43,6 +69,7 @@ Fixture make_fixture(std::int64_t vertices, bool far_body) {
     f.input.body = at::cat({f.input.body, far});
     f.input.body_next = at::cat({f.input.body_next, far});
   }
+  move_input(f.input, bench_device());
   return f;
 }
 
@@ -62,13 +89,14 @@ void report(benchmark::State& state, const Fixture& f) {
 void BM_LayersNetInference(benchmark::State& state) {
   Fixture f = make_fixture(state.range(0), state.range(1) != 0);
   at::NoGradGuard no_grad;
-  for (auto _ : state) benchmark::DoNotOptimize(f.model->step(f.input).garments[0].data_ptr<float>());
+  for (auto _ : state) finish(f.model->step(f.input).garments[0]);
   report(state, f);
 }
 
 void BM_LayersNetTrainStep(benchmark::State& state) {
   Fixture f = make_fixture(state.range(0), false);
-  const std::vector<at::Tensor> target = f.scene.target(5);
+  std::vector<at::Tensor> target = f.scene.target(5);
+  for (at::Tensor& t : target) t = t.to(bench_device());
   torch::optim::Adam adam(f.model->parameters(), torch::optim::AdamOptions(1e-3));
   for (auto _ : state) {
     adam.zero_grad();
@@ -77,6 +105,7 @@ void BM_LayersNetTrainStep(benchmark::State& state) {
         (out.garments[0] - target[0]).pow(2).sum(1).mean() + (out.garments[1] - target[1]).pow(2).sum(1).mean();
     loss.backward();
     adam.step();
+    finish(loss);
   }
   report(state, f);
 }

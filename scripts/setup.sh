@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # scripts/setup.sh -- install every dependency of layers from Debian
 # packages and build it (Release, Ninja, ccache) into ./build.
+# (libgloo-dev: the Gloo headers c10d needs for data-parallel training.)
 # Idempotent: installs only what is missing, rebuilds incrementally.
 # Works as root or through sudo. Set LAYERS_BUILD_DIR to build elsewhere.
 set -euo pipefail
@@ -10,7 +11,7 @@ build="${LAYERS_BUILD_DIR:-$root/build}"
 
 packages=(
   build-essential cmake ninja-build ccache pkg-config
-  libtorch-dev libopenblas0-pthread
+  libtorch-dev libgloo-dev libopenblas0-pthread
   libeigen3-dev libhdf5-dev libnanoflann-dev libspdlog-dev libyaml-cpp-dev libcli11-dev zlib1g-dev
   nlohmann-json3-dev gnuplot-nox
   libgtest-dev libgmock-dev libbenchmark-dev

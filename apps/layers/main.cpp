@@ -53,6 +53,7 @@ int main(int argc, char** argv) {
     add(app::register_bench);
     add(app::register_report);
     add(app::register_run);
+    add(app::register_launch);
     add(app::register_config);
   } catch (const std::exception& e) {
     std::cerr << "layers: internal error: " << e.what() << "\n";

@@ -1,10 +1,13 @@
 // `layers eval <experiment.yaml>`: roll the trained model out on a split
 // and write metrics.json, sequences.csv and predictions.h5 (see
-// libs/train/include/layers/train/evaluator.h).
+// libs/train/include/layers/train/evaluator.h). Data-parallel under
+// `layers launch` or srun (dist_join.h): the sequences are split over the
+// ranks and rank 0 writes and prints the same results one process would.
 #include <cmath>
 #include <cstdio>
 
 #include "config_loading.h"
+#include "dist_join.h"
 #include "layers/data/run_layout.h"
 #include "layers/train/evaluator.h"
 #include "plugins.h"
@@ -42,7 +45,10 @@ VerbRun register_eval(CLI::App& app, const Global&) {
   return [a]() {
     LoadedConfig loaded = load_config(a->config);
     a->options.progress = !a->quiet;
+    const std::unique_ptr<dist::Group> group = join_group(loaded.typed);
+    a->options.group = group.get();
     const train::EvalReport r = train::run_evaluation(loaded.typed, load_plugins().registry, a->options);
+    if (group && !group->is_root()) return static_cast<int>(kOk);
     std::printf("%s on %s: %lld sequences, %lld frames, %lld diverged, %.2f ms per frame\n", r.model.c_str(),
                 r.split.c_str(), static_cast<long long>(r.sequences), static_cast<long long>(r.frames),
                 static_cast<long long>(r.diverged), r.ms_per_frame);

@@ -2,7 +2,11 @@
 // libs/train/include/layers/train/trainer.h). A run folder that already
 // holds a run is continued only with --resume, or moved aside (never
 // deleted) with --force; the model is checked before the folder is touched.
+// Data-parallel when the environment names ranks (dist_join.h, `layers
+// launch`): every rank checks the same things, rank 0 alone touches the
+// folder and prints.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -10,6 +14,7 @@
 #include <vector>
 
 #include "config_loading.h"
+#include "dist_join.h"
 #include "layers/core/atomic_file.h"
 #include "layers/core/error.h"
 #include "layers/data/run_layout.h"
@@ -76,28 +81,42 @@ VerbRun register_train(CLI::App& app, const Global&) {
         throw InputError(a->config.file, "data.dataset", "a dataset folder (made by `layers generate`) or shard file",
                          "'" + loaded.typed.data.dataset + "' (no such folder or file)");
     }
+    const std::unique_ptr<dist::Group> group = join_group(loaded.typed);
+    const bool root = !group || group->is_root();
     const fs::path out = loaded.typed.run.output;
     const std::vector<std::string> held = run_results_in(out);
     if (!held.empty() && !a->resume && !a->force)
       throw InputError(out.string(), "run.output",
                        "a new or empty run folder (--resume continues the run there, --force moves it aside)",
                        "a folder holding a run (" + held.front() + (held.size() > 1 ? ", ..." : "") + ")");
-    if (!held.empty() && a->force) {
+    if (group) group->barrier();  // every rank has looked at the folder before rank 0 changes it
+    if (root && !held.empty() && a->force) {
       const fs::path aside = aside_name(out);
       fs::rename(out, aside);
       std::printf("moved the old run %s aside to %s\n", out.string().c_str(), aside.string().c_str());
     }
-    fs::create_directories(out);
-    write_text_atomic((out / data::run_layout::kExperiment).string(), cfg::to_yaml(loaded.resolved));
+    if (root) {
+      fs::create_directories(out);
+      write_text_atomic((out / data::run_layout::kExperiment).string(), cfg::to_yaml(loaded.resolved));
+    }
     train::TrainOptions options;
     options.resume = a->resume;
     options.progress = !a->quiet;
+    options.group = group.get();
     const train::TrainReport r = train::run_training(loaded.typed, load_plugins().registry, options);
+    if (!root) return static_cast<int>(kOk);
     std::printf("trained %d epochs (%lld steps), %lld trainable parameters\n", r.epochs_done,
                 static_cast<long long>(r.steps), static_cast<long long>(r.trainable_parameters));
     for (const auto& e : r.epochs)
-      std::printf("  epoch %d: loss %.5g  val error %.2f mm  %.1f frames/s  %.1f s\n", e.epoch, e.loss, e.val_error_mm,
-                  e.frames_per_second, e.seconds);
+      std::printf(
+          "  epoch %d: loss %.5g  val error %.2f mm  %.1f frames/s  %.1f s%s\n", e.epoch, e.loss, e.val_error_mm,
+          e.frames_per_second, e.seconds,
+          e.ranks > 1
+              ? (" on " + std::to_string(e.ranks) + " ranks, " +
+                 std::to_string(static_cast<int>(std::lround(100.0 * e.comm_seconds / std::max(e.seconds, 1e-9)))) +
+                 "% in gradient exchange")
+                    .c_str()
+              : "");
     std::printf("checkpoints: %s, %s\n", r.last_checkpoint.c_str(), r.best_checkpoint.c_str());
     return static_cast<int>(kOk);
   };

@@ -32,14 +32,15 @@ void save_experiment(const StudyRun& run) {
 // The experiment as fingerprinted: without run.output and data.dataset
 // (locations: the run folder holds the records, the dataset's files are
 // fingerprinted themselves, so a study folder copied with its dataset
-// stays current) and, for training, without the eval section.
+// stays current), without run.dist_timeout_s (how long ranks wait, not
+// what they compute) and, for training, without the eval section.
 std::string fingerprinted_text(const StudyRun& run, bool training) {
   cfg::Node tree = cfg::to_node(run.config);
   auto drop = [](cfg::Node& map, const char* key) {
     map.map.erase(std::remove_if(map.map.begin(), map.map.end(), [&](const auto& kv) { return kv.first == key; }),
                   map.map.end());
   };
-  if (cfg::Node* r = tree.find("run")) drop(*r, "output");
+  if (cfg::Node* r = tree.find("run")) drop(*r, "output"), drop(*r, "dist_timeout_s");
   if (cfg::Node* d = tree.find("data")) drop(*d, "dataset");
   if (training) drop(tree, "eval");
   return cfg::to_yaml(tree);

@@ -5,8 +5,10 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "layers/core/atomic_file.h"
@@ -14,6 +16,7 @@
 #include "layers/core/progress.h"
 #include "layers/data/run_layout.h"
 #include "layers/data/shard_writer.h"
+#include "layers/dist/group.h"
 #include "layers/train/checkpoint.h"
 #include "layers/train/session.h"
 #include "layers/train/trainer.h"
@@ -113,6 +116,100 @@ double error_growth_mm_per_frame(const std::vector<FrameMetrics>& frames) {
   return n >= 2 && den > 0 ? (n * sxy - sx * sy) / den : kNaN;
 }
 
+// ---- a rollout's result as bytes (from the rank that made it to rank 0) --
+// Exact: doubles and floats travel as their bytes, so rank 0 sums the same
+// values one process would.
+class Bytes {
+ public:
+  std::string data;
+  template <class T>
+  void put(const T& v) {
+    data.append(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+  void put(const std::vector<double>& v) {
+    put<std::uint64_t>(v.size());
+    data.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(double));
+  }
+  void put(const std::string& v) {
+    put<std::uint64_t>(v.size());
+    data += v;
+  }
+};
+
+class Unbytes {
+ public:
+  explicit Unbytes(const std::string& d) : data_(d) {}
+  template <class T>
+  T get() {
+    T v;
+    take(&v, sizeof v);
+    return v;
+  }
+  std::vector<double> doubles() {
+    std::vector<double> v(get<std::uint64_t>());
+    take(v.data(), v.size() * sizeof(double));
+    return v;
+  }
+  std::string text() {
+    std::string v(get<std::uint64_t>(), '\0');
+    take(v.data(), v.size());
+    return v;
+  }
+  void take(void* out, std::size_t n) {
+    if (pos_ + n > data_.size()) throw Error("evaluation: a rank's rollout result is truncated");
+    std::memcpy(out, data_.data() + pos_, n);
+    pos_ += n;
+  }
+
+ private:
+  const std::string& data_;
+  std::size_t pos_ = 0;
+};
+
+std::string encode(const RolloutResult& r) {
+  Bytes b;
+  b.put<std::uint64_t>(r.frames.size());
+  for (const FrameMetrics& m : r.frames) {
+    b.put(m.frame), b.put(m.error_mm), b.put(m.garment_error_mm), b.put(m.garment_h_collision);
+    b.put(m.h_collision), b.put(m.l_collision), b.put(m.truth_h_collision), b.put(m.truth_l_collision);
+    b.put(m.garment_h_crossing), b.put(m.h_crossing), b.put(m.l_crossing), b.put(m.truth_h_crossing);
+    b.put(m.truth_l_crossing), b.put<std::uint8_t>(m.diverged);
+  }
+  b.put(r.diverged_at), b.put(r.diverge_reason), b.put(r.model_seconds);
+  b.put<std::uint64_t>(r.predictions.size());
+  for (const at::Tensor& p : r.predictions) {
+    const at::Tensor c = p.detach().to(at::kCPU, at::kFloat).contiguous();
+    b.put<std::uint64_t>(c.dim());
+    for (std::int64_t d = 0; d < c.dim(); ++d) b.put<std::int64_t>(c.size(d));
+    b.data.append(reinterpret_cast<const char*>(c.data_ptr<float>()), c.numel() * sizeof(float));
+  }
+  return b.data;
+}
+
+RolloutResult decode(const std::string& bytes) {
+  Unbytes u(bytes);
+  RolloutResult r;
+  r.frames.resize(u.get<std::uint64_t>());
+  for (FrameMetrics& m : r.frames) {
+    m.frame = u.get<std::int64_t>(), m.error_mm = u.get<double>();
+    m.garment_error_mm = u.doubles(), m.garment_h_collision = u.doubles();
+    m.h_collision = u.get<double>(), m.l_collision = u.get<double>();
+    m.truth_h_collision = u.get<double>(), m.truth_l_collision = u.get<double>();
+    m.garment_h_crossing = u.doubles(), m.h_crossing = u.get<double>(), m.l_crossing = u.get<double>();
+    m.truth_h_crossing = u.get<double>(), m.truth_l_crossing = u.get<double>();
+    m.diverged = u.get<std::uint8_t>() != 0;
+  }
+  r.diverged_at = u.get<std::int64_t>(), r.diverge_reason = u.text(), r.model_seconds = u.get<double>();
+  r.predictions.resize(u.get<std::uint64_t>());
+  for (at::Tensor& p : r.predictions) {
+    std::vector<std::int64_t> sizes(u.get<std::uint64_t>());
+    for (std::int64_t& n : sizes) n = u.get<std::int64_t>();
+    p = at::empty(sizes, at::kFloat);
+    u.take(p.data_ptr<float>(), static_cast<std::size_t>(p.numel()) * sizeof(float));
+  }
+  return r;
+}
+
 }  // namespace
 
 std::string resolve_checkpoint(const ExperimentConfig& config, const std::string& which) {
@@ -121,7 +218,11 @@ std::string resolve_checkpoint(const ExperimentConfig& config, const std::string
 }
 
 EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& registry, const EvalOptions& options) {
-  Session s = open_session(config, registry);
+  dist::Group* group = options.group;
+  const bool root = !group || group->is_root();
+  const std::size_t rank = group ? static_cast<std::size_t>(group->rank()) : 0;
+  const std::size_t ranks = group ? static_cast<std::size_t>(group->size()) : 1;
+  Session s = open_session(config, registry, group ? group->local_rank() : -1);
   EvalReport report;
   report.model = s.model->name();
   report.checkpoint = resolve_checkpoint(config, options.checkpoint);
@@ -135,14 +236,17 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
       !options.out_dir.empty()
           ? options.out_dir
           : (std::filesystem::path(config.run.output) / data::run_layout::eval_folder(report.split)).string();
-  std::filesystem::create_directories(report.out_dir);
+  if (root) std::filesystem::create_directories(report.out_dir);
   const std::vector<std::string> ids =
       options.sequences.empty() ? select_sequences(s.dataset, report.split, config.data.subsets) : options.sequences;
   if (ids.empty())
     throw InputError(config.data.dataset + "/splits.yaml", report.split, "at least one sequence to evaluate", "none");
+  for (const std::string& id : ids)
+    if (!s.dataset.contains(id))
+      throw InputError(config.data.dataset, "sequence '" + id + "'", "a sequence of the dataset", "unknown id");
 
   std::unique_ptr<data::ShardWriter> writer;
-  if (config.eval.save_predictions)
+  if (config.eval.save_predictions && root)
     writer = std::make_unique<data::ShardWriter>(
         (std::filesystem::path(report.out_dir) / data::run_layout::kPredictions).string());
   Values overall, truth;
@@ -154,91 +258,110 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
   csv << "sequence,motion,tags,garment,type,layer,error_mm,h_collision,l_collision,diverged_at,h_crossing,l_crossing\n";
   std::vector<double> growth_rates;  // mm per frame, per sequence (error growth)
   double model_seconds = 0;
-  Progress progress("eval " + report.model + " on " + report.split, ids.size(), "sequences");
-  for (const std::string& id : ids) {
-    if (!s.dataset.contains(id))
-      throw InputError(config.data.dataset, "sequence '" + id + "'", "a sequence of the dataset", "unknown id");
-    SequenceRollout r = rollout_sequence(s, id, horizon, config.eval.diverge_mm, writer != nullptr);
-    const RolloutResult& res = r.result;
-    model_seconds += res.model_seconds;
-    report.frames += static_cast<std::int64_t>(res.frames.size());
-    if (res.diverged_at >= 0) ++report.diverged;
-    std::vector<double> e, h, l, th, tl, hx, lx, thx, tlx;
-    for (std::size_t k = 0; k < res.frames.size(); ++k) {
-      const FrameMetrics& m = res.frames[k];
-      e.push_back(m.error_mm), h.push_back(m.h_collision), l.push_back(m.l_collision);
-      th.push_back(m.truth_h_collision), tl.push_back(m.truth_l_collision);
-      hx.push_back(m.h_crossing), lx.push_back(m.l_crossing);
-      thx.push_back(m.truth_h_crossing), tlx.push_back(m.truth_l_crossing);
-      if (step_error.size() <= k) {
-        step_error.resize(k + 1), step_h.resize(k + 1), step_l.resize(k + 1);
-        step_hx.resize(k + 1), step_lx.resize(k + 1);
+  std::optional<Progress> progress;
+  if (root) progress.emplace("eval " + report.model + " on " + report.split, ids.size(), "sequences");
+  // In rounds of one sequence per rank; rank 0 takes the round's results
+  // in the split's order, so the summaries are those of one process.
+  for (std::size_t first = 0; first < ids.size(); first += ranks) {
+    std::vector<SequenceRollout> round;
+    if (!group) {
+      round.push_back(rollout_sequence(s, ids[first], horizon, config.eval.diverge_mm, writer != nullptr));
+    } else {
+      std::string mine;
+      if (first + rank < ids.size())
+        mine =
+            encode(rollout_sequence(s, ids[first + rank], horizon, config.eval.diverge_mm, config.eval.save_predictions)
+                       .result);
+      const std::vector<std::string> all = group->gather(mine);
+      for (std::size_t k = 0; root && k < ranks && first + k < ids.size(); ++k) {
+        round.push_back(sequence_truth(s, ids[first + k], horizon));
+        round.back().result = decode(all[k]);
       }
-      step_error[k].push_back(m.error_mm), step_h[k].push_back(m.h_collision), step_l[k].push_back(m.l_collision);
-      step_hx[k].push_back(m.h_crossing), step_lx[k].push_back(m.l_crossing);
     }
-    const double seq_error = zoo::sequence_mean(e), seq_h = finite_mean(h), seq_l = finite_mean(l);
-    const double seq_hx = finite_mean(hx), seq_lx = finite_mean(lx);
-    const double growth = error_growth_mm_per_frame(res.frames);
-    if (std::isfinite(growth)) growth_rates.push_back(growth);
-    overall.error.push_back(seq_error), overall.h.push_back(seq_h), overall.l.push_back(seq_l);
-    overall.hx.push_back(seq_hx), overall.lx.push_back(seq_lx);
-    truth.h.push_back(finite_mean(th)), truth.l.push_back(finite_mean(tl));
-    truth.hx.push_back(finite_mean(thx)), truth.lx.push_back(finite_mean(tlx));
-    const data::SequenceInfo& info = s.dataset.info(id);
-    std::string tags;
-    for (const std::string& t : info.tags) tags += (tags.empty() ? "" : " ") + t;
-    json garments = json::array();
-    for (std::size_t g = 0; g < r.statics->garments.size(); ++g) {
-      const zoo::GarmentStatic& gs = r.statics->garments[g];
-      std::vector<double> ge, gh, ghx;
-      for (const FrameMetrics& m : res.frames) {
-        ge.push_back(m.garment_error_mm[g]);
-        gh.push_back(m.diverged ? kNaN : m.garment_h_collision[g]);
-        ghx.push_back(m.diverged ? kNaN : m.garment_h_crossing[g]);
+    for (SequenceRollout& r : round) {
+      const std::string& id = r.id;
+      const RolloutResult& res = r.result;
+      model_seconds += res.model_seconds;
+      report.frames += static_cast<std::int64_t>(res.frames.size());
+      if (res.diverged_at >= 0) ++report.diverged;
+      std::vector<double> e, h, l, th, tl, hx, lx, thx, tlx;
+      for (std::size_t k = 0; k < res.frames.size(); ++k) {
+        const FrameMetrics& m = res.frames[k];
+        e.push_back(m.error_mm), h.push_back(m.h_collision), l.push_back(m.l_collision);
+        th.push_back(m.truth_h_collision), tl.push_back(m.truth_l_collision);
+        hx.push_back(m.h_crossing), lx.push_back(m.l_crossing);
+        thx.push_back(m.truth_h_crossing), tlx.push_back(m.truth_l_crossing);
+        if (step_error.size() <= k) {
+          step_error.resize(k + 1), step_h.resize(k + 1), step_l.resize(k + 1);
+          step_hx.resize(k + 1), step_lx.resize(k + 1);
+        }
+        step_error[k].push_back(m.error_mm), step_h[k].push_back(m.h_collision), step_l[k].push_back(m.l_collision);
+        step_hx[k].push_back(m.h_crossing), step_lx[k].push_back(m.l_crossing);
       }
-      const double g_error = zoo::sequence_mean(ge), g_h = finite_mean(gh), g_hx = finite_mean(ghx);
-      // L-collision and L-crossing belong to the outer garment
-      const double g_l = gs.layer == 1 ? seq_l : kNaN, g_lx = gs.layer == 1 ? seq_lx : kNaN;
-      Values& type = per_type[gs.type];
-      type.error.push_back(g_error), type.h.push_back(g_h), type.l.push_back(g_l);
-      type.hx.push_back(g_hx), type.lx.push_back(g_lx);
-      garments.push_back({{"name", gs.name},
-                          {"type", gs.type},
-                          {"layer", gs.layer},
-                          {"error_mm", number(g_error)},
-                          {"h_collision", number(g_h)},
-                          {"l_collision", number(g_l)},
-                          {"h_crossing", number(g_hx)},
-                          {"l_crossing", number(g_lx)}});
-      csv << id << ',' << info.motion << ',' << tags << ',' << gs.name << ',' << gs.type << ',' << gs.layer << ','
-          << csv_number(g_error) << ',' << csv_number(g_h) << ',' << csv_number(g_l) << ','
-          << (res.diverged_at >= 0 ? std::to_string(res.diverged_at) : "") << ',' << csv_number(g_hx) << ','
-          << csv_number(g_lx) << '\n';
+      const double seq_error = zoo::sequence_mean(e), seq_h = finite_mean(h), seq_l = finite_mean(l);
+      const double seq_hx = finite_mean(hx), seq_lx = finite_mean(lx);
+      const double growth = error_growth_mm_per_frame(res.frames);
+      if (std::isfinite(growth)) growth_rates.push_back(growth);
+      overall.error.push_back(seq_error), overall.h.push_back(seq_h), overall.l.push_back(seq_l);
+      overall.hx.push_back(seq_hx), overall.lx.push_back(seq_lx);
+      truth.h.push_back(finite_mean(th)), truth.l.push_back(finite_mean(tl));
+      truth.hx.push_back(finite_mean(thx)), truth.lx.push_back(finite_mean(tlx));
+      const data::SequenceInfo& info = s.dataset.info(id);
+      std::string tags;
+      for (const std::string& t : info.tags) tags += (tags.empty() ? "" : " ") + t;
+      json garments = json::array();
+      for (std::size_t g = 0; g < r.statics->garments.size(); ++g) {
+        const zoo::GarmentStatic& gs = r.statics->garments[g];
+        std::vector<double> ge, gh, ghx;
+        for (const FrameMetrics& m : res.frames) {
+          ge.push_back(m.garment_error_mm[g]);
+          gh.push_back(m.diverged ? kNaN : m.garment_h_collision[g]);
+          ghx.push_back(m.diverged ? kNaN : m.garment_h_crossing[g]);
+        }
+        const double g_error = zoo::sequence_mean(ge), g_h = finite_mean(gh), g_hx = finite_mean(ghx);
+        // L-collision and L-crossing belong to the outer garment
+        const double g_l = gs.layer == 1 ? seq_l : kNaN, g_lx = gs.layer == 1 ? seq_lx : kNaN;
+        Values& type = per_type[gs.type];
+        type.error.push_back(g_error), type.h.push_back(g_h), type.l.push_back(g_l);
+        type.hx.push_back(g_hx), type.lx.push_back(g_lx);
+        garments.push_back({{"name", gs.name},
+                            {"type", gs.type},
+                            {"layer", gs.layer},
+                            {"error_mm", number(g_error)},
+                            {"h_collision", number(g_h)},
+                            {"l_collision", number(g_l)},
+                            {"h_crossing", number(g_hx)},
+                            {"l_crossing", number(g_lx)}});
+        csv << id << ',' << info.motion << ',' << tags << ',' << gs.name << ',' << gs.type << ',' << gs.layer << ','
+            << csv_number(g_error) << ',' << csv_number(g_h) << ',' << csv_number(g_l) << ','
+            << (res.diverged_at >= 0 ? std::to_string(res.diverged_at) : "") << ',' << csv_number(g_hx) << ','
+            << csv_number(g_lx) << '\n';
+      }
+      sequences.push_back({{"id", id},
+                           {"motion", info.motion},
+                           {"tags", info.tags},
+                           {"frames", res.frames.size()},
+                           {"error_mm", number(seq_error)},
+                           {"h_collision", number(seq_h)},
+                           {"l_collision", number(seq_l)},
+                           {"truth_h_collision", number(truth.h.back())},
+                           {"truth_l_collision", number(truth.l.back())},
+                           {"h_crossing", number(seq_hx)},
+                           {"l_crossing", number(seq_lx)},
+                           {"truth_h_crossing", number(truth.hx.back())},
+                           {"truth_l_crossing", number(truth.lx.back())},
+                           {"diverged_at", res.diverged_at >= 0 ? json(res.diverged_at) : json(nullptr)},
+                           {"diverge_reason", res.diverge_reason},
+                           {"error_growth_mm_per_frame", number(growth)},
+                           {"garments", garments}});
+      if (writer) writer->append(prediction_sequence(s.dataset, r, s.selection));
+      char extra[64];
+      std::snprintf(extra, sizeof extra, "error %.1f mm", zoo::mean_std(overall.error).mean);
+      if (options.progress && progress) progress->advance(1, extra);
     }
-    sequences.push_back({{"id", id},
-                         {"motion", info.motion},
-                         {"tags", info.tags},
-                         {"frames", res.frames.size()},
-                         {"error_mm", number(seq_error)},
-                         {"h_collision", number(seq_h)},
-                         {"l_collision", number(seq_l)},
-                         {"truth_h_collision", number(truth.h.back())},
-                         {"truth_l_collision", number(truth.l.back())},
-                         {"h_crossing", number(seq_hx)},
-                         {"l_crossing", number(seq_lx)},
-                         {"truth_h_crossing", number(truth.hx.back())},
-                         {"truth_l_crossing", number(truth.lx.back())},
-                         {"diverged_at", res.diverged_at >= 0 ? json(res.diverged_at) : json(nullptr)},
-                         {"diverge_reason", res.diverge_reason},
-                         {"error_growth_mm_per_frame", number(growth)},
-                         {"garments", garments}});
-    if (writer) writer->append(prediction_sequence(s.dataset, r, s.selection));
-    char extra[64];
-    std::snprintf(extra, sizeof extra, "error %.1f mm", zoo::mean_std(overall.error).mean);
-    if (options.progress) progress.advance(1, extra);
   }
-  if (options.progress) progress.finish();
+  if (!root) return report;  // rank 0 reports and writes
+  if (options.progress) progress->finish();
   if (writer) writer->commit();
 
   report.sequences = static_cast<std::int64_t>(ids.size());

@@ -12,7 +12,7 @@
 
 namespace layers::train {
 
-Session open_session(const ExperimentConfig& config, const zoo::Registry& registry) {
+Session open_session(const ExperimentConfig& config, const zoo::Registry& registry, int device_index) {
   if (config.data.dataset.empty())
     throw InputError(config.source, "data.dataset", "a dataset folder (made by `layers generate`)", "nothing");
   {
@@ -26,7 +26,9 @@ Session open_session(const ExperimentConfig& config, const zoo::Registry& regist
   if (config.run.threads > 0) at::set_num_threads(config.run.threads);
   at::manual_seed(config.run.seed);
   Session s{config, data::Dataset::open(config.data.dataset), nullptr, GarmentSelection{config.data.inner_only},
-            at::Device(config.run.device == "cuda" ? at::kCUDA : at::kCPU)};
+            config.run.device == "cuda" && device_index >= 0
+                ? at::Device(at::kCUDA, static_cast<c10::DeviceIndex>(device_index))
+                : at::Device(config.run.device == "cuda" ? at::kCUDA : at::kCPU)};
   s.model = zoo::create_model(registry, config.model, "model");
   s.model->to(s.device);
   const std::string stats = (std::filesystem::path(config.data.dataset) / "stats.h5").string();
@@ -37,8 +39,7 @@ Session open_session(const ExperimentConfig& config, const zoo::Registry& regist
   return s;
 }
 
-SequenceRollout rollout_sequence(Session& s, const std::string& id, std::int64_t horizon, double diverge_mm,
-                                 bool keep_predictions, bool rates) {
+SequenceRollout sequence_truth(Session& s, const std::string& id, std::int64_t horizon) {
   SequenceRollout r;
   r.id = id;
   const std::int64_t n = s.dataset.info(id).n_frames;
@@ -47,10 +48,16 @@ SequenceRollout rollout_sequence(Session& s, const std::string& id, std::int64_t
   auto statics = s.dataset.statics(id);
   r.statics = std::make_shared<const zoo::SequenceStatic>(to_model_static(*statics, s.selection));
   r.frames = to_frame_tensors(s.dataset.read_frames(id, 0, count), statics->garments, s.selection);
+  return r;
+}
+
+SequenceRollout rollout_sequence(Session& s, const std::string& id, std::int64_t horizon, double diverge_mm,
+                                 bool keep_predictions, bool rates) {
+  SequenceRollout r = sequence_truth(s, id, horizon);
   s.model->prepare(*r.statics);
   RolloutOptions options;
   options.start = 1;
-  options.steps = count - 2;
+  options.steps = r.frames.frames() - 2;
   options.diverge_mm = diverge_mm;
   options.keep_predictions = keep_predictions;
   options.rates = rates;

@@ -10,10 +10,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <numeric>
+#include <optional>
 
 #include "layers/core/error.h"
 #include "layers/core/progress.h"
 #include "layers/data/run_layout.h"
+#include "layers/dist/group.h"
+#include "layers/dist/tensors.h"
 #include "layers/train/checkpoint.h"
 #include "layers/train/frame_loss.h"
 #include "layers/train/session.h"
@@ -78,21 +81,41 @@ double train_window(Session& s, const Sample& sample, std::int64_t free_steps, s
 }
 
 // Mean rollout error (mm) over the validation sequences (no collision or
-// crossing rates: they cost as much as the rollout and are not used here).
-double validate(Session& s) {
+// crossing rates: they cost as much as the rollout and are not used here);
+// with ranks, each rolls out every size-th sequence and the sums are added.
+double validate(Session& s, dist::Group* group) {
   const TrainConfig& t = s.config.train;
   std::vector<std::string> ids = select_sequences(s.dataset, s.config.data.val_split, s.config.data.subsets);
   if (t.val_sequences > 0 && ids.size() > static_cast<std::size_t>(t.val_sequences)) ids.resize(t.val_sequences);
-  std::vector<double> errors;
-  for (const std::string& id : ids) {
-    const SequenceRollout r =
-        rollout_sequence(s, id, t.val_horizon, s.config.eval.diverge_mm, /*keep_predictions=*/false, /*rates=*/false);
+  const std::size_t rank = group ? static_cast<std::size_t>(group->rank()) : 0;
+  const std::size_t ranks = group ? static_cast<std::size_t>(group->size()) : 1;
+  std::vector<double> sum_count{0, 0};
+  for (std::size_t k = rank; k < ids.size(); k += ranks) {
+    const SequenceRollout r = rollout_sequence(s, ids[k], t.val_horizon, s.config.eval.diverge_mm,
+                                               /*keep_predictions=*/false, /*rates=*/false);
     std::vector<double> per_frame;
     for (const FrameMetrics& m : r.result.frames) per_frame.push_back(m.error_mm);
-    errors.push_back(zoo::sequence_mean(per_frame));
+    sum_count[0] += zoo::sequence_mean(per_frame);
+    sum_count[1] += 1;
   }
-  if (errors.empty()) return -1;
-  return std::accumulate(errors.begin(), errors.end(), 0.0) / static_cast<double>(errors.size());
+  if (group) group->allreduce_sum(sum_count);
+  if (sum_count[1] == 0) return -1;
+  return sum_count[0] / sum_count[1];
+}
+
+// All ranks must continue from the same checkpoint: they read it from a
+// run.output they share.
+void check_same_start(dist::Group& group, const CheckpointState& state, const std::string& checkpoint) {
+  const double e = state.epochs_done, st = static_cast<double>(state.steps);
+  std::vector<double> sums{e, e * e, st, st * st};
+  group.allreduce_sum(sums);
+  const double n = group.size();
+  // All equal exactly when the sum of squares times n is the squared sum.
+  if (sums[1] * n != sums[0] * sums[0] || sums[3] * n != sums[2] * sums[2])
+    throw InputError(checkpoint, "epochs_done",
+                     "the same checkpoint on every rank (run.output on a file system all ranks share)",
+                     "epoch " + std::to_string(state.epochs_done) + " on rank " + std::to_string(group.rank()) +
+                         ", a different one on another rank");
 }
 
 }  // namespace
@@ -102,13 +125,15 @@ std::string checkpoint_path(const ExperimentConfig& config, const std::string& w
 }
 
 TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& registry, const TrainOptions& options) {
-  Session s = open_session(config, registry);
+  dist::Group* group = options.group;
+  const bool root = !group || group->is_root();
+  Session s = open_session(config, registry, group ? group->local_rank() : -1);
   const TrainConfig& t = config.train;
   TrainReport report;
   report.run_dir = config.run.output;
   report.last_checkpoint = checkpoint_path(config, "last");
   report.best_checkpoint = checkpoint_path(config, "best");
-  std::filesystem::create_directories(config.run.output);
+  if (root) std::filesystem::create_directories(config.run.output);
   const std::vector<at::Tensor> params = trainable(*s.model);
   for (const at::Tensor& p : params) report.trainable_parameters += p.numel();
 
@@ -117,6 +142,7 @@ TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& re
   if (params.empty()) {
     // Nothing to learn (reference models): the checkpoint holds the
     // normalisation, so evaluation runs the same way for every model.
+    if (!root) return report;
     save_checkpoint(report.last_checkpoint, *s.model, nullptr, state);
     save_checkpoint(report.best_checkpoint, *s.model, nullptr, state);
     spdlog::info("model '{}' has no trainable parameters: saved {} without training", s.model->name(),
@@ -127,6 +153,15 @@ TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& re
   if (options.resume && std::filesystem::exists(report.last_checkpoint)) {
     state = load_checkpoint(report.last_checkpoint, *s.model, &optimizer);
     spdlog::info("resuming from {} after epoch {} ({} steps)", report.last_checkpoint, state.epochs_done, state.steps);
+  }
+  if (group) {
+    // Every rank starts from rank 0's parameters and buffers, at the same epoch.
+    check_same_start(*group, state, report.last_checkpoint);
+    std::vector<at::Tensor> tensors = s.model->parameters(true);
+    for (const at::Tensor& b : s.model->buffers(true)) tensors.push_back(b);
+    dist::broadcast_from_root(*group, tensors);
+    spdlog::info("data-parallel training: {} ranks ({}), batch {} per rank", group->size(), group->backend(),
+                 t.batch_size);
   }
   report.epochs_done = state.epochs_done;
   report.steps = state.steps;
@@ -140,19 +175,25 @@ TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& re
   lo.stride = t.window_stride;
   lo.prefetch = t.prefetch;
   lo.seed = config.run.seed;
+  if (group) lo.rank = group->rank(), lo.world = group->size();
   WindowLoader loader(s.dataset, lo);
   const std::int64_t loss_steps = t.two_step ? 2 : 1;
   bool first_batch = true;
 
   for (int epoch = state.epochs_done; epoch < t.epochs; ++epoch) {
-    at::manual_seed(config.run.seed * 7919 + static_cast<std::uint64_t>(epoch));  // resume-independent
+    // Resume-independent; each rank draws its own training noise.
+    at::manual_seed(config.run.seed * 7919 + static_cast<std::uint64_t>(epoch) +
+                    (group ? 104729ULL * static_cast<std::uint64_t>(group->rank()) : 0));
     const double lr = learning_rate(t, epoch);
     set_learning_rate(optimizer, lr);
     const std::int64_t free_steps = std::min(epoch, t.curriculum_max);
     const std::size_t batches = loader.start_epoch(epoch, free_steps + loss_steps);
     s.model->train(true);
     Timer timer;
-    Progress progress("epoch " + std::to_string(epoch + 1) + "/" + std::to_string(t.epochs), batches, "batches");
+    const double comm_before = group ? group->comm_seconds() : 0;
+    std::optional<Progress> progress;
+    if (root)
+      progress.emplace("epoch " + std::to_string(epoch + 1) + "/" + std::to_string(t.epochs), batches, "batches");
     double loss_sum = 0;
     std::int64_t frames = 0;
     std::size_t seen = 0;
@@ -164,6 +205,15 @@ TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& re
         batch_loss +=
             train_window(s, sample, free_steps, loss_steps, context, static_cast<double>(batch->size()), t.noise_std);
       batch_loss /= static_cast<double>(batch->size());
+      std::int64_t batch_frames = static_cast<std::int64_t>(batch->size()) * loss_steps;
+      if (group) {
+        // Mean gradient and loss over the ranks (every rank's batch is as
+        // large), so the step is the one of the whole batch in one process.
+        std::vector<double> sums{batch_loss, static_cast<double>(batch_frames)};
+        dist::average_gradients(*group, params, sums);
+        batch_loss = sums[0] / group->size();
+        batch_frames = static_cast<std::int64_t>(sums[1]);
+      }
       if (t.grad_clip > 0) torch::nn::utils::clip_grad_norm_(params, t.grad_clip);
       optimizer.step();
       ++state.steps;
@@ -171,22 +221,31 @@ TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& re
       if (first_batch) report.first_loss = batch_loss;
       first_batch = false;
       loss_sum += batch_loss;
-      frames += static_cast<std::int64_t>(batch->size()) * loss_steps;
+      frames += batch_frames;
       char extra[96];
       std::snprintf(extra, sizeof extra, "loss %.4g  %.1f frames/s", loss_sum / static_cast<double>(seen),
                     static_cast<double>(frames) / std::max(timer.seconds(), 1e-9));
-      progress.advance(1, extra);
+      if (progress) progress->advance(1, extra);
     }
-    progress.finish();
+    if (progress) progress->finish();
     EpochSummary e;
     e.epoch = epoch + 1;
     e.loss = seen ? loss_sum / static_cast<double>(seen) : 0;
     e.seconds = timer.seconds();
     e.frames_per_second = static_cast<double>(frames) / std::max(e.seconds, 1e-9);
     e.lr = lr;
+    e.comm_seconds = group ? group->comm_seconds() - comm_before : 0;
+    e.ranks = group ? group->size() : 1;
     s.model->train(false);
-    e.val_error_mm = validate(s);
+    e.val_error_mm = validate(s, group);
     state.epochs_done = epoch + 1;
+    if (!root) {
+      // The best-so-far bookkeeping as on rank 0 (it decides what is saved).
+      if (e.val_error_mm >= 0 && (state.best_val_mm < 0 || e.val_error_mm < state.best_val_mm))
+        state.best_val_mm = e.val_error_mm;
+      report.epochs.push_back(e);
+      continue;
+    }
     save_checkpoint(report.last_checkpoint, *s.model, &optimizer, state);
     if (e.val_error_mm >= 0 && (state.best_val_mm < 0 || e.val_error_mm < state.best_val_mm)) {
       state.best_val_mm = e.val_error_mm;
@@ -195,14 +254,22 @@ TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& re
     } else if (e.val_error_mm < 0) {
       save_checkpoint(report.best_checkpoint, *s.model, &optimizer, state);
     }
-    spdlog::info("epoch {}/{}: loss {:.4g}, val error {:.2f} mm, lr {:.3g}, {:.1f} frames/s, {:.1f} s", e.epoch,
-                 t.epochs, e.loss, e.val_error_mm, lr, e.frames_per_second, e.seconds);
+    if (group)
+      spdlog::info(
+          "epoch {}/{}: loss {:.4g}, val error {:.2f} mm, lr {:.3g}, {:.1f} frames/s on {} ranks, {:.1f} s "
+          "({:.1f}% in gradient exchange)",
+          e.epoch, t.epochs, e.loss, e.val_error_mm, lr, e.frames_per_second, e.ranks, e.seconds,
+          100.0 * e.comm_seconds / std::max(e.seconds, 1e-9));
+    else
+      spdlog::info("epoch {}/{}: loss {:.4g}, val error {:.2f} mm, lr {:.3g}, {:.1f} frames/s, {:.1f} s", e.epoch,
+                   t.epochs, e.loss, e.val_error_mm, lr, e.frames_per_second, e.seconds);
     report.epochs.push_back(e);
   }
   report.epochs_done = state.epochs_done;
   report.steps = state.steps;
   // No epoch ran now (e.g. train.epochs: 0): the checkpoints still exist,
   // so evaluating the untrained model works the same way.
+  if (!root) return report;
   if (!std::filesystem::exists(report.last_checkpoint))
     save_checkpoint(report.last_checkpoint, *s.model, &optimizer, state);
   if (!std::filesystem::exists(report.best_checkpoint))

@@ -135,6 +135,20 @@ std::size_t WindowLoader::start_epoch(int epoch, std::int64_t horizon) {
   std::shuffle(order.begin(), order.end(), rng);
   if (m.options.windows_per_epoch > 0 && order.size() > static_cast<std::size_t>(m.options.windows_per_epoch))
     order.resize(static_cast<std::size_t>(m.options.windows_per_epoch));
+  if (m.options.world > 1) {
+    // Every rank runs the same number of equal batches (the gradients are
+    // averaged over ranks); up to world - 1 windows are left for this epoch.
+    const std::size_t world = static_cast<std::size_t>(m.options.world);
+    std::vector<std::pair<std::size_t, std::int64_t>> mine;
+    for (std::size_t i = static_cast<std::size_t>(m.options.rank); i + (order.size() % world) < order.size();
+         i += world)
+      mine.push_back(order[i]);
+    if (mine.empty())
+      throw InputError(m.dataset.path(), "split '" + m.options.split + "'",
+                       "at least one window per rank (" + std::to_string(world) + " ranks)",
+                       std::to_string(order.size()) + " windows");
+    order = std::move(mine);
+  }
   const std::size_t bs = static_cast<std::size_t>(m.options.batch_size);
   m.queue.clear();
   m.error = nullptr;

@@ -1,5 +1,5 @@
 // layers/core/run_config.h -- the `run:` section shared by every config
-// (seed, threads, device): how a run executes, not what it computes.
+// (seed, threads, device, the data-parallel timeout): how a run executes, not what it computes.
 #pragma once
 
 #include <cstdint>
@@ -14,6 +14,7 @@ struct RunConfig {
   int threads = 2;              // intra-op threads (torch/BLAS); 0 = all cores
   std::string device = "cpu";   // cpu or cuda
   std::string output = "runs";  // where runs write checkpoints, metrics, reports
+  int dist_timeout_s = 60;      // data-parallel runs: longest wait for another rank (layers/dist)
 
   template <class V>
   void visit(V& v) {
@@ -21,6 +22,8 @@ struct RunConfig {
     v("threads", threads, cfg::opt().range(0, 256).help("intra-op threads; 0 = all cores"));
     v("device", device, cfg::opt().choices({"cpu", "cuda"}));
     v("output", output, cfg::opt().help("output folder"));
+    v("dist_timeout_s", dist_timeout_s,
+      cfg::opt().range(1, 86400).help("data-parallel runs: seconds to wait for another rank before failing"));
   }
 };
 

@@ -25,6 +25,9 @@
 namespace layers::zoo {
 class Registry;
 }
+namespace layers::dist {
+class Group;
+}
 
 namespace layers::train {
 
@@ -35,6 +38,10 @@ struct EvalOptions {
   std::string out_dir;                 // default <run.output>/eval-<split>
   std::vector<std::string> sequences;  // only these ids (default: the whole split)
   bool progress = true;
+  // Data-parallel ranks (layers/dist): each rolls out every size-th
+  // sequence; rank 0 gathers the results in the split's order and alone
+  // writes the outputs, equal to one process's. Null: this process alone.
+  dist::Group* group = nullptr;
 };
 
 struct MetricSummary {

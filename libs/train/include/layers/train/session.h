@@ -32,7 +32,8 @@ struct Session {
 
 // InputError naming the config file for a missing data.dataset, an
 // unknown model or bad parameters, or a CUDA device on a CPU-only build.
-Session open_session(const ExperimentConfig& config, const zoo::Registry& registry);
+// `device_index` >= 0 picks the CUDA device (a data-parallel rank's LOCAL_RANK).
+Session open_session(const ExperimentConfig& config, const zoo::Registry& registry, int device_index = -1);
 
 // One rollout per sequence from its first frames: ground truth at frames 0
 // and 1, then `horizon` predicted frames (0 or more than the sequence has:
@@ -45,5 +46,8 @@ struct SequenceRollout {
 };
 SequenceRollout rollout_sequence(Session& session, const std::string& id, std::int64_t horizon, double diverge_mm,
                                  bool keep_predictions, bool rates = true);
+// The same without the rollout (`result` left empty): what a rollout made
+// elsewhere (another rank) needs beside its result.
+SequenceRollout sequence_truth(Session& session, const std::string& id, std::int64_t horizon);
 
 }  // namespace layers::train

@@ -12,9 +12,15 @@
 // and checkpoints <run.output>/checkpoint-last.pt (always) and
 // checkpoint-best.pt (best validation error). Deterministic for a seed and
 // a thread count. A model without trainable parameters (static, skinned)
-// is saved as is. Data-parallel training later wraps the batch loop: each
-// rank takes every world-size-th batch and gradients are all-reduced
-// before the optimiser step; nothing else changes.
+// is saved as is.
+//
+// Data-parallel (TrainOptions::group, layers/dist): every rank reads its
+// slice of each epoch's windows (window_loader.h), gradients and batch
+// losses are averaged over the ranks before clipping and the optimiser
+// step, validation sequences are split over the ranks and their errors
+// summed; rank 0 alone writes checkpoints, logs and the progress line. So
+// N ranks at batch b step like one process at batch N*b on the same
+// windows (tested), and a checkpoint resumes with any number of ranks.
 #pragma once
 
 #include <cstdint>
@@ -26,12 +32,16 @@
 namespace layers::zoo {
 class Registry;
 }
+namespace layers::dist {
+class Group;
+}
 
 namespace layers::train {
 
 struct TrainOptions {
-  bool resume = false;   // continue from checkpoint-last.pt if present
-  bool progress = true;  // progress line on stderr
+  bool resume = false;           // continue from checkpoint-last.pt if present
+  bool progress = true;          // progress line on stderr
+  dist::Group* group = nullptr;  // data-parallel ranks (null: this process alone)
 };
 
 struct EpochSummary {
@@ -39,7 +49,9 @@ struct EpochSummary {
   double loss = 0;
   double val_error_mm = -1;  // < 0: no validation split
   double seconds = 0;
-  double frames_per_second = 0;  // predicted training frames (with gradient) per second
+  double frames_per_second = 0;  // predicted training frames (with gradient) per second, all ranks
+  double comm_seconds = 0;       // of `seconds`, in gradient exchanges (data-parallel)
+  int ranks = 1;
   double lr = 0;
 };
 

@@ -32,6 +32,11 @@ struct LoaderOptions {
   int prefetch = 4;           // batches read ahead
   std::uint64_t seed = 0;
   std::size_t static_cache = 16;  // converted sequences kept
+  // Data-parallel share: of the epoch's shuffled windows (the same order on
+  // every rank), cut to a multiple of `world`, this rank reads every
+  // world-th from `rank` on, so its k-th batch holds its windows of the
+  // k-th batch of batch_size * world windows one process would read.
+  int rank = 0, world = 1;
 };
 
 struct Sample {
