@@ -8,8 +8,8 @@
 // thread its own scene, as with `--threads 2`). Set-up and warm-up (a
 // short drape and blend) are not timed; each iteration is one recorded
 // frame (1/30 s of motion). Arguments: edge length in tenths of a mm,
-// substeps, edge-edge layer contact (1: the default 6 mm, 0: off; the
-// 25 mm scene runs both ways to price it). Counters: garment vertices, the solver's own split of the time
+// substeps, edge-edge contact (3: the defaults, layers 6 mm and body 2 mm;
+// 1: layers only; 0: off; the 25 mm scene runs all three to price them). Counters: garment vertices, the solver's own split of the time
 // per frame (per thread), the strain cap's sweeps per frame, and the
 // generator's validation measures over the timed frames (measured outside
 // the timing): mean H- and L-penetration (%), mean exact H- and
@@ -29,7 +29,7 @@ namespace {
 
 // The scene of one benchmark thread: the given edge length and substeps,
 // the settings of configs/data/small.yaml otherwise (2 iterations).
-gen::SceneSimulation make_scene(double edge_mm, int substeps, int frames, bool edge_contact) {
+gen::SceneSimulation make_scene(double edge_mm, int substeps, int frames, int edge_contact) {
   gen::GeneratorConfig config;
   config.name = "bench";
   config.seed = 3;
@@ -43,7 +43,8 @@ gen::SceneSimulation make_scene(double edge_mm, int substeps, int frames, bool e
   config.wind.strong_weight = 1;
   config.sim.substeps = substeps;
   config.sim.iterations = 2;
-  if (!edge_contact) config.sim.layer_edge_thickness = 0;
+  if ((edge_contact & 1) == 0) config.sim.layer_edge_thickness = 0;
+  if ((edge_contact & 2) == 0) config.sim.body_edge_thickness = 0;
   gen::SceneSpec spec = gen::sample_scene(config, 0);
   spec.shape = {};  // the average body
   return gen::SceneSimulation(config, spec);
@@ -52,8 +53,8 @@ gen::SceneSimulation make_scene(double edge_mm, int substeps, int frames, bool e
 void BM_GeneratorFrame(benchmark::State& state) {
   const double edge_mm = 0.1 * static_cast<double>(state.range(0));
   const int frames = static_cast<int>(state.max_iterations);
-  // Third argument 0: vertex-triangle layer contact only (no edge-edge).
-  const bool edge_contact = state.range(2) != 0;
+  // Third argument: bit 0 layer edges, bit 1 body edges.
+  const int edge_contact = static_cast<int>(state.range(2));
   gen::SceneSimulation scene = make_scene(edge_mm, static_cast<int>(state.range(1)), frames, edge_contact);
   if (!scene.usable()) {
     state.SkipWithError(scene.problem().c_str());
@@ -95,40 +96,42 @@ void BM_GeneratorFrame(benchmark::State& state) {
 // Iterations are fixed (frames of the walk to record); wall time, since two
 // threads run at once.
 BENCHMARK(BM_GeneratorFrame)
-    ->Args({500, 16, 1})
+    ->Args({500, 16, 3})
     ->Iterations(30)
     ->Threads(1)
     ->Threads(2)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_GeneratorFrame)
-    ->Args({250, 16, 1})
+    ->Args({250, 16, 3})
     ->Iterations(20)
     ->Threads(1)
     ->Threads(2)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_GeneratorFrame)
-    ->Args({125, 16, 1})
+    ->Args({125, 16, 3})
     ->Iterations(8)
     ->Threads(1)
     ->Threads(2)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_GeneratorFrame)
-    ->Args({225, 10, 1})
+    ->Args({225, 10, 3})
     ->Iterations(20)
     ->Threads(1)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_GeneratorFrame)
-    ->Args({225, 16, 1})
+    ->Args({225, 16, 3})
     ->Iterations(20)
     ->Threads(1)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
-// The cost of edge-edge layer contact: the 25 mm scene without it.
+// The cost of edge-edge contact: the 25 mm scene without body edges, and
+// without any.
 BENCHMARK(BM_GeneratorFrame)
+    ->Args({250, 16, 1})
     ->Args({250, 16, 0})
     ->Iterations(20)
     ->Threads(1)
