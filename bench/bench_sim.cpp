@@ -9,11 +9,12 @@
 // short drape and blend) are not timed; each iteration is one recorded
 // frame (1/30 s of motion). Arguments: edge length in tenths of a mm,
 // substeps, edge-edge contact (3: the defaults, layers 6 mm and body 2 mm;
-// 1: layers only; 0: off; the 25 mm scene runs all three to price them). Counters: garment vertices, the solver's own split of the time
-// per frame (per thread), the strain cap's sweeps per frame, and the
-// generator's validation measures over the timed frames (measured outside
-// the timing): mean H- and L-penetration (%), mean exact H- and
-// L-crossing (%) and max edge stretch (%).
+// 1: layers only; 0: off; the 25 mm scene runs all three to price them).
+// Counters: garment vertices, the solver's own split of the time per frame
+// (per thread), the strain cap's sweeps per frame, and the generator's
+// validation measures over the timed frames (measured outside the timing):
+// mean H- and L-penetration (%), mean exact H- and L-crossing (%) and max
+// edge stretch (%).
 #include <benchmark/benchmark.h>
 
 #include <string>
