@@ -3,6 +3,7 @@
 
 #include <filesystem>
 
+#include "layers/core/error.h"
 #include "layers/data/run_layout.h"
 
 namespace fs = std::filesystem;
@@ -37,6 +38,19 @@ std::vector<StudyRun> resolve_runs(const StudyConfig& study) {
     set_string(tree, "run", "output", r.dir);
     set_string(tree, "data", "dataset", study.dataset.folder);
     r.config = train::read_experiment(tree, e.file);
+    // Selection never sees the test split: the best checkpoint (and any
+    // epoch or variant chosen from the validation curve) comes from
+    // data.val_split, and training reads data.train_split.
+    const train::DataConfig& d = r.config.data;
+    for (const auto& [field, split] :
+         {std::pair<const char*, const std::string*>{"data.val_split", &d.val_split},
+          std::pair<const char*, const std::string*>{"data.train_split", &d.train_split}}) {
+      if (*split == d.test_split) {
+        throw InputError(e.file, field,
+                         "a split other than data.test_split (selection and training never read the test split)",
+                         *split);
+      }
+    }
     r.config_yaml = cfg::to_yaml(cfg::to_node(r.config)) + "\n";
     for (const std::string& s : e.steps.empty() ? study.steps : e.steps)
       if (s != "report" && !(s == "train" && !e.checkpoint.empty())) r.steps.push_back(s);

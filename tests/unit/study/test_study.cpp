@@ -255,6 +255,34 @@ TEST_F(StudyTest, RequiredCycleAndMissingCheckpointAreReported) {
   }
 }
 
+TEST_F(StudyTest, SelectionOnTheTestSplitIsRefused) {
+  // The best checkpoint is chosen on data.val_split: a study whose
+  // experiment validates (or trains) on the test split is refused before
+  // anything runs, naming the file and the key; dry runs too.
+  for (const char* key : {"val_split", "train_split"}) {
+    dir.write("peek.yaml", std::string("model: {name: anything, params: {}}\ndata: {") + key + ": test}\n");
+    const std::string f = dir.write("peek_study.yaml", "output: " + dir.file("peek") +
+                                                           "\ndataset: {config: gen.yaml, folder: " + dir.file("data") +
+                                                           "}\nexperiments: [{name: a, file: peek.yaml}]\n");
+    for (bool dry : {false, true}) {
+      study::StudyOptions o;
+      o.dry_run = dry;
+      try {
+        study::run_study(f, {}, actions(), o);
+        ADD_FAILURE() << key << ": not refused";
+      } catch (const InputError& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("peek.yaml"), std::string::npos) << m;
+        EXPECT_NE(m.find(std::string("data.") + key), std::string::npos) << m;
+      }
+    }
+    EXPECT_EQ(calls["train a"], 0);
+  }
+  // The same experiment with its own validation split runs.
+  dir.write("peek.yaml", "model: {name: anything, params: {}}\ndata: {val_split: val}\n");
+  EXPECT_TRUE(study::run_study(dir.file("peek_study.yaml"), {}, actions(), {}).ok());
+}
+
 TEST_F(StudyTest, BadStudyFilesNameFileAndKey) {
   auto message = [&](const std::string& text) -> std::string {
     const std::string f = dir.write("bad.yaml", text);
