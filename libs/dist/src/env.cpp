@@ -2,8 +2,11 @@
 #include "layers/dist/env.h"
 
 #include <cstdlib>
+#include <optional>
+#include <string>
 
 #include "layers/core/error.h"
+#include "layers/core/whole_number.h"
 
 namespace layers::dist {
 namespace {
@@ -12,12 +15,9 @@ constexpr const char* kSource = "environment";
 
 // A decimal integer in [lo, hi]; InputError naming the variable otherwise.
 long parse_int(const char* name, const char* text, long lo, long hi, const std::string& expected) {
-  const std::string s = text;
-  bool digits = !s.empty() && s.size() <= 12;
-  for (char c : s) digits = digits && c >= '0' && c <= '9';
-  const long v = digits ? std::strtol(s.c_str(), nullptr, 10) : -1;
-  if (!digits || v < lo || v > hi) throw InputError(kSource, name, expected, "'" + s + "'");
-  return v;
+  const std::optional<long long> v = parse_whole_number(text, hi);
+  if (!v || *v < lo) throw InputError(kSource, name, expected, "'" + std::string(text) + "'");
+  return static_cast<long>(*v);
 }
 
 std::string range(long lo, long hi_exclusive, const std::string& why = "") {

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "layers/core/error.h"
+#include "layers/core/whole_number.h"
 
 namespace layers::generate {
 namespace {
@@ -20,14 +21,9 @@ constexpr int kMaxShards = 1000000;
 
 // A plain decimal number in [0, kMaxShards] (no sign, no spaces), or none.
 std::optional<int> number(const std::string& text) {
-  if (text.empty() || text.size() > 7) return std::nullopt;
-  int value = 0;
-  for (char c : text) {
-    if (c < '0' || c > '9') return std::nullopt;
-    value = value * 10 + (c - '0');
-  }
-  if (value > kMaxShards) return std::nullopt;
-  return value;
+  const std::optional<long long> v = parse_whole_number(text, kMaxShards);
+  if (!v) return std::nullopt;
+  return static_cast<int>(*v);
 }
 
 const std::string* lookup(const Environment& env, const char* name) {

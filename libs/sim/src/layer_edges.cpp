@@ -32,7 +32,7 @@ void closest_on_segments(const Vec3& p0, const Vec3& p1, const Vec3& q0, const V
 
 void EdgeContact::file(const Side& inner, double thickness, double cell) {
   cells_.build(*inner.edges, inner.now(), thickness, std::max(cell, 1e-6));
-  seen_.assign(static_cast<std::size_t>(inner.edges->rows()), -1);
+  seen_.resize(static_cast<std::size_t>(inner.edges->rows()));  // reset by each collide()
 }
 
 double EdgeContact::collide(const Side& inner, const Side& outer, double thickness) {
