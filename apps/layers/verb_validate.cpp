@@ -2,7 +2,8 @@
 // exit 1 if there is any. With --physics, also the generator's validation
 // measures recomputed from the stored frames of every sequence (H- and
 // L-penetration, exact H- and L-crossings, stretch, non-finite values)
-// beside the evaluation's L-collision; exit 1 if a sequence is over the
+// beside the evaluation's L-collision, the body's own crossings and the
+// H-crossing clear of them; exit 1 if a sequence is over the
 // generator's thresholds.
 #include <cmath>
 #include <cstdio>
@@ -42,8 +43,9 @@ int check_physics(const std::string& path, const sim::ValidationConfig& limits) 
   sim::SequenceMeasures all;
   MeanOfFinite all_eval;
   int over = 0;
-  std::printf("%-14s %6s %9s %9s %11s %9s %9s %9s %9s %9s  %s\n", "sequence", "frames", "H-pen", "L-pen",
-              "L-coll(eval)", "H-x mean", "H-x max", "L-x mean", "L-x max", "stretch", "verdict");
+  std::printf("%-14s %6s %9s %9s %11s %9s %9s %9s %9s %9s %9s %9s  %s\n", "sequence", "frames", "H-pen", "L-pen",
+              "L-coll(eval)", "H-x mean", "H-x max", "L-x mean", "L-x max", "body-self", "H-x clear", "stretch",
+              "verdict");
   for (const std::string& id : dataset.ids()) {
     const data::SequenceData seq = dataset.read_sequence(id);
     sim::SequenceMeasures m;
@@ -60,19 +62,22 @@ int check_physics(const std::string& path, const sim::ValidationConfig& limits) 
     std::string verdict = violations.empty() ? "ok" : "";
     for (const std::string& v : violations) verdict += (verdict.empty() ? "" : "; ") + v;
     over += !violations.empty();
-    std::printf("%-14s %6d %8.3f%% %8.3f%% %10.2f%% %8.3f%% %8.3f%% %8.3f%% %8.3f%% %8.2f%%  %s\n", id.c_str(),
-                m.frames(), 100 * m.mean_h_penetration(), 100 * m.mean_l_penetration(), 100 * eval.mean(),
+    std::printf("%-14s %6d %8.3f%% %8.3f%% %10.2f%% %8.3f%% %8.3f%% %8.3f%% %8.3f%% %8.3f%% %8.3f%% %8.2f%%  %s\n",
+                id.c_str(), m.frames(), 100 * m.mean_h_penetration(), 100 * m.mean_l_penetration(), 100 * eval.mean(),
                 100 * m.mean_h_crossing(), 100 * m.max_h_crossing(), 100 * m.mean_l_crossing(),
-                100 * m.max_l_crossing(), 100 * m.max_stretch(), verdict.c_str());
+                100 * m.max_l_crossing(), 100 * m.mean_body_self_crossing(), 100 * m.mean_h_crossing_clear(),
+                100 * m.max_stretch(), verdict.c_str());
   }
   std::printf(
       "%s: %zu sequences, %d frames: mean H-penetration %.3f%%, mean L-penetration %.3f%% (generator rule, reach %.0f "
       "mm), mean L-collision %.2f%% (evaluation rule), H-crossing mean %.3f%% worst frame %.3f%%, L-crossing mean "
-      "%.3f%% worst frame %.3f%%, max stretch %.2f%%, %lld non-finite values; %d over the thresholds (H %.2f%%, L "
+      "%.3f%% worst frame %.3f%%, body faces crossing the body %.3f%% mean, H-crossing clear of them mean %.3f%% "
+      "worst frame %.3f%%, max stretch %.2f%%, %lld non-finite values; %d over the thresholds (H %.2f%%, L "
       "%.2f%%, H-crossing %.2f%%, L-crossing %.2f%%, stretch %.0f%%)\n",
       path.c_str(), dataset.ids().size(), all.frames(), 100 * all.mean_h_penetration(), 100 * all.mean_l_penetration(),
       1000 * limits.l_reach, 100 * all_eval.mean(), 100 * all.mean_h_crossing(), 100 * all.max_h_crossing(),
-      100 * all.mean_l_crossing(), 100 * all.max_l_crossing(), 100 * all.max_stretch(),
+      100 * all.mean_l_crossing(), 100 * all.max_l_crossing(), 100 * all.mean_body_self_crossing(),
+      100 * all.mean_h_crossing_clear(), 100 * all.max_h_crossing_clear(), 100 * all.max_stretch(),
       static_cast<long long>(all.nonfinite()), over, 100 * limits.max_h_penetration, 100 * limits.max_l_penetration,
       100 * limits.max_h_crossing, 100 * limits.max_l_crossing, 100 * limits.max_stretch);
   return over == 0 ? static_cast<int>(kOk) : static_cast<int>(kFailure);

@@ -120,16 +120,28 @@ void visit_crossings(const TriMesh& a, const FaceTree& tree, const std::function
   }
 }
 
-MeshCrossings crossings(const TriMesh& a, const FaceTree& tree) {
+namespace {
+
+// The crossings of `a` with the tree's mesh, counting the pairs (f, g)
+// for which keep(f, g) holds.
+template <class Keep>
+MeshCrossings crossings_kept(const TriMesh& a, const FaceTree& tree, Keep&& keep) {
   MeshCrossings out;
   out.a_faces.assign(static_cast<std::size_t>(a.num_faces()), 0);
   out.a_vertices.assign(static_cast<std::size_t>(a.num_vertices()), 0);
-  visit_crossings(a, tree, [&](int f, int) {
+  visit_crossings(a, tree, [&](int f, int g) {
+    if (!keep(f, g)) return;
     ++out.pairs;
     out.a_faces[f] = 1;
     for (int k = 0; k < 3; ++k) out.a_vertices[a.faces(f, k)] = 1;
   });
   return out;
+}
+
+}  // namespace
+
+MeshCrossings crossings(const TriMesh& a, const FaceTree& tree) {
+  return crossings_kept(a, tree, [](int, int) { return true; });
 }
 
 MeshCrossings body_crossings(const std::vector<TriMesh>& garments, const TriMesh& body) {
@@ -142,6 +154,57 @@ MeshCrossings body_crossings(const std::vector<TriMesh>& garments, const FaceTre
 
 MeshCrossings layer_crossings(const std::vector<TriMesh>& outer, const std::vector<TriMesh>& inner) {
   return crossings(concatenate(outer), concatenate(inner));
+}
+
+MeshCrossings self_crossings(const FaceTree& tree) {
+  const TriMesh& mesh = tree.mesh();
+  MeshCrossings out;
+  out.a_faces.assign(static_cast<std::size_t>(mesh.num_faces()), 0);
+  out.a_vertices.assign(static_cast<std::size_t>(mesh.num_vertices()), 0);
+  const auto mark = [&](int f) {
+    out.a_faces[f] = 1;
+    for (int k = 0; k < 3; ++k) out.a_vertices[mesh.faces(f, k)] = 1;
+  };
+  // Each pair once (g > f), neighbours rejected before the exact test.
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    const Vec3d a0 = corner(mesh, f, 0), a1 = corner(mesh, f, 1), a2 = corner(mesh, f, 2);
+    if (!a0.allFinite() || !a1.allFinite() || !a2.allFinite()) continue;
+    Eigen::AlignedBox3f box(a0.cast<float>());
+    box.extend(a1.cast<float>());
+    box.extend(a2.cast<float>());
+    tree.visit(box, [&](int g) {
+      if (g <= f) return;
+      for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) {
+          if (mesh.faces(f, i) == mesh.faces(g, j)) return;
+        }
+      }
+      if (!triangles_cross(a0, a1, a2, corner(mesh, g, 0), corner(mesh, g, 1), corner(mesh, g, 2))) return;
+      ++out.pairs;
+      mark(f);
+      mark(g);
+    });
+  }
+  return out;
+}
+
+std::vector<char> grow_faces(const TriMesh& mesh, std::vector<char> faces, int rings) {
+  for (int r = 0; r < rings; ++r) {
+    std::vector<char> touched(static_cast<std::size_t>(mesh.num_vertices()), 0);
+    for (int f = 0; f < mesh.num_faces(); ++f) {
+      if (!faces[f]) continue;
+      for (int k = 0; k < 3; ++k) touched[mesh.faces(f, k)] = 1;
+    }
+    for (int f = 0; f < mesh.num_faces(); ++f) {
+      for (int k = 0; k < 3; ++k) faces[f] = faces[f] || touched[mesh.faces(f, k)];
+    }
+  }
+  return faces;
+}
+
+MeshCrossings body_crossings(const std::vector<TriMesh>& garments, const FaceTree& body,
+                             const std::vector<char>& skip) {
+  return crossings_kept(concatenate(garments), body, [&](int, int g) { return !skip[g]; });
 }
 
 }  // namespace layers::geometry

@@ -180,9 +180,10 @@ std::int64_t count_nonfinite(const geometry::Points& points) {
   return static_cast<std::int64_t>((!points.array().isFinite()).count());
 }
 
-FrameMeasures measure_frame(const geometry::TriMesh& body, const std::vector<MeasuredGarment>& garments,
-                            double l_reach) {
+FrameMeasures measure_frame(const geometry::TriMesh& body, const std::vector<MeasuredGarment>& garments, double l_reach,
+                            bool body_self) {
   FrameMeasures out;
+  if (!body_self || body.num_faces() == 0) out.body_self_crossing = out.h_crossing_clear = kNaN;
   std::vector<geometry::Points> all, outer;
   std::vector<geometry::TriMesh> meshes, inner, outer_meshes;
   for (const MeasuredGarment& g : garments) {
@@ -198,13 +199,23 @@ FrameMeasures measure_frame(const geometry::TriMesh& body, const std::vector<Mea
   }
   if (out.nonfinite > 0) {
     out.h_penetration = out.l_penetration = out.max_stretch = kNaN;
-    out.h_crossing = out.l_crossing = kNaN;
+    out.h_crossing = out.l_crossing = out.body_self_crossing = out.h_crossing_clear = kNaN;
     return out;
   }
   if (body.num_faces() > 0) {
-    const geometry::MeshCrossings h = geometry::body_crossings(meshes, body);
+    const geometry::FaceTree body_tree(body);
+    const geometry::MeshCrossings h = geometry::body_crossings(meshes, body_tree);
     out.h_crossing = h.a_vertex_share();
     out.h_crossing_pairs = h.pairs;
+    if (body_self) {
+      const geometry::MeshCrossings self = geometry::self_crossings(body_tree);
+      out.body_self_crossing = static_cast<double>(self.a_faces_crossing()) / body.num_faces();
+      out.h_crossing_clear =
+          self.pairs == 0 || h.pairs == 0
+              ? out.h_crossing
+              : geometry::body_crossings(meshes, body_tree, geometry::grow_faces(body, self.a_faces, 1))
+                    .a_vertex_share();
+    }
   }
   if (!outer_meshes.empty() && !inner.empty()) {
     const geometry::MeshCrossings l = geometry::layer_crossings(outer_meshes, inner);
@@ -234,7 +245,7 @@ FrameMeasures measure_frame(const Solver& solver) {
     const Cloth& c = solver.cloth(i);
     garments.push_back({c.positions(), c.faces(), c.edges(), c.rest_lengths(), top != bottom && c.layer() == top});
   }
-  return measure_frame(solver.body(), garments, solver.config().validation.l_reach);
+  return measure_frame(solver.body(), garments, solver.config().validation.l_reach, false);
 }
 
 void SequenceMeasures::add(const FrameMeasures& f) {
@@ -249,12 +260,21 @@ void SequenceMeasures::add(const FrameMeasures& f) {
   sum_lx_ += f.l_crossing;
   max_h_crossing_ = std::max(max_h_crossing_, f.h_crossing);
   max_l_crossing_ = std::max(max_l_crossing_, f.l_crossing);
+  if (std::isnan(f.body_self_crossing)) return;
+  ++measured_self_;
+  sum_self_ += f.body_self_crossing;
+  sum_hx_clear_ += f.h_crossing_clear;
+  max_h_crossing_clear_ = std::max(max_h_crossing_clear_, f.h_crossing_clear);
 }
 
 double SequenceMeasures::mean_h_penetration() const { return measured_ ? sum_h_ / measured_ : 0.0; }
 double SequenceMeasures::mean_l_penetration() const { return measured_ ? sum_l_ / measured_ : 0.0; }
 double SequenceMeasures::mean_h_crossing() const { return measured_ ? sum_hx_ / measured_ : 0.0; }
 double SequenceMeasures::mean_l_crossing() const { return measured_ ? sum_lx_ / measured_ : 0.0; }
+double SequenceMeasures::mean_body_self_crossing() const { return measured_self_ ? sum_self_ / measured_self_ : kNaN; }
+double SequenceMeasures::mean_h_crossing_clear() const {
+  return measured_self_ ? sum_hx_clear_ / measured_self_ : kNaN;
+}
 
 std::vector<std::string> SequenceMeasures::violations(const ValidationConfig& limits) const {
   std::vector<std::string> out;

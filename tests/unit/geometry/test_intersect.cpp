@@ -142,6 +142,52 @@ TEST(MeshCrossings, BodyCrossingsAgainstAMeshOrAPrebuiltTree) {
   EXPECT_EQ(g::crossings(garments[1], tree).a_vertices_on_crossings(), by_mesh.a_vertices_on_crossings());
 }
 
+// A "body" made of a floor (z = 0) and a wall (x = 0.52) sunk through it as
+// one mesh: the faces along their seam cross each other, nothing else
+// does. A garment patch through the floor beside the seam counts as an
+// H-crossing only until the seam's faces (and one ring around them) are
+// left out; a patch through the floor away from the seam always counts.
+TEST(SelfCrossings, FindTheSeamOfTwoSunkPartsAndLeaveItOut) {
+  const g::TriMesh floor = moved_grid(8, 0.0f, 0.0f, 0.0f, 1.0f);
+  g::TriMesh wall = layers::test::unit_square_grid(8, 0.0f);
+  for (int i = 0; i < wall.num_vertices(); ++i) {
+    const float u = wall.vertices(i, 0);
+    wall.vertices.row(i) << 0.52f, wall.vertices(i, 1), -0.23f + 0.5f * u;
+  }
+  const g::TriMesh body = g::concatenate({floor, wall});
+  const g::FaceTree tree(body);
+  const g::MeshCrossings self = g::self_crossings(tree);
+  EXPECT_GT(self.pairs, 0);
+  for (int f = 0; f < body.num_faces(); ++f) {
+    float lo = 1e9f, hi = -1e9f;  // the face's extent across the seam
+    const int axis = f < floor.num_faces() ? 0 : 2;
+    const float seam = f < floor.num_faces() ? 0.52f : 0.0f;
+    for (int k = 0; k < 3; ++k) {
+      lo = std::min(lo, body.vertices(body.faces(f, k), axis));
+      hi = std::max(hi, body.vertices(body.faces(f, k), axis));
+    }
+    EXPECT_EQ(self.a_faces[f] == 1, lo < seam && seam < hi) << "face " << f;
+  }
+  // Neighbours that share an edge or a corner never count.
+  EXPECT_EQ(g::self_crossings(g::FaceTree(floor)).pairs, 0);
+
+  const auto patch = [](float x, float y) {
+    g::TriMesh m;
+    m.vertices.resize(4, 3);
+    m.vertices << x, y, -0.1f, x, y + 0.08f, -0.1f, x, y + 0.08f, 0.1f, x, y, 0.1f;
+    m.faces.resize(2, 3);
+    m.faces << 0, 1, 2, 0, 2, 3;
+    return m;
+  };
+  const std::vector<g::TriMesh> beside = {patch(0.55f, 0.31f)}, away = {patch(0.2f, 0.31f)};
+  const std::vector<char> seam = g::grow_faces(body, self.a_faces, 1);
+  EXPECT_GT(std::count(seam.begin(), seam.end(), 1), std::count(self.a_faces.begin(), self.a_faces.end(), 1));
+  EXPECT_EQ(g::body_crossings(beside, tree).a_vertices_on_crossings(), 4);
+  EXPECT_EQ(g::body_crossings(beside, tree, seam).pairs, 0);
+  EXPECT_EQ(g::body_crossings(away, tree).a_vertices_on_crossings(), 4);
+  EXPECT_EQ(g::body_crossings(away, tree, seam).a_vertices_on_crossings(), 4);
+}
+
 TEST(MeshCrossings, NonFiniteFacesCrossNothing) {
   const g::TriMesh plane = moved_grid(6, 0.0f, 0.0f, 0.0f, 1.0f);
   g::TriMesh cloth = moved_grid(5, 0.01f, 0.0731f, 0.0577f, 0.83f);

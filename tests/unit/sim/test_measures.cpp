@@ -173,6 +173,14 @@ TEST(Measures, CrossingsOfAFrame) {
   const FrameMeasures through_body = measure_frame(body, garments(outer));
   EXPECT_GT(through_body.h_crossing_pairs, 0);
   EXPECT_DOUBLE_EQ(through_body.h_crossing, n / (81.0 + 36.0));
+  // The floor does not cross itself: the H-crossing clear of the body's own
+  // crossings is the whole H-crossing; without body_self neither is measured.
+  EXPECT_EQ(through_body.body_self_crossing, 0.0);
+  EXPECT_DOUBLE_EQ(through_body.h_crossing_clear, through_body.h_crossing);
+  const FrameMeasures unasked = measure_frame(body, garments(outer), ValidationConfig{}.l_reach, false);
+  EXPECT_TRUE(std::isnan(unasked.body_self_crossing));
+  EXPECT_TRUE(std::isnan(unasked.h_crossing_clear));
+  EXPECT_DOUBLE_EQ(unasked.h_crossing, through_body.h_crossing);
 
   SequenceMeasures seq;
   seq.add(clean);

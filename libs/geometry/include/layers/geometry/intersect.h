@@ -110,4 +110,18 @@ MeshCrossings body_crossings(const std::vector<TriMesh>& garments, const TriMesh
 MeshCrossings body_crossings(const std::vector<TriMesh>& garments, const FaceTree& body);
 MeshCrossings layer_crossings(const std::vector<TriMesh>& outer, const std::vector<TriMesh>& inner);
 
+// Self-crossings of one mesh (`tree` is built over it): a_faces marks the
+// faces that pass through another face of the same mesh, pairs that share
+// a vertex skipped (neighbours meet along their shared edge or corner by
+// construction); pairs counts each crossing pair once. A posed body whose
+// arm sinks into its torso has self-crossings along the seam; a garment
+// laid over both must cross one of them there.
+MeshCrossings self_crossings(const FaceTree& tree);
+// `faces` grown by `rings` rings of neighbours (faces sharing a vertex).
+std::vector<char> grow_faces(const TriMesh& mesh, std::vector<char> faces, int rings);
+// Body crossings that leave out the body faces marked in `skip` (one flag
+// per body face): the garment crossings that a body free of its own
+// crossings could avoid.
+MeshCrossings body_crossings(const std::vector<TriMesh>& garments, const FaceTree& body, const std::vector<char>& skip);
+
 }  // namespace layers::geometry

@@ -20,6 +20,13 @@
 //    outer vertices on outer faces that pass through an inner face, with
 //    the number of crossing face pairs. No heuristic: contact without
 //    crossing never counts, a crossing is never missed.
+//  - body self-crossing: share of body faces that pass through another
+//    body face (geometry::self_crossings; a posed arm sunk into the torso).
+//    A garment laid over such a seam must cross the body there, so
+//    H-crossing clear of it is reported too: the H-crossing that leaves
+//    out body faces within one ring of a self-crossing body face. It is
+//    for reading the H-crossing, never a threshold: thresholds apply to
+//    the H-crossing itself.
 // A sequence passes when the mean H- and L-penetration over its frames,
 // the largest H- and L-crossing of any frame and its maximum stretch stay
 // under the ValidationConfig thresholds and no value is non-finite.
@@ -66,6 +73,8 @@ struct FrameMeasures {
   double h_crossing = 0;  // NaN when not measurable
   double l_crossing = 0;  // 0 with a single layer; NaN when not measurable
   std::int64_t h_crossing_pairs = 0, l_crossing_pairs = 0;
+  double body_self_crossing = 0;  // share of body faces; NaN when not measured
+  double h_crossing_clear = 0;    // NaN when not measured
 };
 
 // One garment as measured: its positions, its edges with rest lengths and
@@ -78,11 +87,15 @@ struct MeasuredGarment {
   bool outer = false;
 };
 
+// `body_self`: also measure the body's own crossings and the H-crossing
+// clear of them (about 30 ms for a 27k-face body; NaN when not asked).
 FrameMeasures measure_frame(const geometry::TriMesh& body, const std::vector<MeasuredGarment>& garments,
-                            double l_reach = ValidationConfig{}.l_reach);
+                            double l_reach = ValidationConfig{}.l_reach, bool body_self = true);
 // The solver's current frame: its body and cloths; the cloths of the
 // highest layer are the outer garments, all others inner; the L reach is
-// the solver's config().validation.l_reach.
+// the solver's config().validation.l_reach. The generator's per-frame
+// check: no body self-crossings (they judge the motion, not the cloth, and
+// `layers validate --physics` reports them from the stored frames).
 FrameMeasures measure_frame(const Solver& solver);
 
 // Running totals over the frames of a sequence.
@@ -96,6 +109,10 @@ class SequenceMeasures {
   double mean_l_crossing() const;
   double max_h_crossing() const { return max_h_crossing_; }  // worst frame
   double max_l_crossing() const { return max_l_crossing_; }
+  // Over the frames that measured them (NaN when none did).
+  double mean_body_self_crossing() const;
+  double mean_h_crossing_clear() const;
+  double max_h_crossing_clear() const { return max_h_crossing_clear_; }
   double max_stretch() const { return max_stretch_; }
   std::int64_t nonfinite() const { return nonfinite_; }
   // Empty when the sequence passes; else one sentence per violated threshold
@@ -106,6 +123,8 @@ class SequenceMeasures {
   int frames_ = 0, measured_ = 0;
   double sum_h_ = 0, sum_l_ = 0, max_stretch_ = 0;
   double sum_hx_ = 0, sum_lx_ = 0, max_h_crossing_ = 0, max_l_crossing_ = 0;
+  int measured_self_ = 0;
+  double sum_self_ = 0, sum_hx_clear_ = 0, max_h_crossing_clear_ = 0;
   std::int64_t nonfinite_ = 0;
 };
 
