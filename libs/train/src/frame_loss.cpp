@@ -27,7 +27,10 @@ LossSum frame_loss(const zoo::SequenceStatic& seq, const std::vector<at::Tensor>
     const zoo::GarmentStatic& g = seq.garments[k];
     const at::Tensor p = pred[k] * kCm, t = truth[k] * kCm;
     add(sum, "position", w.position / n, zoo::position_mse(p, t));
-    if (w.normal > 0) add(sum, "normal", w.normal / n, zoo::normal_loss(p, t, g.faces));
+    if (w.normal > 0) {
+      add(sum, "normal", w.normal / n,
+          w.normals == "face" ? zoo::normal_loss(p, t, g.faces) : zoo::vertex_normal_loss(p, t, g.faces));
+    }
     all.push_back(p);
     if (g.layer == 0) {
       inner.push_back(p);

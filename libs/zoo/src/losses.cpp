@@ -167,6 +167,17 @@ at::Tensor normal_loss(const at::Tensor& pred, const at::Tensor& truth, const at
   return (n_pred - n_truth).pow(2).sum(1).mean();
 }
 
+at::Tensor vertex_normal_loss(const at::Tensor& pred, const at::Tensor& truth, const at::Tensor& faces) {
+  constexpr const char* loss = "vertex_normal_loss";
+  check_points(loss, "pred", pred);
+  check_points(loss, "truth", truth);
+  check_same_device(loss, "truth", truth, pred);
+  if (truth.size(0) != pred.size(0)) fail(loss, "truth", "the same shape as pred " + describe(pred), describe(truth));
+  at::Tensor f = checked_faces(loss, "faces", faces, pred);
+  if (f.size(0) == 0) fail(loss, "faces", "at least one face", "none");
+  return (area_weighted_normals(pred, f) - area_weighted_normals(truth, f)).pow(2).sum(1).mean();
+}
+
 at::Tensor body_collision_loss(const at::Tensor& garment, const at::Tensor& body, const at::Tensor& body_faces,
                                double eps) {
   return surface_penalty("body_collision_loss", "garment", "body", "body_faces", garment, body, body_faces, eps);

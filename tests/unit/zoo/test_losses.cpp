@@ -90,6 +90,26 @@ TEST(Losses, NormalLossIsZeroForIdenticalMeshesAndFourPerFlippedFace) {
   EXPECT_NEAR(zoo::normal_loss(flipped, truth, faces).item<double>(), 2.0, 1e-6);
 }
 
+// The paper's vertex-normal loss on a folded quad: a corner lifted by 1
+// tilts the second face to (-1, -1, 1)/sqrt(3); the shared vertices' area-
+// weighted normals turn halfway, to (-1, -1, 2)/sqrt(6), the lifted one
+// all the way and the far one not at all, so the vertex and the face losses
+// differ.
+TEST(Losses, VertexNormalLossAveragesTheFacesAroundEachVertex) {
+  at::Tensor truth = points({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0});
+  at::Tensor pred = points({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 1});
+  at::Tensor faces = at::tensor({0, 1, 2, 1, 3, 2}, at::kLong).reshape({2, 3});
+  EXPECT_EQ(zoo::vertex_normal_loss(truth, truth, faces).item<double>(), 0.0);
+  EXPECT_NEAR(zoo::vertex_normal_loss(pred * 2.5 + 1.0, pred, faces).item<double>(), 0.0, 1e-6);
+  const double shared = 2 - 4 / std::sqrt(6.0), lifted = 2 - 2 / std::sqrt(3.0);
+  EXPECT_NEAR(zoo::vertex_normal_loss(pred, truth, faces).item<double>(), (2 * shared + lifted) / 4, 1e-6);
+  EXPECT_NEAR(zoo::normal_loss(pred, truth, faces).item<double>(), lifted / 2, 1e-6);
+  at::Tensor x = pred.clone().requires_grad_(true);
+  zoo::vertex_normal_loss(x, truth, faces).backward();
+  EXPECT_GT(x.grad().abs().sum().item<double>(), 0.0);
+  EXPECT_TRUE(x.grad().isfinite().all().item<bool>());
+}
+
 TEST(Losses, NormalLossOfADegenerateFaceIsFiniteWithAFiniteGradient) {
   at::Tensor truth = points({0, 0, 0, 1, 0, 0, 0, 1, 0});
   at::Tensor pred = points({0, 0, 0, 1, 0, 0, 2, 0, 0}).requires_grad_(true);  // collinear

@@ -44,12 +44,18 @@ struct DataConfig {
 // Weights of the shared loss terms (layers/zoo/losses.h); 0 switches a term off.
 struct LossConfig {
   double position = 1.0, normal = 1.0, body_collision = 1.0, layer_collision = 0.0;
-  double collision_eps = 0.005;  // metres
+  double collision_eps = 0.005;    // metres
+  std::string normals = "vertex";  // vertex (the paper's) | face
 
   template <class V>
   void visit(V& v) {
     v("position", position, cfg::opt().min(0).help("position MSE (m^2, scaled to cm^2)"));
-    v("normal", normal, cfg::opt().min(0).help("face normal MSE"));
+    v("normal", normal,
+      cfg::opt().min(0).help("normal MSE (unitless; 100 here is the paper's 1, docs/reproduction.md)"));
+    v("normals", normals,
+      cfg::opt()
+          .choices({"vertex", "face"})
+          .help("normal loss on area-weighted vertex normals (the paper's) or face normals"));
     v("body_collision", body_collision, cfg::opt().min(0).help("garment behind body surface"));
     v("layer_collision", layer_collision, cfg::opt().min(0).help("outer behind inner garment"));
     v("collision_eps", collision_eps, cfg::opt().range(0, 0.1).help("collision margin (m)"));

@@ -1,8 +1,10 @@
 // layers/train/frame_loss.h -- the weighted sum of the shared loss terms
 // (layers/zoo/losses.h) on one predicted frame of every garment, with the
 // weights of the experiment's `loss:` section. Distances enter in
-// centimetres (position and collision terms are cm^2) so that the default
-// weights of 1 balance them against the unitless normal term.
+// centimetres (position and collision terms are cm^2); the normal term is
+// unitless, so a weight w at the paper's scale (lengths x10, squared
+// lengths x100 of metres) is w x 100 here for the normal term and w for the
+// squared-length terms (docs/reproduction.md, "Loss units").
 #pragma once
 
 #include <map>

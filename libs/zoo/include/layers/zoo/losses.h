@@ -26,6 +26,12 @@ at::Tensor position_mse(const at::Tensor& pred, const at::Tensor& truth);
 //   faces  [F,3] int64 triangles shared by both meshes
 at::Tensor normal_loss(const at::Tensor& pred, const at::Tensor& truth, const at::Tensor& faces);
 
+// The paper's normal loss (its Eq. 13 and public code): mean over vertices
+// of |n_pred - n_truth|^2 for unit area-weighted vertex normals
+// (vertex_normals below); a vertex of no face, or only of degenerate
+// faces, has normal 0. Arguments as normal_loss.
+at::Tensor vertex_normal_loss(const at::Tensor& pred, const at::Tensor& truth, const at::Tensor& faces);
+
 // Body collision (the paper's collision term; the nearest-vertex test of
 // docs/metrics.md with a margin): for each garment vertex x with nearest
 // body vertex h and body vertex normal n (vertex_normals below), d =
