@@ -262,10 +262,12 @@ TEST(DeepsdPlugin, ConfigsCreateTheModelThroughThePlugin) {
   EXPECT_EQ(model->name(), "deepsd");
   EXPECT_GT(model->info().trainable, 500000);
   EXPECT_EQ(cfg::to_yaml(model->config()), cfg::to_yaml(zoo::create_model(registry, *plus.find("model"))->config()));
-  // deepsd+ differs only by the layer collision loss.
-  EXPECT_EQ(plain.find("loss")->find("layer_collision")->scalar, "0");
-  EXPECT_EQ(plus.find("loss")->find("layer_collision")->scalar, "1");
+  // deepsd+ (the paper's "with collision loss") differs only by the body
+  // collision term; neither has a layer term.
+  EXPECT_EQ(plain.find("loss")->find("body_collision")->scalar, "0");
   EXPECT_EQ(plus.find("loss")->find("body_collision")->scalar, "1");
+  EXPECT_EQ(plain.find("loss")->find("layer_collision")->scalar, "0");
+  EXPECT_EQ(plus.find("loss")->find("layer_collision")->scalar, "0");
 }
 
 }  // namespace
