@@ -79,12 +79,13 @@ study::StudyActions library_actions() {
     options.split = split;
     const train::EvalReport r = train::run_evaluation(run.config, load_plugins().registry, options);
     std::printf(
-        "  %s on %s: error %s mm, H %s, L %s, H-cross %s, L-cross %s, %lld of %lld sequences diverged, "
-        "%.2f ms/frame\n",
+        "  %s on %s: error %s mm, H %s, L paper %s, L ours %s, H-cross %s, L-cross %s, %lld of %lld sequences "
+        "diverged, %.2f ms/frame\n",
         run.name.c_str(), split.c_str(), zoo::format(r.overall.error_mm).c_str(),
-        percent(r.overall.h_collision).c_str(), percent(r.overall.l_collision).c_str(),
-        percent(r.overall.h_crossing).c_str(), percent(r.overall.l_crossing).c_str(),
-        static_cast<long long>(r.diverged), static_cast<long long>(r.sequences), r.ms_per_frame);
+        percent(r.overall.h_collision).c_str(), percent(r.overall.l_collision_plain).c_str(),
+        percent(r.overall.l_collision).c_str(), percent(r.overall.h_crossing).c_str(),
+        percent(r.overall.l_crossing).c_str(), static_cast<long long>(r.diverged), static_cast<long long>(r.sequences),
+        r.ms_per_frame);
   };
   a.bench = [](const study::StudyRun& run, const train::BenchOptions& options) {
     const train::BenchReport r = train::run_bench(run.config, load_plugins().registry, options);

@@ -36,7 +36,7 @@ double mean_of(const json& stat) {
 }
 
 void add_summary(Metrics& out, const std::string& prefix, const json& summary) {
-  for (const char* kind : {"error_mm", "h_collision", "l_collision", "h_crossing", "l_crossing"})
+  for (const char* kind : {"error_mm", "h_collision", "l_collision", "l_collision_plain", "h_crossing", "l_crossing"})
     if (summary.contains(kind)) out[prefix + "." + kind] = mean_of(summary[kind]);
 }
 

@@ -17,8 +17,10 @@ namespace layers::regression {
 using Metrics = std::map<std::string, double>;
 
 // The compared metrics of a metrics.json text: overall and per garment type
-// error, H- and L-collision, H- and L-crossing (means over sequences; a
-// metrics.json without crossings has none), the number of
+// error, H- and L-collision (L twice: ours with the open-edge rule,
+// l_collision, and the paper's, l_collision_plain), H- and L-crossing
+// (means over sequences; a metrics.json without crossings or the paper's
+// L-collision has none of them), the number of
 // diverged sequences and the mean error growth rate. InputError naming
 // `file` for malformed JSON or a missing overall section.
 Metrics metrics_from_json(const std::string& json_text, const std::string& file);

@@ -50,11 +50,14 @@ TEST(GoldenCompare, ExtractsOverallPerTypeDivergenceAndGrowth) {
   EXPECT_DOUBLE_EQ(m.at("error_growth_mm_per_frame"), 0.5);
   EXPECT_TRUE(std::isnan(m.at("overall.l_collision")));
   EXPECT_EQ(m.count("overall.h_crossing"), 0u) << "a metrics.json without crossings has none";
+  EXPECT_EQ(m.count("overall.l_collision_plain"), 0u) << "nor the paper's L-collision when it was not measured";
   const auto x = regression::metrics_from_json(
       R"({"overall": {"error_mm": {"mean": 1, "std": 0, "count": 1}, "h_crossing": {"mean": 0.25, "std": 0, "count": 1},
-          "l_crossing": {"mean": null, "std": null, "count": 0}}})",
+          "l_crossing": {"mean": null, "std": null, "count": 0},
+          "l_collision_plain": {"mean": 0.125, "std": 0, "count": 1}}})",
       "x.json");
   EXPECT_DOUBLE_EQ(x.at("overall.h_crossing"), 0.25);
+  EXPECT_DOUBLE_EQ(x.at("overall.l_collision_plain"), 0.125);
   EXPECT_TRUE(std::isnan(x.at("overall.l_crossing")));
   EXPECT_THROW(regression::metrics_from_json("{\"model\": 1}", "x.json"), InputError);
   EXPECT_THROW(regression::metrics_from_json("{oops", "x.json"), InputError);

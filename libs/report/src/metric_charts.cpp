@@ -123,17 +123,30 @@ std::vector<Chart> by_step_charts(const Gnuplot& gp, const std::string& dir, con
     const char* ylabel;
     double StepMetrics::*field;
     double scale;
+    double EvalResults::*truth;  // the ground truth's own rate; null for the error
+    const char* what;            // for the caption
   };
   const Metric metrics[] = {
-      {"by_step_error", "Error against rollout step", "mean Euclidean error (mm)", &StepMetrics::error_mm, 1.0},
+      {"by_step_error", "Error against rollout step", "mean Euclidean error (mm)", &StepMetrics::error_mm, 1.0, nullptr,
+       "the Euclidean error (mm)"},
       {"by_step_h_collision", "H-collision against rollout step", "garment vertices behind the body (%)",
-       &StepMetrics::h_collision, 100.0},
-      {"by_step_l_collision", "L-collision against rollout step", "outer-garment vertices behind the inner garment (%)",
-       &StepMetrics::l_collision, 100.0}};
+       &StepMetrics::h_collision, 100.0, &EvalResults::truth_h_collision,
+       "the share of garment vertices behind the body surface (H-collision, %)"},
+      {"by_step_l_collision", "L-collision (ours: open-edge rule) against rollout step",
+       "outer-garment vertices behind the inner garment (%)", &StepMetrics::l_collision, 100.0,
+       &EvalResults::truth_l_collision,
+       "the share of outer-garment vertices behind the inner garment, an outer vertex beside an open edge of the "
+       "inner garment (a hem, a cuff) left out (L-collision, ours, %)"},
+      {"by_step_l_collision_plain", "L-collision (paper: nearest vertex) against rollout step",
+       "outer-garment vertices behind the inner garment (%)", &StepMetrics::l_collision_plain, 100.0,
+       &EvalResults::truth_l_collision_plain,
+       "the share of outer-garment vertices behind the normal plane of their nearest inner vertex (L-collision as "
+       "the paper defines it, %)"}};
+  constexpr std::size_t kMetrics = sizeof metrics / sizeof metrics[0];
 
   // One data file for all metrics: a block per run with steps.
   std::ostringstream data;
-  data << "# step error_mm h_collision_% l_collision_%; one block per run\n";
+  data << "# step error_mm h_collision_% l_collision_% l_collision_plain_%; one block per run\n";
   std::vector<std::size_t> plotted;
   std::int64_t last_step = 1;
   bool diverged = false;
@@ -141,7 +154,7 @@ std::vector<Chart> by_step_charts(const Gnuplot& gp, const std::string& dir, con
     if (!runs[i].eval || runs[i].eval->by_step.empty()) continue;
     for (const StepMetrics& st : runs[i].eval->by_step) {
       data << st.step << ' ' << datum(st.error_mm) << ' ' << datum(100.0 * st.h_collision) << ' '
-           << datum(100.0 * st.l_collision) << '\n';
+           << datum(100.0 * st.l_collision) << ' ' << datum(100.0 * st.l_collision_plain) << '\n';
       last_step = std::max(last_step, st.step);
     }
     data << "\n\n";
@@ -152,7 +165,7 @@ std::vector<Chart> by_step_charts(const Gnuplot& gp, const std::string& dir, con
   write_data(dir, "by_step.dat", data.str());
 
   std::vector<Chart> charts;
-  for (std::size_t m = 0; m < 3; ++m) {
+  for (std::size_t m = 0; m < kMetrics; ++m) {
     const Metric& metric = metrics[m];
     bool any = false;
     for (std::size_t i : plotted)
@@ -175,8 +188,7 @@ std::vector<Chart> by_step_charts(const Gnuplot& gp, const std::string& dir, con
     // The ground truth's own collision rate (mean over sequences) for reference.
     double truth = kAbsent;
     for (std::size_t i : plotted)
-      if (m > 0 && !std::isfinite(truth))
-        truth = m == 1 ? runs[i].eval->truth_h_collision : runs[i].eval->truth_l_collision;
+      if (metric.truth && !std::isfinite(truth)) truth = (*runs[i].eval).*metric.truth;
     s << "plot ";
     if (std::isfinite(truth))
       s << exact(100.0 * truth) << " with lines dt 3 lw 1.5 lc rgb '#555555' title 'ground truth', \\\n     ";
@@ -187,10 +199,7 @@ std::vector<Chart> by_step_charts(const Gnuplot& gp, const std::string& dir, con
     }
     s << "\n";
     gp.plot(dir, metric.name, s.str());
-    std::string caption = std::string("Mean over the test sequences of ") +
-                          (m == 0   ? "the Euclidean error (mm)"
-                           : m == 1 ? "the share of garment vertices behind the body surface (H-collision, %)"
-                                    : "the share of outer-garment vertices behind the inner garment (L-collision, %)") +
+    std::string caption = std::string("Mean over the test sequences of ") + metric.what +
                           " at each rollout step: the model's own predictions are fed back, the body and wind "
                           "stay ground truth, so growth along the x axis is accumulated drift." +
                           (m > 0 ? " The dotted grey line is the ground truth's own rate (mean over the first "

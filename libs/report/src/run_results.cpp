@@ -82,8 +82,11 @@ class Reader {
   MetricStats metrics(const json& parent, const std::string& key, const std::string& path, bool require_error) const {
     const json& v = object(parent, key, path);
     return {stat(v, "error_mm", path + ".error_mm", require_error),
-            stat(v, "h_collision", path + ".h_collision", false), stat(v, "l_collision", path + ".l_collision", false),
-            stat(v, "h_crossing", path + ".h_crossing", false), stat(v, "l_crossing", path + ".l_crossing", false)};
+            stat(v, "h_collision", path + ".h_collision", false),
+            stat(v, "l_collision", path + ".l_collision", false),
+            stat(v, "h_crossing", path + ".h_crossing", false),
+            stat(v, "l_crossing", path + ".l_crossing", false),
+            stat(v, "l_collision_plain", path + ".l_collision_plain", false)};
   }
 
  private:
@@ -113,6 +116,7 @@ EvalResults parse_metrics_json(const Reader& r, const json& doc, const std::stri
     e.truth_l_collision = r.number(t, "l_collision", "truth.l_collision");
     e.truth_h_crossing = r.number(t, "h_crossing", "truth.h_crossing");
     e.truth_l_crossing = r.number(t, "l_crossing", "truth.l_crossing");
+    e.truth_l_collision_plain = r.number(t, "l_collision_plain", "truth.l_collision_plain");
   }
   if (doc.contains("per_type") && !doc.at("per_type").is_null()) {
     const json& types = r.object(doc, "per_type", "per_type");
@@ -130,6 +134,7 @@ EvalResults parse_metrics_json(const Reader& r, const json& doc, const std::stri
       s.l_collision = r.number(steps[i], "l_collision", p + ".l_collision");
       s.h_crossing = r.number(steps[i], "h_crossing", p + ".h_crossing");
       s.l_crossing = r.number(steps[i], "l_crossing", p + ".l_crossing");
+      s.l_collision_plain = r.number(steps[i], "l_collision_plain", p + ".l_collision_plain");
       s.sequences = r.integer(steps[i], "sequences", p + ".sequences");
       e.by_step.push_back(s);
     }

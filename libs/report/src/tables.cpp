@@ -25,11 +25,9 @@ std::vector<ParetoPoint> speed_points(const std::vector<RunResults>& runs) {
 json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 json to_json(const Stat& s) { return {{"mean", number(s.mean)}, {"std", number(s.std)}, {"count", s.count}}; }
 json to_json(const MetricStats& m) {
-  return {{"error_mm", to_json(m.error_mm)},
-          {"h_collision", to_json(m.h_collision)},
-          {"l_collision", to_json(m.l_collision)},
-          {"h_crossing", to_json(m.h_crossing)},
-          {"l_crossing", to_json(m.l_crossing)}};
+  return {{"error_mm", to_json(m.error_mm)},       {"h_collision", to_json(m.h_collision)},
+          {"l_collision", to_json(m.l_collision)}, {"l_collision_plain", to_json(m.l_collision_plain)},
+          {"h_crossing", to_json(m.h_crossing)},   {"l_crossing", to_json(m.l_crossing)}};
 }
 
 std::string counters_text(const std::map<std::string, double>& counters) {
@@ -52,7 +50,7 @@ std::string summary_csv(const std::vector<RunResults>& runs) {
   out << "run,model,split,sequences,frames,parameters,ms_per_frame,error_mm_mean,error_mm_std,h_collision,"
          "h_collision_std,l_collision,l_collision_std,truth_h_collision,truth_l_collision,diverged,"
          "first_divergence_step,pareto,h_crossing,h_crossing_std,l_crossing,l_crossing_std,truth_h_crossing,"
-         "truth_l_crossing\n";
+         "truth_l_crossing,l_collision_plain,l_collision_plain_std,truth_l_collision_plain\n";
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const RunResults& r = runs[i];
     if (!r.eval) continue;
@@ -66,7 +64,9 @@ std::string summary_csv(const std::vector<RunResults>& runs) {
         << ',' << e.diverged << ',' << (div >= 0 ? std::to_string(div) : "") << ',' << (front[i] ? "yes" : "no") << ','
         << exact(e.overall.h_crossing.mean) << ',' << exact(e.overall.h_crossing.std) << ','
         << exact(e.overall.l_crossing.mean) << ',' << exact(e.overall.l_crossing.std) << ','
-        << exact(e.truth_h_crossing) << ',' << exact(e.truth_l_crossing) << '\n';
+        << exact(e.truth_h_crossing) << ',' << exact(e.truth_l_crossing) << ','
+        << exact(e.overall.l_collision_plain.mean) << ',' << exact(e.overall.l_collision_plain.std) << ','
+        << exact(e.truth_l_collision_plain) << '\n';
   }
   return out.str();
 }
@@ -74,7 +74,8 @@ std::string summary_csv(const std::vector<RunResults>& runs) {
 std::string per_type_csv(const std::vector<RunResults>& runs) {
   std::ostringstream out;
   out << "run,model,type,sequences,error_mm_mean,error_mm_std,h_collision,h_collision_std,l_collision,"
-         "l_collision_std,h_crossing,h_crossing_std,l_crossing,l_crossing_std\n";
+         "l_collision_std,h_crossing,h_crossing_std,l_crossing,l_crossing_std,l_collision_plain,l_collision_plain_"
+         "std\n";
   for (const RunResults& r : runs) {
     if (!r.eval) continue;
     for (const auto& [type, m] : r.eval->per_type)
@@ -82,20 +83,21 @@ std::string per_type_csv(const std::vector<RunResults>& runs) {
           << exact(m.error_mm.mean) << ',' << exact(m.error_mm.std) << ',' << exact(m.h_collision.mean) << ','
           << exact(m.h_collision.std) << ',' << exact(m.l_collision.mean) << ',' << exact(m.l_collision.std) << ','
           << exact(m.h_crossing.mean) << ',' << exact(m.h_crossing.std) << ',' << exact(m.l_crossing.mean) << ','
-          << exact(m.l_crossing.std) << '\n';
+          << exact(m.l_crossing.std) << ',' << exact(m.l_collision_plain.mean) << ',' << exact(m.l_collision_plain.std)
+          << '\n';
   }
   return out.str();
 }
 
 std::string by_step_csv(const std::vector<RunResults>& runs) {
   std::ostringstream out;
-  out << "run,model,step,error_mm,h_collision,l_collision,sequences,h_crossing,l_crossing\n";
+  out << "run,model,step,error_mm,h_collision,l_collision,sequences,h_crossing,l_crossing,l_collision_plain\n";
   for (const RunResults& r : runs) {
     if (!r.eval) continue;
     for (const StepMetrics& s : r.eval->by_step)
       out << csv_field(r.name) << ',' << csv_field(r.model) << ',' << s.step << ',' << exact(s.error_mm) << ','
           << exact(s.h_collision) << ',' << exact(s.l_collision) << ',' << s.sequences << ',' << exact(s.h_crossing)
-          << ',' << exact(s.l_crossing) << '\n';
+          << ',' << exact(s.l_crossing) << ',' << exact(s.l_collision_plain) << '\n';
   }
   return out.str();
 }
@@ -135,6 +137,7 @@ std::string summary_json(const std::string& title, const std::vector<RunResults>
                       {"truth",
                        {{"h_collision", number(e.truth_h_collision)},
                         {"l_collision", number(e.truth_l_collision)},
+                        {"l_collision_plain", number(e.truth_l_collision_plain)},
                         {"h_crossing", number(e.truth_h_crossing)},
                         {"l_crossing", number(e.truth_l_crossing)}}},
                       {"diverged", e.diverged},

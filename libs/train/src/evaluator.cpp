@@ -49,19 +49,17 @@ json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 json to_json(const zoo::MeanStd& m) { return {{"mean", number(m.mean)}, {"std", number(m.std)}, {"count", m.count}}; }
 
 json to_json(const MetricSummary& s) {
-  return {{"error_mm", to_json(s.error_mm)},
-          {"h_collision", to_json(s.h_collision)},
-          {"l_collision", to_json(s.l_collision)},
-          {"h_crossing", to_json(s.h_crossing)},
-          {"l_crossing", to_json(s.l_crossing)}};
+  return {{"error_mm", to_json(s.error_mm)},       {"h_collision", to_json(s.h_collision)},
+          {"l_collision", to_json(s.l_collision)}, {"l_collision_plain", to_json(s.l_collision_plain)},
+          {"h_crossing", to_json(s.h_crossing)},   {"l_crossing", to_json(s.l_crossing)}};
 }
 
 // Per-sequence values gathered for the summaries.
 struct Values {
-  std::vector<double> error, h, l, hx, lx;  // hx, lx: crossings
+  std::vector<double> error, h, l, hx, lx, lp;  // hx, lx: crossings; l: ours, lp: the paper's L-collision
   MetricSummary summary() const {
-    return {zoo::mean_std(error), zoo::mean_std(finite_only(h)), zoo::mean_std(finite_only(l)),
-            zoo::mean_std(finite_only(hx)), zoo::mean_std(finite_only(lx))};
+    return {zoo::mean_std(error),           zoo::mean_std(finite_only(h)),  zoo::mean_std(finite_only(l)),
+            zoo::mean_std(finite_only(hx)), zoo::mean_std(finite_only(lx)), zoo::mean_std(finite_only(lp))};
   }
 };
 
@@ -173,7 +171,8 @@ std::string encode(const RolloutResult& r) {
     b.put(m.frame), b.put(m.error_mm), b.put(m.garment_error_mm), b.put(m.garment_h_collision);
     b.put(m.h_collision), b.put(m.l_collision), b.put(m.truth_h_collision), b.put(m.truth_l_collision);
     b.put(m.garment_h_crossing), b.put(m.h_crossing), b.put(m.l_crossing), b.put(m.truth_h_crossing);
-    b.put(m.truth_l_crossing), b.put<std::uint8_t>(m.diverged);
+    b.put(m.truth_l_crossing), b.put(m.l_collision_plain), b.put(m.truth_l_collision_plain);
+    b.put<std::uint8_t>(m.diverged);
   }
   b.put(r.diverged_at), b.put(r.diverge_reason), b.put(r.model_seconds);
   b.put<std::uint64_t>(r.predictions.size());
@@ -197,6 +196,7 @@ RolloutResult decode(const std::string& bytes) {
     m.truth_h_collision = u.get<double>(), m.truth_l_collision = u.get<double>();
     m.garment_h_crossing = u.doubles(), m.h_crossing = u.get<double>(), m.l_crossing = u.get<double>();
     m.truth_h_crossing = u.get<double>(), m.truth_l_crossing = u.get<double>();
+    m.l_collision_plain = u.get<double>(), m.truth_l_collision_plain = u.get<double>();
     m.diverged = u.get<std::uint8_t>() != 0;
   }
   r.diverged_at = u.get<std::int64_t>(), r.diverge_reason = u.text(), r.model_seconds = u.get<double>();
@@ -251,11 +251,12 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
         (std::filesystem::path(report.out_dir) / data::run_layout::kPredictions).string());
   Values overall, truth;
   std::map<std::string, Values> per_type;
-  std::vector<std::vector<double>> step_error, step_h, step_l, step_hx, step_lx;  // [step][sequence]
+  std::vector<std::vector<double>> step_error, step_h, step_l, step_hx, step_lx, step_lp;  // [step][sequence]
   json sequences = json::array();
   std::ostringstream csv;
   // New columns go at the end: scripts read the older ones by position.
-  csv << "sequence,motion,tags,garment,type,layer,error_mm,h_collision,l_collision,diverged_at,h_crossing,l_crossing\n";
+  csv << "sequence,motion,tags,garment,type,layer,error_mm,h_collision,l_collision,diverged_at,h_crossing,l_crossing,"
+         "l_collision_plain\n";
   std::vector<double> growth_rates;  // mm per frame, per sequence (error growth)
   double model_seconds = 0;
   std::optional<Progress> progress;
@@ -284,28 +285,30 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
       model_seconds += res.model_seconds;
       report.frames += static_cast<std::int64_t>(res.frames.size());
       if (res.diverged_at >= 0) ++report.diverged;
-      std::vector<double> e, h, l, th, tl, hx, lx, thx, tlx;
+      std::vector<double> e, h, l, th, tl, hx, lx, thx, tlx, lp, tlp;
       for (std::size_t k = 0; k < res.frames.size(); ++k) {
         const FrameMetrics& m = res.frames[k];
         e.push_back(m.error_mm), h.push_back(m.h_collision), l.push_back(m.l_collision);
         th.push_back(m.truth_h_collision), tl.push_back(m.truth_l_collision);
         hx.push_back(m.h_crossing), lx.push_back(m.l_crossing);
         thx.push_back(m.truth_h_crossing), tlx.push_back(m.truth_l_crossing);
+        lp.push_back(m.l_collision_plain), tlp.push_back(m.truth_l_collision_plain);
         if (step_error.size() <= k) {
           step_error.resize(k + 1), step_h.resize(k + 1), step_l.resize(k + 1);
-          step_hx.resize(k + 1), step_lx.resize(k + 1);
+          step_hx.resize(k + 1), step_lx.resize(k + 1), step_lp.resize(k + 1);
         }
         step_error[k].push_back(m.error_mm), step_h[k].push_back(m.h_collision), step_l[k].push_back(m.l_collision);
         step_hx[k].push_back(m.h_crossing), step_lx[k].push_back(m.l_crossing);
+        step_lp[k].push_back(m.l_collision_plain);
       }
       const double seq_error = zoo::sequence_mean(e), seq_h = finite_mean(h), seq_l = finite_mean(l);
-      const double seq_hx = finite_mean(hx), seq_lx = finite_mean(lx);
+      const double seq_hx = finite_mean(hx), seq_lx = finite_mean(lx), seq_lp = finite_mean(lp);
       const double growth = error_growth_mm_per_frame(res.frames);
       if (std::isfinite(growth)) growth_rates.push_back(growth);
       overall.error.push_back(seq_error), overall.h.push_back(seq_h), overall.l.push_back(seq_l);
-      overall.hx.push_back(seq_hx), overall.lx.push_back(seq_lx);
+      overall.hx.push_back(seq_hx), overall.lx.push_back(seq_lx), overall.lp.push_back(seq_lp);
       truth.h.push_back(finite_mean(th)), truth.l.push_back(finite_mean(tl));
-      truth.hx.push_back(finite_mean(thx)), truth.lx.push_back(finite_mean(tlx));
+      truth.hx.push_back(finite_mean(thx)), truth.lx.push_back(finite_mean(tlx)), truth.lp.push_back(finite_mean(tlp));
       const data::SequenceInfo& info = s.dataset.info(id);
       std::string tags;
       for (const std::string& t : info.tags) tags += (tags.empty() ? "" : " ") + t;
@@ -319,23 +322,25 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
           ghx.push_back(m.diverged ? kNaN : m.garment_h_crossing[g]);
         }
         const double g_error = zoo::sequence_mean(ge), g_h = finite_mean(gh), g_hx = finite_mean(ghx);
-        // L-collision and L-crossing belong to the outer garment
-        const double g_l = gs.layer == 1 ? seq_l : kNaN, g_lx = gs.layer == 1 ? seq_lx : kNaN;
+        // L-collision (both rules) and L-crossing belong to the outer garment
+        const bool outer = gs.layer == 1;
+        const double g_l = outer ? seq_l : kNaN, g_lx = outer ? seq_lx : kNaN, g_lp = outer ? seq_lp : kNaN;
         Values& type = per_type[gs.type];
         type.error.push_back(g_error), type.h.push_back(g_h), type.l.push_back(g_l);
-        type.hx.push_back(g_hx), type.lx.push_back(g_lx);
+        type.hx.push_back(g_hx), type.lx.push_back(g_lx), type.lp.push_back(g_lp);
         garments.push_back({{"name", gs.name},
                             {"type", gs.type},
                             {"layer", gs.layer},
                             {"error_mm", number(g_error)},
                             {"h_collision", number(g_h)},
                             {"l_collision", number(g_l)},
+                            {"l_collision_plain", number(g_lp)},
                             {"h_crossing", number(g_hx)},
                             {"l_crossing", number(g_lx)}});
         csv << id << ',' << info.motion << ',' << tags << ',' << gs.name << ',' << gs.type << ',' << gs.layer << ','
             << csv_number(g_error) << ',' << csv_number(g_h) << ',' << csv_number(g_l) << ','
             << (res.diverged_at >= 0 ? std::to_string(res.diverged_at) : "") << ',' << csv_number(g_hx) << ','
-            << csv_number(g_lx) << '\n';
+            << csv_number(g_lx) << ',' << csv_number(g_lp) << '\n';
       }
       sequences.push_back({{"id", id},
                            {"motion", info.motion},
@@ -344,8 +349,10 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
                            {"error_mm", number(seq_error)},
                            {"h_collision", number(seq_h)},
                            {"l_collision", number(seq_l)},
+                           {"l_collision_plain", number(seq_lp)},
                            {"truth_h_collision", number(truth.h.back())},
                            {"truth_l_collision", number(truth.l.back())},
+                           {"truth_l_collision_plain", number(truth.lp.back())},
                            {"h_crossing", number(seq_hx)},
                            {"l_crossing", number(seq_lx)},
                            {"truth_h_crossing", number(truth.hx.back())},
@@ -371,6 +378,7 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
   report.truth_l_collision = finite_mean(truth.l);
   report.truth_h_crossing = finite_mean(truth.hx);
   report.truth_l_crossing = finite_mean(truth.lx);
+  report.truth_l_collision_plain = finite_mean(truth.lp);
   report.ms_per_frame = report.frames ? 1000.0 * model_seconds / static_cast<double>(report.frames) : 0;
 
   json by_step = json::array();
@@ -379,6 +387,7 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
                        {"error_mm", number(zoo::mean_std(step_error[k]).mean)},
                        {"h_collision", number(finite_mean(step_h[k]))},
                        {"l_collision", number(finite_mean(step_l[k]))},
+                       {"l_collision_plain", number(finite_mean(step_lp[k]))},
                        {"h_crossing", number(finite_mean(step_hx[k]))},
                        {"l_crossing", number(finite_mean(step_lx[k]))},
                        {"sequences", step_error[k].size()}});
@@ -407,6 +416,7 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
               {"truth",
                {{"h_collision", number(report.truth_h_collision)},
                 {"l_collision", number(report.truth_l_collision)},
+                {"l_collision_plain", number(report.truth_l_collision_plain)},
                 {"h_crossing", number(report.truth_h_crossing)},
                 {"l_crossing", number(report.truth_l_crossing)}}},
               {"per_type", types},

@@ -58,12 +58,12 @@ at::Tensor outer_points(const zoo::SequenceStatic& seq, const std::vector<at::Te
 // The rates of one frame's garments (shares 0..1; L: NaN without an inner
 // and an outer garment).
 struct FrameRates {
-  double h_collision = 0, l_collision = kNaN, h_crossing = 0, l_crossing = kNaN;
+  double h_collision = 0, l_collision = kNaN, l_collision_plain = kNaN, h_crossing = 0, l_crossing = kNaN;
   std::vector<double> garment_h_collision, garment_h_crossing;
 };
 
-// The paper's vertex-normal H- and L-collision and the exact H- and
-// L-crossing (geometry/intersect.h) of one frame. `faces`: each garment's
+// The paper's vertex-normal H- and L-collision, our L-collision (open-edge
+// rule) and the exact H- and L-crossing (geometry/intersect.h) of one frame. `faces`: each garment's
 // faces; outer garments are those of a layer other than 0, as for
 // L-collision. `body_tree`: the body's faces, built once per frame for the
 // prediction and the ground truth.
@@ -86,7 +86,11 @@ FrameRates frame_rates(const zoo::SequenceStatic& seq, const std::vector<geometr
   const at::Tensor outer_p = outer_points(seq, garments);
   if (outer_p.defined()) {
     geometry::TriMesh inner_m = inner_mesh(seq, garments);
-    if (inner_m.num_vertices() > 0) r.l_collision = zoo::l_collision_rate(points_of(outer_p), inner_m);
+    if (inner_m.num_vertices() > 0) {
+      const geometry::Points outer_v = points_of(outer_p);
+      r.l_collision = zoo::l_collision_rate(outer_v, inner_m);
+      r.l_collision_plain = zoo::l_collision_plain_rate(outer_v, inner_m);
+    }
   }
   // body_crossings() takes the garments as one mesh, vertices in order:
   // each garment's share is its slice of the per-vertex flags.
@@ -131,7 +135,7 @@ RolloutResult rollout(zoo::Model& model, const zoo::SequenceStatic& seq, const F
       m.diverged = true;
       m.error_mm = options.diverge_mm;
       m.garment_error_mm.assign(seq.garments.size(), options.diverge_mm);
-      m.h_collision = m.l_collision = kNaN;
+      m.h_collision = m.l_collision = m.l_collision_plain = kNaN;
       m.h_crossing = m.l_crossing = kNaN;
       result.frames.push_back(m);
     };
@@ -165,12 +169,14 @@ RolloutResult rollout(zoo::Model& model, const zoo::SequenceStatic& seq, const F
       const geometry::FaceTree body_tree(body_mesh);
       FrameRates predicted = frame_rates(seq, garment_faces, out.garments, body_tree, body);
       m.h_collision = predicted.h_collision, m.l_collision = predicted.l_collision;
+      m.l_collision_plain = predicted.l_collision_plain;
       m.h_crossing = predicted.h_crossing, m.l_crossing = predicted.l_crossing;
       m.garment_h_collision = std::move(predicted.garment_h_collision);
       m.garment_h_crossing = std::move(predicted.garment_h_crossing);
       if (options.truth_collisions) {
         const FrameRates t = frame_rates(seq, garment_faces, truth, body_tree, body);
         m.truth_h_collision = t.h_collision, m.truth_l_collision = t.l_collision;
+        m.truth_l_collision_plain = t.l_collision_plain;
         m.truth_h_crossing = t.h_crossing, m.truth_l_crossing = t.l_crossing;
       }
     } else {

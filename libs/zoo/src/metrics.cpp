@@ -29,9 +29,23 @@ double h_collision_rate(const geometry::Points& garment, const geometry::TriMesh
   return behind_share(garment, geometry::Surface::from_mesh(body, "body"));
 }
 
+namespace {
+
+// Share of outer vertices behind the inner garment; `open` says whether a
+// nearest inner vertex on an open edge gives a verdict (the two L rules).
+double layer_behind_share(const geometry::Points& outer, const geometry::TriMesh& inner,
+                          geometry::Surface::OpenEdges open) {
+  return behind_share(outer, geometry::Surface::from_mesh(inner, "inner garment", open));
+}
+
+}  // namespace
+
+double l_collision_plain_rate(const geometry::Points& outer, const geometry::TriMesh& inner) {
+  return layer_behind_share(outer, inner, geometry::Surface::OpenEdges::Count);
+}
+
 double l_collision_rate(const geometry::Points& outer, const geometry::TriMesh& inner) {
-  return behind_share(outer,
-                      geometry::Surface::from_mesh(inner, "inner garment", geometry::Surface::OpenEdges::Ignore));
+  return layer_behind_share(outer, inner, geometry::Surface::OpenEdges::Ignore);
 }
 
 MeanStd mean_std(const std::vector<double>& values) {

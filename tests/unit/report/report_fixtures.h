@@ -19,6 +19,10 @@ struct FakeRun {
   // before the evaluator measured them (no such keys anywhere).
   bool crossings = true;
   double hx = 0.004, lx = 0.006;
+  // The paper's L-collision (l_collision_plain, beside our l_collision);
+  // false: a metrics.json written before the evaluator measured it.
+  bool plain = true;
+  double lp = 0.08;
   std::vector<double> step_errors = {1.0, 2.0, 3.0};
   long diverged_at = -1;  // absolute frame of sequence s2, -1: stable
   std::string dataset = "/nonexistent/dataset";
@@ -39,6 +43,9 @@ inline std::string metrics_json(const FakeRun& r) {
     return r.crossings ? stat_field("h_crossing", hx, 0.001, 2) + stat_field("l_crossing", lx, 0.002, l_count)
                        : std::string();
   };
+  const auto plain = [&](double lp, double std, int count) {
+    return r.plain ? stat_field("l_collision_plain", lp, std, count) : std::string();
+  };
   std::string steps;
   for (std::size_t k = 0; k < r.step_errors.size(); ++k)
     steps += std::string(k ? "," : "") + "{\"step\": " + std::to_string(k + 1) +
@@ -47,6 +54,7 @@ inline std::string metrics_json(const FakeRun& r) {
              (r.crossings ? ", \"h_crossing\": " + std::to_string(r.hx) +
                                 ", \"l_crossing\": " + (k == 0 ? "null" : std::to_string(r.lx))
                           : std::string()) +
+             (r.plain ? ", \"l_collision_plain\": " + (k == 0 ? "null" : std::to_string(r.lp)) : std::string()) +
              ", \"sequences\": 2}";
   const std::string diverged = r.diverged_at >= 0 ? std::to_string(r.diverged_at) : "null";
   return R"({
@@ -66,20 +74,22 @@ inline std::string metrics_json(const FakeRun& r) {
               "h_collision": {"mean": )" +
          std::to_string(r.h) + R"(, "std": 0.01, "count": 2},
               "l_collision": {"mean": )" +
-         std::to_string(r.l) + R"(, "std": 0.0, "count": 2})" + crossing(r.hx, r.lx, 2) + R"(},
+         std::to_string(r.l) + R"(, "std": 0.0, "count": 2})" + crossing(r.hx, r.lx, 2) + plain(r.lp, 0.01, 2) + R"(},
   "truth": {"h_collision": 0.0, "l_collision": 0.0645)" +
-         std::string(r.crossings ? R"(, "h_crossing": 0.0, "l_crossing": 0.0025)" : "") + R"(},
+         std::string(r.crossings ? R"(, "h_crossing": 0.0, "l_crossing": 0.0025)" : "") +
+         std::string(r.plain ? R"(, "l_collision_plain": 0.0845)" : "") + R"(},
   "per_type": {
     "jacket": {"error_mm": {"mean": )" +
          std::to_string(r.error + 1) + R"(, "std": 0.5, "count": 2},
                "h_collision": {"mean": 0.01, "std": 0.0, "count": 2},
                "l_collision": {"mean": )" +
-         std::to_string(r.l) + R"(, "std": 0.0, "count": 2})" + crossing(0.003, r.lx, 2) + R"(},
+         std::to_string(r.l) + R"(, "std": 0.0, "count": 2})" + crossing(0.003, r.lx, 2) + plain(r.lp, 0.0, 2) +
+         R"(},
     "jumpsuit": {"error_mm": {"mean": )" +
          std::to_string(r.error - 1) + R"(, "std": 0.5, "count": 2},
                  "h_collision": {"mean": 0.03, "std": 0.0, "count": 2},
                  "l_collision": {"mean": 0.0, "std": 0.0, "count": 0})" +
-         crossing(0.005, 0.0, 0) + R"(}},
+         crossing(0.005, 0.0, 0) + plain(0.0, 0.0, 0) + R"(}},
   "by_step": [)" +
          steps + R"(],
   "per_sequence": [

@@ -236,6 +236,10 @@ TEST_F(Fixture, RolloutMeasuresPlantedCrossings) {
   const RolloutResult inner = roll("through_inner");
   for (const FrameMetrics& m : inner.frames) {
     EXPECT_GT(m.l_crossing, 0.05) << "frame " << m.frame;
+    // Both L-collisions are measured; ours leaves out what the paper's counts beside an open edge.
+    EXPECT_TRUE(std::isfinite(m.l_collision_plain)) << "frame " << m.frame;
+    EXPECT_GE(m.l_collision_plain, m.l_collision) << "frame " << m.frame;
+    EXPECT_GE(m.truth_l_collision_plain, m.truth_l_collision) << "frame " << m.frame;
     EXPECT_DOUBLE_EQ(m.h_crossing, 0.0) << "both layers stay clear of the body";
     EXPECT_DOUBLE_EQ(m.truth_l_crossing, 0.0);
   }
@@ -255,6 +259,7 @@ TEST_F(Fixture, RolloutMeasuresPlantedCrossings) {
   ASSERT_TRUE(boom.frames.back().diverged);
   EXPECT_TRUE(std::isnan(boom.frames.back().h_crossing));
   EXPECT_TRUE(std::isnan(boom.frames.back().l_crossing));
+  EXPECT_TRUE(std::isnan(boom.frames.back().l_collision_plain));
 }
 
 TEST_F(Fixture, EvaluationReportsPlantedCrossings) {
@@ -287,12 +292,26 @@ TEST_F(Fixture, EvaluationReportsPlantedCrossings) {
   EXPECT_NEAR(seq["l_crossing"].get<double>(), r.overall.l_crossing.mean, 1e-12);
   EXPECT_EQ(seq["truth_l_crossing"], 0.0);
   EXPECT_TRUE(seq["garments"][1].contains("h_crossing"));
+  // The paper's L-collision (plain nearest vertex) beside ours everywhere
+  // ours is; the open-edge rule only leaves vertices out.
+  EXPECT_EQ(r.overall.l_collision_plain.count, 1);
+  EXPECT_GE(r.overall.l_collision_plain.mean, r.overall.l_collision.mean);
+  EXPECT_GE(r.truth_l_collision_plain, r.truth_l_collision);
+  EXPECT_NEAR(j["overall"]["l_collision_plain"]["mean"].get<double>(), r.overall.l_collision_plain.mean, 1e-12);
+  EXPECT_NEAR(j["truth"]["l_collision_plain"].get<double>(), r.truth_l_collision_plain, 1e-12);
+  EXPECT_EQ(j["per_type"]["jacket"]["l_collision_plain"]["count"], 1);
+  EXPECT_EQ(j["per_type"]["tshirt"]["l_collision_plain"]["count"], 0) << "L belongs to the outer garment";
+  EXPECT_TRUE(j["by_step"][0]["l_collision_plain"].is_number());
+  EXPECT_NEAR(seq["l_collision_plain"].get<double>(), r.overall.l_collision_plain.mean, 1e-12);
+  EXPECT_TRUE(seq["truth_l_collision_plain"].is_number());
+  EXPECT_TRUE(seq["garments"][1]["l_collision_plain"].is_number());
+  EXPECT_TRUE(seq["garments"][0]["l_collision_plain"].is_null());
   std::ifstream csv(r.out_dir + "/sequences.csv");
   std::string header;
   std::getline(csv, header);
   EXPECT_EQ(header,
             "sequence,motion,tags,garment,type,layer,error_mm,h_collision,l_collision,diverged_at,h_crossing,"
-            "l_crossing")
+            "l_crossing,l_collision_plain")
       << "new columns at the end";
 }
 

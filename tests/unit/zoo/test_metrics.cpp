@@ -80,8 +80,56 @@ TEST(Metrics, LCollisionIgnoresOuterVerticesBesideAnOpenEdge) {
   g::TriMesh inner = layers::test::unit_square_grid(6, 0.1f);
   g::Points outer = points({{1.1f, 0.5f, 0.05f}, {-0.1f, 0.3f, 0.0f}, {0.5f, 0.5f, 0.05f}, {0.3f, 0.7f, 0.2f}});
   EXPECT_DOUBLE_EQ(zoo::l_collision_rate(outer, inner), 0.25);
-  // The plain nearest-vertex test counts the first two as well.
-  EXPECT_DOUBLE_EQ(zoo::behind_share(outer, g::Surface::from_mesh(inner)), 0.75);
+  // The plain nearest-vertex test (the paper's L-collision) counts the first two as well.
+  EXPECT_DOUBLE_EQ(zoo::l_collision_plain_rate(outer, inner), 0.75);
+}
+
+namespace {
+
+// A hand-made inner garment: a tube of radius 0.15 around the y axis, three
+// rings of 8 vertices at y = 0 (the hem), 0.1 and 0.2 (the neckline), faces
+// counter-clockwise seen from outside (normals point away from the axis).
+g::TriMesh open_tube() {
+  constexpr int kRing = 8, kRows = 3;
+  const float pi = 3.14159265f;
+  g::TriMesh tube;
+  tube.vertices.resize(kRing * kRows, 3);
+  for (int i = 0; i < kRows; ++i)
+    for (int j = 0; j < kRing; ++j) {
+      const float a = 2.0f * pi * static_cast<float>(j) / kRing;
+      tube.vertices.row(i * kRing + j) << 0.15f * std::cos(a), 0.1f * static_cast<float>(i), 0.15f * std::sin(a);
+    }
+  tube.faces.resize(2 * kRing * (kRows - 1), 3);
+  int f = 0;
+  for (int i = 0; i + 1 < kRows; ++i)
+    for (int j = 0; j < kRing; ++j) {
+      const int a = i * kRing + j, b = i * kRing + (j + 1) % kRing, c = a + kRing, d = b + kRing;
+      tube.faces.row(f++) << a, c, b;
+      tube.faces.row(f++) << b, c, d;
+    }
+  return tube;
+}
+
+}  // namespace
+
+TEST(Metrics, PlainLCollisionCountsBeyondTheHemOursDoesNot) {
+  const g::TriMesh inner = open_tube();
+  // Below the hem and nearer the axis than the hem vertex (0.15, 0, 0):
+  // behind that vertex's normal plane, but beside the garment.
+  const g::Points beyond_hem = points({{0.12f, -0.03f, 0.0f}});
+  EXPECT_DOUBLE_EQ(zoo::l_collision_plain_rate(beyond_hem, inner), 1.0) << "the paper's rule counts it";
+  EXPECT_DOUBLE_EQ(zoo::l_collision_rate(beyond_hem, inner), 0.0) << "the open-edge rule does not";
+  // Clearly outside the tube at mid height: in front for both rules.
+  const g::Points in_front = points({{0.25f, 0.1f, 0.0f}});
+  EXPECT_DOUBLE_EQ(zoo::l_collision_plain_rate(in_front, inner), 0.0);
+  EXPECT_DOUBLE_EQ(zoo::l_collision_rate(in_front, inner), 0.0);
+  // Together with one inside the tube at mid height (nearest vertex not on
+  // an open edge: behind for both) and one in front on the other side.
+  const g::Points all = points({{0.12f, -0.03f, 0.0f}, {0.25f, 0.1f, 0.0f}, {0.12f, 0.1f, 0.0f}, {-0.3f, 0.1f, 0.0f}});
+  EXPECT_DOUBLE_EQ(zoo::l_collision_plain_rate(all, inner), 0.5);
+  EXPECT_DOUBLE_EQ(zoo::l_collision_rate(all, inner), 0.25);
+  // The plain rate is the plain nearest-vertex test, as H-collision's.
+  EXPECT_DOUBLE_EQ(zoo::l_collision_plain_rate(all, inner), zoo::behind_share(all, g::Surface::from_mesh(inner)));
 }
 
 TEST(Metrics, CollisionRateNeedsVerticesAndValidFaces) {

@@ -5,9 +5,12 @@
 //                    with an evaluation, the Pareto front marked and
 //                    labelled; one more point per benchmarked scene size
 //                    when the run has a bench.json
-//   by_step_error, by_step_h_collision, by_step_l_collision
+//   by_step_error, by_step_h_collision, by_step_l_collision (ours: open-
+//   edge rule), by_step_l_collision_plain (the paper's L-collision)
 //                    each metric against the rollout step for every run,
-//                    each run's first divergence marked
+//                    each run's first divergence marked; a metric no run
+//                    has (e.g. evaluations from before it was measured) is
+//                    not drawn
 //   per_type         error bars (mean +- std over sequences) per garment
 //                    type for every run
 //

@@ -8,9 +8,10 @@
 // RunResults::problems and leaves the piece empty. A file that exists but
 // is malformed is reported the same way, with the InputError's text.
 // Rates are shares 0..1, errors real-world mm, times ms; NaN = absent.
-// The exact crossing rates (h_crossing, l_crossing) are optional: a
-// metrics.json written before the evaluator measured them still loads,
-// with those values absent.
+// The exact crossing rates (h_crossing, l_crossing) and the paper's
+// L-collision (l_collision_plain, beside our l_collision with its open-edge
+// rule) are optional: a metrics.json written before the evaluator measured
+// them still loads, with those values absent.
 #pragma once
 
 #include <cstdint>
@@ -31,8 +32,9 @@ struct Stat {
 };
 
 struct MetricStats {
-  Stat error_mm, h_collision, l_collision;
-  Stat h_crossing, l_crossing;  // exact crossings; count 0 when the file has none
+  Stat error_mm, h_collision, l_collision;  // l_collision: ours (open-edge rule)
+  Stat h_crossing, l_crossing;              // exact crossings; count 0 when the file has none
+  Stat l_collision_plain;                   // the paper's L-collision; count 0 when the file has none
 };
 
 // One row of metrics.json's by_step: means over the sequences still rolling
@@ -41,6 +43,7 @@ struct StepMetrics {
   std::int64_t step = 0;
   double error_mm = kAbsent, h_collision = kAbsent, l_collision = kAbsent;
   double h_crossing = kAbsent, l_crossing = kAbsent;
+  double l_collision_plain = kAbsent;
   std::int64_t sequences = 0;
 };
 
@@ -59,6 +62,7 @@ struct EvalResults {
   MetricStats overall;
   double truth_h_collision = kAbsent, truth_l_collision = kAbsent;
   double truth_h_crossing = kAbsent, truth_l_crossing = kAbsent;
+  double truth_l_collision_plain = kAbsent;
   std::vector<std::pair<std::string, MetricStats>> per_type;  // garment type -> stats
   std::vector<StepMetrics> by_step;
   std::vector<SequenceMetrics> per_sequence;

@@ -6,10 +6,13 @@
 //   summary.csv   one row per run: model, parameters, ms/frame, error mean
 //                 and std, H/L-collision, ground-truth rates, divergence,
 //                 Pareto membership, then the exact H/L-crossing (mean, std)
-//                 and the ground truth's (new columns go at the end: scripts
-//                 read the older ones by position)
-//   per_type.csv  one row per run and garment type (crossings last)
-//   by_step.csv   one row per run and rollout step (crossings last)
+//                 and the ground truth's, then the paper's L-collision
+//                 (l_collision_plain; l_collision is ours, with the
+//                 open-edge rule) and the ground truth's (new columns go at
+//                 the end: scripts read the older ones by position)
+//   per_type.csv  one row per run and garment type (crossings, then the
+//                 paper's L-collision last)
+//   by_step.csv   one row per run and rollout step (the same order)
 //   bench.csv     one row per run and benchmarked scene size
 //   summary.json  all of the above but by_step, plus the Pareto front in
 //                 speed order, the problems met and the charts made

@@ -10,9 +10,11 @@
 //                    predicted garments; frames 0 and 1 are the ground truth
 //                    the rollout started from) -- `layers export` reads it
 // Errors are real-world millimetres (the paper's figures are at 10x
-// scale). Collisions are the paper's vertex-normal H/L rates, crossings the
-// exact H/L measures of geometry/intersect.h (docs/metrics.md). The ground
-// truth's own rates are reported beside the model's.
+// scale). Collisions are the paper's vertex-normal H/L rates (L as the
+// paper defines it, `l_collision_plain`, and ours with the open-edge rule,
+// `l_collision`), crossings the exact H/L measures of geometry/intersect.h
+// (docs/metrics.md). The ground truth's own rates are reported beside the
+// model's.
 #pragma once
 
 #include <cstdint>
@@ -45,8 +47,9 @@ struct EvalOptions {
 };
 
 struct MetricSummary {
-  zoo::MeanStd error_mm, h_collision, l_collision;  // rates as shares 0..1
+  zoo::MeanStd error_mm, h_collision, l_collision;  // rates as shares 0..1; l_collision: ours (open-edge rule)
   zoo::MeanStd h_crossing, l_crossing;              // exact crossings, shares 0..1
+  zoo::MeanStd l_collision_plain;                   // the paper's L-collision (plain nearest vertex)
 };
 
 struct EvalReport {
@@ -56,6 +59,7 @@ struct EvalReport {
   std::vector<std::pair<std::string, MetricSummary>> per_type;  // garment type -> summary
   double truth_h_collision = 0, truth_l_collision = 0;          // ground truth, mean over sequences
   double truth_h_crossing = 0, truth_l_crossing = 0;            // ground truth, mean over sequences
+  double truth_l_collision_plain = 0;                           // ground truth, the paper's L-collision
   double ms_per_frame = 0;                                      // Model::step time per predicted frame
 };
 

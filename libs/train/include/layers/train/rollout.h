@@ -1,7 +1,8 @@
 // layers/train/rollout.h -- autoregressive rollouts (docs/metrics.md):
 // start from ground truth, feed predictions back, body and wind stay ground
 // truth; per-frame metrics (Euclidean error, the paper's vertex-normal H-
-// and L-collision, the exact H- and L-crossing of geometry/intersect.h;
+// and L-collision and our L-collision with its open-edge rule, the exact
+// H- and L-crossing of geometry/intersect.h;
 // also of the ground truth for reference) and divergence detection: a non-finite
 // prediction or a frame error above the bound stops the rollout and is
 // recorded with its frame, never a crash. Frames after divergence count
@@ -30,14 +31,18 @@ struct RolloutOptions {
 };
 
 struct FrameMetrics {
-  std::int64_t frame = 0;                                         // absolute frame
-  double error_mm = 0;                                            // mean over all garment vertices
-  std::vector<double> garment_error_mm;                           // per garment
-  std::vector<double> garment_h_collision;                        // per garment, share behind the body
-  double h_collision = 0;                                         // all garment vertices
-  double l_collision = std::numeric_limits<double>::quiet_NaN();  // NaN: no inner+outer pair
+  std::int64_t frame = 0;                   // absolute frame
+  double error_mm = 0;                      // mean over all garment vertices
+  std::vector<double> garment_error_mm;     // per garment
+  std::vector<double> garment_h_collision;  // per garment, share behind the body
+  double h_collision = 0;                   // all garment vertices
+  // L-collision, ours (open-edge rule) and the paper's (plain nearest
+  // vertex): zoo/metrics.h. NaN: no inner+outer pair.
+  double l_collision = std::numeric_limits<double>::quiet_NaN();
+  double l_collision_plain = std::numeric_limits<double>::quiet_NaN();
   double truth_h_collision = std::numeric_limits<double>::quiet_NaN();
   double truth_l_collision = std::numeric_limits<double>::quiet_NaN();
+  double truth_l_collision_plain = std::numeric_limits<double>::quiet_NaN();
   // Exact crossings (docs/metrics.md): share of garment vertices on faces
   // through the body, of outer vertices on faces through the inner layer.
   std::vector<double> garment_h_crossing;                        // per garment

@@ -1,5 +1,6 @@
-// layers/zoo/metrics.h -- the paper's evaluation metrics (docs/metrics.md),
-// per frame, plus mean +- std aggregation over sequences.
+// layers/zoo/metrics.h -- the evaluation metrics (docs/metrics.md), per
+// frame, plus mean +- std aggregation over sequences: the paper's
+// definitions, and beside them our L-collision with its open-edge rule.
 // Positions are metres; errors are reported in real-world millimetres
 // (the paper's "mm" are at 10x scale, i.e. 10x these numbers). Torch-free.
 #pragma once
@@ -23,15 +24,25 @@ double euclidean_error_mm(const geometry::Points& predicted, const geometry::Poi
 // as not behind. Zero points: layers::Error.
 double behind_share(const geometry::Points& points, const geometry::Surface& surface);
 
-// H-collision: share of garment vertices behind the body surface.
+// H-collision: share of garment vertices behind the body surface (the
+// plain nearest-vertex test: the paper's definition; the body is closed).
 double h_collision_rate(const geometry::Points& garment, const geometry::TriMesh& body);
-// L-collision: share of outer-garment vertices behind the inner garment
-// surface (with several inner garments, geometry::concatenate them): the
-// same nearest-vertex test, except that an outer vertex whose nearest
-// inner vertex lies on an open edge of the inner garment (a hem, a cuff, a
-// neckline) is beside that garment, not behind it, and does not count.
-// (The plain test counted every jacket vertex hanging below a shorter
-// inner garment: ~5% of the outer vertices in collision-free ground truth.)
+
+// Two L-collisions, both reported by every evaluation (docs/metrics.md):
+// the share of outer-garment vertices behind the inner garment surface
+// (with several inner garments, geometry::concatenate them).
+//
+// l_collision_plain_rate: the paper's definition (LayersNet and its public
+// code): an outer vertex counts when it lies behind the normal plane of its
+// nearest inner vertex, wherever that vertex is. Use it to compare with the
+// paper's figures.
+double l_collision_plain_rate(const geometry::Points& outer, const geometry::TriMesh& inner);
+// l_collision_rate: ours, the same nearest-vertex test with the open-edge
+// rule: an outer vertex whose nearest inner vertex lies on an open edge of
+// the inner garment (a hem, a cuff, a neckline) is beside that garment, not
+// behind it, and does not count. (The plain test counts every jacket vertex
+// hanging below a shorter inner garment: ~5% of the outer vertices in
+// collision-free ground truth.)
 double l_collision_rate(const geometry::Points& outer, const geometry::TriMesh& inner);
 
 // Mean and population standard deviation (divided by n, as numpy's std) of
