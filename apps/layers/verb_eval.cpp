@@ -44,6 +44,7 @@ VerbRun register_eval(CLI::App& app, const Global&) {
   cmd->add_flag("--quiet", a->quiet, "no progress line");
   return [a]() {
     LoadedConfig loaded = load_config(a->config);
+    train::check_selection(loaded.typed);
     a->options.progress = !a->quiet;
     const std::unique_ptr<dist::Group> group = join_group(loaded.typed);
     a->options.group = group.get();
@@ -52,6 +53,9 @@ VerbRun register_eval(CLI::App& app, const Global&) {
     std::printf("%s on %s: %lld sequences, %lld frames, %lld diverged, %.2f ms per frame\n", r.model.c_str(),
                 r.split.c_str(), static_cast<long long>(r.sequences), static_cast<long long>(r.frames),
                 static_cast<long long>(r.diverged), r.ms_per_frame);
+    const std::string chosen = r.chosen_on == "none" ? "chosen by nothing" : "chosen on " + r.chosen_on;
+    std::printf("checkpoint: %s, %s, evaluated on %s%s\n", r.checkpoint_kind.c_str(), chosen.c_str(), r.split.c_str(),
+                r.chosen_on == r.split ? " (the same split: optimistic figures, marked in reports)" : "");
     // L-collision twice (docs/metrics.md): the paper's plain nearest-vertex
     // rule, comparable with its figures, and ours with the open-edge rule.
     const char* row = "%-14s %22s %10s %13s %12s %10s %10s\n";

@@ -18,7 +18,8 @@ VerbRun register_report(CLI::App& app, const Global&) {
     bool no_charts = false;
   };
   auto a = std::make_shared<Args>();
-  cmd->add_option("--runs", a->inputs.runs, "run folders (run.output of experiments, evaluated)")
+  cmd->add_option("--runs", a->inputs.runs,
+                  "run folders (run.output of experiments, evaluated; a folder of seed-<s> runs stands for them)")
       ->required()
       ->expected(1, -1);
   cmd->add_option("--out", a->out, "output folder")->capture_default_str();
@@ -36,7 +37,9 @@ VerbRun register_report(CLI::App& app, const Global&) {
     a->inputs.charts = !a->no_charts;
     const report::ReportResult r = report::write_report(a->inputs, a->out);
     for (const std::string& p : r.problems) std::fprintf(stderr, "layers report: warning: %s\n", p.c_str());
-    std::printf("runs with an evaluation: %zu of %zu\n", r.runs_with_metrics, a->inputs.runs.size());
+    for (const std::string& f : r.selection_flags)
+      std::fprintf(stderr, "layers report: warning: %s (marked in the report)\n", f.c_str());
+    std::printf("runs with an evaluation: %zu\n", r.runs_with_metrics);
     std::printf("Pareto front (fastest first):");
     for (const std::string& name : r.pareto_front) std::printf(" %s", name.c_str());
     std::printf("%s\n", r.pareto_front.empty() ? " none" : "");

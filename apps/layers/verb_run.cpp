@@ -104,6 +104,7 @@ study::StudyActions library_actions() {
     inputs.picture.frames = study.report.frames;
     const report::ReportResult r = report::write_report(inputs, out);
     for (const std::string& p : r.problems) std::printf("  report note: %s\n", p.c_str());
+    for (const std::string& f : r.selection_flags) std::printf("  report: selection marked: %s\n", f.c_str());
     for (const std::string& c : r.charts) std::printf("  chart: %s\n", c.c_str());
     if (r.runs_with_metrics == 0) throw Error("no run of the study had an evaluation to report (" + r.report + ")");
   };

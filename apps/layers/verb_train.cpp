@@ -74,6 +74,7 @@ VerbRun register_train(CLI::App& app, const Global&) {
     LoadedConfig loaded = load_config(a->config);
     // Everything that can be checked before the run folder is touched: a
     // failing command leaves it as it was.
+    train::check_selection(loaded.typed);
     zoo::create_model(load_plugins().registry, loaded.typed.model);
     {
       std::error_code ec;

@@ -1,8 +1,10 @@
 // `layers train` never loses a run: a folder that holds one is refused
 // without --resume or --force, --force moves it aside (never deletes it),
-// and a command that fails (unknown model) leaves the folder as it was.
+// and a command that fails (unknown model) leaves the folder as it was;
+// neither train nor eval lets a choice read the test split.
 // Trains the test plugin's one-parameter model on the regression fixture.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <filesystem>
 
@@ -97,4 +99,72 @@ TEST(CliTrain, BadHorizonAndMissingDatasetAreNamed) {
                                 dir.file("nothing") + "' (no such folder or file)"),
             std::string::npos)
       << missing.output;
+}
+
+// The selection policy by hand: training or choosing the checkpoint on the
+// test split is refused with one line before anything is written; the run
+// folder and metrics.json record which split chose the checkpoint and
+// which it is evaluated on; a checkpoint chosen on what the evaluation
+// calls its test split is refused; one evaluated on the split that chose
+// it is marked.
+TEST(CliTrain, SelectionNeverReadsTheTestSplitAndIsRecorded) {
+  test::TempDir dir("layers-cli-selection");
+  const std::string data = regression::write_fixture(dir.path());
+  const std::string run = dir.file("run");
+  const std::string experiment =
+      dir.write("exp.yaml", "model: {name: test_constant_velocity, params: {damping: 0.6}}\ndata: {dataset: " + data +
+                                "}\ntrain: {epochs: 2, batch_size: 2, windows_per_epoch: 2, val_horizon: 2, "
+                                "val_sequences: 1}\neval: {horizon: 3, save_predictions: false}\nrun: {output: " +
+                                run + ", threads: 1, seed: 0}\n");
+  for (const char* key : {"val_split", "train_split"}) {
+    auto peek = train(experiment, std::string("--set data.") + key + "=test");
+    EXPECT_EQ(peek.exit_code, 1) << peek.output;
+    EXPECT_EQ(peek.output, "layers: error: " + experiment + ": data." + key +
+                               ": expected a split other than data.test_split 'test' (training and the choice of "
+                               "the best checkpoint never read the test split), got 'test'\n");
+    EXPECT_FALSE(fs::exists(run));
+  }
+
+  auto trained = train(experiment);
+  ASSERT_EQ(trained.exit_code, 0) << trained.output;
+  const nlohmann::json selection = nlohmann::json::parse(read_bytes(run + "/selection.json"));
+  EXPECT_EQ(selection["chosen_on"], "val");
+  EXPECT_EQ(selection["epochs"], 2);
+  EXPECT_GE(selection["chosen_epoch"].get<int>(), 1);
+
+  const std::string eval =
+      "LAYERS_PLUGIN_PATH=" + test::plugin_dir() + " " + test::layers_bin() + " eval " + experiment + " --quiet ";
+  auto tested = run_command(eval);
+  ASSERT_EQ(tested.exit_code, 0) << tested.output;
+  EXPECT_NE(tested.output.find("checkpoint: best, chosen on val, evaluated on test\n"), std::string::npos)
+      << tested.output;
+  const nlohmann::json metrics = nlohmann::json::parse(read_bytes(run + "/eval-test/metrics.json"));
+  EXPECT_EQ(metrics["selection"]["checkpoint"], "best");
+  EXPECT_EQ(metrics["selection"]["chosen_on"], "val");
+  EXPECT_EQ(metrics["selection"]["evaluated_on"], "test");
+  EXPECT_EQ(metrics["selection"]["chosen_epoch"], selection["chosen_epoch"]);
+
+  // The last checkpoint was chosen by nothing.
+  auto last = run_command(eval + "--checkpoint last --out " + dir.file("last"));
+  ASSERT_EQ(last.exit_code, 0) << last.output;
+  EXPECT_EQ(nlohmann::json::parse(read_bytes(dir.file("last/metrics.json")))["selection"]["chosen_on"], "none");
+
+  // Evaluated on the split that chose it: runs, marked.
+  auto same = run_command(eval + "--split val");
+  ASSERT_EQ(same.exit_code, 0) << same.output;
+  EXPECT_NE(same.output.find("evaluated on val (the same split"), std::string::npos) << same.output;
+
+  // By hand, eval refuses the same configs train does.
+  auto peek = run_command(eval + "--set data.val_split=test");
+  EXPECT_EQ(peek.exit_code, 1) << peek.output;
+  EXPECT_NE(peek.output.find(experiment + ": data.val_split: expected a split other than data.test_split"),
+            std::string::npos)
+      << peek.output;
+  // A checkpoint chosen on the split this evaluation calls its test split.
+  auto chosen = run_command(eval + "--set data.test_split=val --set data.val_split=other --split val");
+  EXPECT_EQ(chosen.exit_code, 1) << chosen.output;
+  EXPECT_NE(chosen.output.find(run + "/checkpoint-best.pt: selection.chosen_on: expected a checkpoint chosen on a "
+                                     "split other than data.test_split 'val', got one chosen on 'val'"),
+            std::string::npos)
+      << chosen.output;
 }

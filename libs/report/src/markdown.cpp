@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "layers/report/seeds.h"
 #include "layers/report/tables.h"
 #include "text.h"
 
@@ -30,6 +31,64 @@ std::string divergence(const EvalResults& e) {
          (step >= 0 ? " (first at step " + std::to_string(step) + ")" : "");
 }
 
+// " **⚠ chosen on the test split (test)**": the mark after a run's name when its checkpoint
+// was chosen on the test split or on the split it is evaluated on.
+std::string selection_mark(const RunResults& r) {
+  if (selection_flag(r).empty()) return "";
+  const std::string& on = r.eval->selection.chosen_on;
+  return on == r.test_split ? " **⚠ chosen on the test split (" + md_cell(on) + ")**"
+                            : " **⚠ chosen on " + md_cell(on) + ", the split evaluated**";
+}
+
+// `mean ± std` over seeds of a rate, as percentages.
+std::string percent_pm(const Stat& s) {
+  if (s.count == 0) return "-";
+  return percent(s.mean) + (std::isfinite(s.std) ? " ± " + fixed(100.0 * s.std, 2) : "");
+}
+
+// A run's name cell with its selection mark.
+std::string run_name_cell(const RunResults& r) { return md_cell(r.name) + selection_mark(r); }
+
+// One row of the models table for an experiment repeated over seeds.
+void seed_row(std::ostringstream& md, const SeedGroup& g, const std::vector<RunResults>& runs) {
+  const EvalResults& first = *runs[g.runs.front()].eval;
+  std::string mark;
+  for (std::size_t i : g.runs)
+    if (mark.empty()) mark = selection_mark(runs[i]);
+  const MetricStats& m = g.over_seeds;
+  const double spread = g.over_sequences.error_mm.mean;
+  md << "| " << md_cell(g.experiment) << " (" << g.runs.size() << " seeds)" << mark << " | " << md_cell(g.model)
+     << " | " << first.parameters << " | " << md_cell(g.split) << " (" << g.sequences << ") | "
+     << mean_pm_std(m.error_mm.mean, m.error_mm.std)
+     << (std::isfinite(spread) ? " (sequences ± " + fixed(spread, 1) + ")" : std::string()) << " | "
+     << percent_pm(m.h_collision) << " | " << percent_pm(m.l_collision) << " | " << percent(first.truth_h_collision)
+     << " / " << percent(first.truth_l_collision) << " | " << percent_pm(m.h_crossing) << " | "
+     << percent_pm(m.l_crossing) << " | " << percent(first.truth_h_crossing) << " / " << percent(first.truth_l_crossing)
+     << " | " << g.diverged << " of " << g.sequences * static_cast<std::int64_t>(g.runs.size()) << " | "
+     << ms(g.ms_per_frame) << " |  |\n";
+}
+
+// Which split chose each run's checkpoint and which it is evaluated on.
+void selection_table(std::ostringstream& md, const std::vector<RunResults>& runs) {
+  md << "### Selection\n\n"
+     << "Which split chose each run's checkpoint (`checkpoint-best.pt`: the epoch with the lowest validation "
+        "error; `last`: nothing chosen) and which split its figures are on. A run whose checkpoint was chosen on "
+        "the test split, or on the split it is evaluated on, is marked ⚠: its figures are not a held-out "
+        "result. \"unknown\": evaluated before evaluations recorded the choice.\n\n"
+     << "| run | checkpoint | chosen on | epoch chosen / epochs | by | evaluated on | |\n"
+     << "|---|---|---|---:|---|---|---|\n";
+  for (const RunResults& r : runs) {
+    if (!r.eval) continue;
+    const SelectionRecord& s = r.eval->selection;
+    const std::string flag = selection_flag(r);
+    md << "| " << md_cell(r.name) << " | " << md_cell(s.checkpoint) << " | " << md_cell(s.chosen_on) << " | "
+       << (s.chosen_epoch > 0 ? std::to_string(s.chosen_epoch) : "-") << " / "
+       << (s.epochs > 0 ? std::to_string(s.epochs) : "-") << " | " << md_cell(s.metric.empty() ? "-" : s.metric)
+       << " | " << md_cell(s.evaluated_on) << " | " << (flag.empty() ? "" : "⚠ " + md_cell(flag)) << " |\n";
+  }
+  md << "\n";
+}
+
 void models_table(std::ostringstream& md, const std::vector<RunResults>& runs) {
   const std::vector<bool> front = runs_on_front(runs);
   md << "## Models\n\n"
@@ -38,14 +97,19 @@ void models_table(std::ostringstream& md, const std::vector<RunResults>& runs) {
         "ms / frame | Pareto front |\n"
      << "|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|:---:|\n";
   std::vector<const RunResults*> missing;
+  const std::vector<SeedGroup> groups = seed_groups(runs);
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const RunResults& r = runs[i];
     if (!r.eval) {
       missing.push_back(&r);
       continue;
     }
+    if (const int g = seed_group_of(groups, i); g >= 0) {
+      if (groups[g].runs.front() == i) seed_row(md, groups[g], runs);
+      continue;
+    }
     const EvalResults& e = *r.eval;
-    md << "| " << md_cell(r.name) << " | " << md_cell(r.model) << " | " << e.parameters << " | " << md_cell(e.split)
+    md << "| " << run_name_cell(r) << " | " << md_cell(r.model) << " | " << e.parameters << " | " << md_cell(e.split)
        << " (" << e.sequences << ") | " << mean_pm_std(e.overall.error_mm.mean, e.overall.error_mm.std) << " | "
        << percent(e.overall.h_collision.mean) << " | " << percent(e.overall.l_collision_plain.mean) << " | "
        << percent(e.overall.l_collision.mean) << " | " << percent(e.truth_h_collision) << " / "
@@ -66,6 +130,18 @@ void models_table(std::ostringstream& md, const std::vector<RunResults>& runs) {
         "and of outer-garment vertices on faces that pass through an inner-garment face; touching does not count "
         "(\"-\": an evaluation made before they were measured). ms / frame: time in the model per "
         "predicted frame during evaluation.\n\n";
+  if (!groups.empty())
+    md << "An experiment repeated over seeds is one row, \"name (n seeds)\": each value is the mean ± std over "
+          "the seeds of the seeds' overall values (population std); the error's spread over sequences (mean over "
+          "the seeds of each seed's std over sequences) follows in brackets; diverged counts all seeds' "
+          "sequences. Each seed's row is in `summary.csv`, the rows over seeds in `seeds.csv`.\n\n";
+  for (const SeedGroup& g : groups) {
+    md << "- `" << g.experiment << "` per seed, error (mm):";
+    for (std::size_t k = 0; k < g.runs.size(); ++k)
+      md << (k ? "," : "") << " seed " << g.seeds[k] << " " << fixed(runs[g.runs[k]].eval->overall.error_mm.mean, 1);
+    md << "\n";
+  }
+  if (!groups.empty()) md << "\n";
   for (const RunResults* r : missing)
     md << "- `" << r->name << "` is not in the table: it has no readable evaluation (see Notes).\n";
   if (!missing.empty()) md << "\n";
@@ -169,7 +245,18 @@ std::string report_markdown(const ReportContent& c) {
     md << "> " << c.problems.size() << " missing piece" << (c.problems.size() == 1 ? "" : "s")
        << " -- see [Notes](#notes) at the end.\n\n";
 
+  std::vector<std::string> flagged;
+  for (const RunResults& r : c.runs)
+    if (!selection_flag(r).empty()) flagged.push_back("`" + r.name + "`");
+  if (!flagged.empty()) {
+    md << "> **⚠ Selection:** " << flagged.size() << " run" << (flagged.size() == 1 ? "" : "s")
+       << " chose the checkpoint on the test split or on the split evaluated:";
+    for (const std::string& f : flagged) md << " " << f;
+    md << ". Those figures are not held-out results (see [Selection](#selection)).\n\n";
+  }
+
   models_table(md, c.runs);
+  selection_table(md, c.runs);
   md << "## Accuracy against speed\n\n";
   charts_of(md, c.speed, c.charts_dir);
   pareto_list(md, c.runs);
@@ -195,6 +282,7 @@ std::string report_markdown(const ReportContent& c) {
      << "- `per_type.csv`: one row per run and garment type\n"
      << "- `by_step.csv`: one row per run and rollout step\n"
      << "- `bench.csv`: one row per run and benchmarked scene size\n"
+     << "- `seeds.csv`: one row per experiment repeated over seeds (mean, std over seeds, spread over sequences)\n"
      << "- `" << c.charts_dir
      << "/`: the PNG charts with their gnuplot scripts (`*.gp`) and data (`*.dat`); "
         "redraw one with `cd "

@@ -10,6 +10,7 @@
 #include "layers/data/run_layout.h"
 #include "layers/report/charts.h"
 #include "layers/report/gnuplot.h"
+#include "layers/report/seeds.h"
 #include "layers/report/tables.h"
 #include "markdown.h"
 
@@ -33,7 +34,7 @@ void draw(ChartSection& section, std::vector<std::string>& problems, const std::
 
 ReportResult write_report(const ReportInputs& inputs, const std::string& out_dir) {
   std::vector<RunResults> runs;
-  for (const std::string& dir : inputs.runs) runs.push_back(load_run(dir, inputs.split));
+  for (const std::string& dir : expand_seed_folders(inputs.runs)) runs.push_back(load_run(dir, inputs.split));
   return write_report(runs, inputs, out_dir);
 }
 
@@ -50,6 +51,8 @@ ReportResult write_report(const std::vector<RunResults>& runs, const ReportInput
   for (const RunResults& r : runs) {
     result.runs_with_metrics += r.eval ? 1 : 0;
     for (const std::string& p : r.problems) content.problems.push_back(r.dir + ": " + p);
+    const std::string flag = selection_flag(r);
+    if (!flag.empty()) result.selection_flags.push_back(r.name + ": " + flag);
   }
 
   auto write = [&](const std::string& name, const std::string& text) {
@@ -61,6 +64,7 @@ ReportResult write_report(const std::vector<RunResults>& runs, const ReportInput
   write("per_type.csv", per_type_csv(runs));
   write("by_step.csv", by_step_csv(runs));
   write("bench.csv", bench_csv(runs));
+  write("seeds.csv", seeds_csv(runs));
 
   const std::string charts_dir = (fs::path(out_dir) / content.charts_dir).string();
   std::optional<Gnuplot> gp;

@@ -139,6 +139,20 @@ EvalResults parse_metrics_json(const Reader& r, const json& doc, const std::stri
       e.by_step.push_back(s);
     }
   }
+  e.selection.evaluated_on = e.split;
+  if (doc.contains("selection") && !doc.at("selection").is_null()) {
+    const json& sel = r.object(doc, "selection", "selection");
+    auto text_or = [&](const char* key, const std::string& fallback) {
+      const std::string v = r.text(sel, key, std::string("selection.") + key);
+      return v.empty() ? fallback : v;
+    };
+    e.selection.checkpoint = text_or("checkpoint", "unknown");
+    e.selection.chosen_on = text_or("chosen_on", "unknown");
+    e.selection.evaluated_on = text_or("evaluated_on", e.split);
+    e.selection.chosen_epoch = r.integer(sel, "chosen_epoch", "selection.chosen_epoch");
+    e.selection.epochs = r.integer(sel, "epochs", "selection.epochs");
+    e.selection.metric = r.text(sel, "metric", "selection.metric");
+  }
   if (doc.contains("per_sequence") && !doc.at("per_sequence").is_null()) {
     const json& seqs = r.array(doc, "per_sequence", "per_sequence");
     for (std::size_t i = 0; i < seqs.size(); ++i) {
@@ -154,15 +168,32 @@ EvalResults parse_metrics_json(const Reader& r, const json& doc, const std::stri
   return e;
 }
 
-// data.dataset and model.name of a resolved experiment.yaml ("" when absent).
-std::pair<std::string, std::string> experiment_facts(const std::string& file) {
+// data.dataset, model.name and data.test_split of a resolved
+// experiment.yaml ("" when absent).
+struct ExperimentFacts {
+  std::string dataset, model, test_split;
+};
+ExperimentFacts experiment_facts(const std::string& file) {
   const cfg::Node root = cfg::load_file(file);
   auto scalar = [&](const char* section, const char* key) -> std::string {
     const cfg::Node* s = root.find(section);
     const cfg::Node* v = s ? s->find(key) : nullptr;
     return v && v->kind == cfg::Node::Kind::Scalar ? v->scalar : "";
   };
-  return {scalar("data", "dataset"), scalar("model", "name")};
+  return {scalar("data", "dataset"), scalar("model", "name"), scalar("data", "test_split")};
+}
+
+// The seed-<s> folders directly in `dir`, in seed order.
+std::vector<std::pair<std::uint64_t, std::string>> seed_folders_in(const fs::path& dir) {
+  std::vector<std::pair<std::uint64_t, std::string>> found;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    std::uint64_t seed = 0;
+    if (entry.is_directory() && run_layout::is_seed_folder(entry.path().filename().string(), &seed))
+      found.emplace_back(seed, entry.path().string());
+  }
+  std::sort(found.begin(), found.end());
+  return found;
 }
 
 // eval-<split> folder of a run ("" when none).
@@ -185,6 +216,33 @@ std::int64_t EvalResults::first_divergence_step() const {
   for (const SequenceMetrics& s : per_sequence)
     if (s.diverged_at >= 0 && (first < 0 || s.diverged_at - 1 < first)) first = s.diverged_at - 1;
   return first;
+}
+
+std::string selection_flag(const RunResults& run) {
+  if (!run.eval) return "";
+  const SelectionRecord& s = run.eval->selection;
+  if (s.chosen_on == run.test_split) return "checkpoint chosen on the test split '" + s.chosen_on + "'";
+  if (s.chosen_on == s.evaluated_on)
+    return "checkpoint chosen on '" + s.chosen_on + "', the split it is evaluated on (optimistic figures)";
+  return "";
+}
+
+std::vector<std::string> expand_seed_folders(const std::vector<std::string>& dirs) {
+  std::vector<std::string> out;
+  for (const std::string& dir : dirs) {
+    const fs::path path(dir);
+    std::error_code ec;
+    bool own = fs::exists(path / run_layout::kExperiment);
+    for (const auto& entry : fs::directory_iterator(path, ec))
+      own = own || run_layout::is_result(entry.path().filename().string());
+    const std::vector<std::pair<std::uint64_t, std::string>> seeds = seed_folders_in(path);
+    if (own || seeds.empty()) {
+      out.push_back(dir);
+      continue;
+    }
+    for (const auto& [seed, folder] : seeds) out.push_back(folder);
+  }
+  return out;
 }
 
 EvalResults parse_metrics(const std::string& json_text, const std::string& file) {
@@ -229,8 +287,19 @@ RunResults load_run(const std::string& dir, const std::string& split) {
   RunResults run;
   run.dir = dir;
   fs::path path(dir);
-  run.name = (path.has_filename() ? path.filename() : path.parent_path().filename()).string();
+  const fs::path folder = path.has_filename() ? path : path.parent_path();
+  run.name = folder.filename().string();
   if (run.name.empty() || run.name == ".") run.name = fs::absolute(path).lexically_normal().filename().string();
+  run.experiment = run.name;
+  if (run_layout::is_seed_folder(run.name, &run.seed)) {
+    // <name>/seed-<s>: one seed of the experiment <name>.
+    const std::string parent = fs::absolute(folder).lexically_normal().parent_path().filename().string();
+    run.repeated = !parent.empty();
+    if (run.repeated) {
+      run.experiment = parent;
+      run.name = parent + "/" + run.name;
+    }
+  }
   if (!fs::is_directory(path)) {
     run.problems.push_back("no such run folder");
     return run;
@@ -238,7 +307,9 @@ RunResults load_run(const std::string& dir, const std::string& split) {
   const fs::path experiment = path / run_layout::kExperiment;
   if (fs::exists(experiment)) {
     try {
-      std::tie(run.dataset, run.model) = experiment_facts(experiment.string());
+      const ExperimentFacts facts = experiment_facts(experiment.string());
+      run.dataset = facts.dataset, run.model = facts.model;
+      if (!facts.test_split.empty()) run.test_split = facts.test_split;
     } catch (const std::exception& e) {
       run.problems.push_back(std::string("cannot read the experiment: ") + e.what());
     }

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "layers/report/pareto.h"
+#include "layers/report/seeds.h"
 #include "text.h"
 
 namespace layers::report {
@@ -36,6 +37,47 @@ std::string counters_text(const std::map<std::string, double>& counters) {
   return out;
 }
 
+// summary.csv's selection and seed columns of a run.
+std::string selection_cells(const RunResults& r) {
+  const SelectionRecord& s = r.eval->selection;
+  std::ostringstream out;
+  out << csv_field(s.checkpoint) << ',' << csv_field(s.chosen_on) << ',' << csv_field(s.evaluated_on) << ','
+      << (s.chosen_epoch > 0 ? std::to_string(s.chosen_epoch) : "") << ','
+      << (s.epochs > 0 ? std::to_string(s.epochs) : "") << ',' << csv_field(selection_flag(r)) << ','
+      << csv_field(r.experiment) << ',' << (r.repeated ? std::to_string(r.seed) : "");
+  return out.str();
+}
+
+json selection_json(const RunResults& r) {
+  const SelectionRecord& s = r.eval->selection;
+  return {{"checkpoint", s.checkpoint},
+          {"chosen_on", s.chosen_on},
+          {"evaluated_on", s.evaluated_on},
+          {"chosen_epoch", s.chosen_epoch > 0 ? json(s.chosen_epoch) : json(nullptr)},
+          {"epochs", s.epochs > 0 ? json(s.epochs) : json(nullptr)},
+          {"metric", s.metric},
+          {"flag", selection_flag(r)}};
+}
+
+json seeds_json(const std::vector<RunResults>& runs) {
+  json out = json::array();
+  for (const SeedGroup& g : seed_groups(runs)) {
+    json members = json::array();
+    for (std::size_t i : g.runs) members.push_back(runs[i].name);
+    out.push_back({{"experiment", g.experiment},
+                   {"model", g.model},
+                   {"split", g.split},
+                   {"seeds", g.seeds},
+                   {"runs", members},
+                   {"sequences", g.sequences},
+                   {"over_seeds", to_json(g.over_seeds)},
+                   {"std_over_sequences", to_json(g.over_sequences)},
+                   {"ms_per_frame", number(g.ms_per_frame)},
+                   {"diverged", g.diverged}});
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<bool> runs_on_front(const std::vector<RunResults>& runs) { return pareto_front(speed_points(runs)); }
@@ -50,7 +92,8 @@ std::string summary_csv(const std::vector<RunResults>& runs) {
   out << "run,model,split,sequences,frames,parameters,ms_per_frame,error_mm_mean,error_mm_std,h_collision,"
          "h_collision_std,l_collision,l_collision_std,truth_h_collision,truth_l_collision,diverged,"
          "first_divergence_step,pareto,h_crossing,h_crossing_std,l_crossing,l_crossing_std,truth_h_crossing,"
-         "truth_l_crossing,l_collision_plain,l_collision_plain_std,truth_l_collision_plain\n";
+         "truth_l_crossing,l_collision_plain,l_collision_plain_std,truth_l_collision_plain,checkpoint,chosen_on,"
+         "evaluated_on,chosen_epoch,epochs,selection_flag,experiment,seed\n";
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const RunResults& r = runs[i];
     if (!r.eval) continue;
@@ -66,7 +109,7 @@ std::string summary_csv(const std::vector<RunResults>& runs) {
         << exact(e.overall.l_crossing.mean) << ',' << exact(e.overall.l_crossing.std) << ','
         << exact(e.truth_h_crossing) << ',' << exact(e.truth_l_crossing) << ','
         << exact(e.overall.l_collision_plain.mean) << ',' << exact(e.overall.l_collision_plain.std) << ','
-        << exact(e.truth_l_collision_plain) << '\n';
+        << exact(e.truth_l_collision_plain) << ',' << selection_cells(r) << '\n';
   }
   return out.str();
 }
@@ -122,7 +165,12 @@ std::string summary_json(const std::string& title, const std::vector<RunResults>
   json rows = json::array();
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const RunResults& r = runs[i];
-    json row = {{"run", r.name}, {"dir", r.dir}, {"model", r.model}, {"dataset", r.dataset}};
+    json row = {{"run", r.name},
+                {"dir", r.dir},
+                {"model", r.model},
+                {"dataset", r.dataset},
+                {"experiment", r.experiment},
+                {"seed", r.repeated ? json(r.seed) : json(nullptr)}};
     if (r.eval) {
       const EvalResults& e = *r.eval;
       const std::int64_t div = e.first_divergence_step();
@@ -143,7 +191,8 @@ std::string summary_json(const std::string& title, const std::vector<RunResults>
                       {"diverged", e.diverged},
                       {"first_divergence_step", div >= 0 ? json(div) : json(nullptr)},
                       {"pareto", static_cast<bool>(front[i])},
-                      {"per_type", types}});
+                      {"per_type", types},
+                      {"selection", selection_json(r)}});
     } else {
       row["overall"] = nullptr;
     }
@@ -173,6 +222,7 @@ std::string summary_json(const std::string& title, const std::vector<RunResults>
                       {"time", "ms per predicted frame"}}},
                     {"runs", rows},
                     {"pareto_front", pareto},
+                    {"seeds", seeds_json(runs)},
                     {"problems", problems},
                     {"charts", charts}};
   return doc.dump(2) + "\n";

@@ -179,19 +179,25 @@ class StudyOrder {
 
  private:
   void run(const StudyConfig& study, bool top) {
-    std::printf("[%s] study %s: %zu experiments, steps %s, output %s\n", study.name.c_str(), study.source.c_str(),
-                study.experiments.size(), join(study.steps).c_str(), study.output.c_str());
-    std::fflush(stdout);
     std::vector<StudyRun> runs = resolve_runs(study);
+    std::printf("[%s] study %s: %zu experiments", study.name.c_str(), study.source.c_str(), study.experiments.size());
+    if (runs.size() != study.experiments.size()) std::printf(" (%zu runs over seeds)", runs.size());
+    std::printf(", steps %s, output %s\n", join(study.steps).c_str(), study.output.c_str());
+    std::fflush(stdout);
     const bool only = top && !options_.only.empty();
     if (only) {
+      // --only names an experiment (all its seeds) or one run (<name>/seed-<s>).
+      auto picked = [&](const StudyRun& r) {
+        return contains(options_.only, r.name) || contains(options_.only, r.experiment);
+      };
       std::vector<std::string> names;
-      for (const StudyRun& r : runs) names.push_back(r.name);
+      for (const StudyRun& r : runs) {
+        if (!contains(names, r.experiment)) names.push_back(r.experiment);
+        if (r.repeated) names.push_back(r.name);
+      }
       for (const std::string& o : options_.only)
         if (!contains(names, o)) throw InputError(study.source, "--only " + o, "one of " + join(names), "'" + o + "'");
-      runs.erase(
-          std::remove_if(runs.begin(), runs.end(), [&](const StudyRun& r) { return !contains(options_.only, r.name); }),
-          runs.end());
+      runs.erase(std::remove_if(runs.begin(), runs.end(), [&](const StudyRun& r) { return !picked(r); }), runs.end());
     }
     const bool report = contains(study.steps, "report") && !only;
 

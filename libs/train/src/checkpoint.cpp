@@ -74,6 +74,18 @@ std::string checked_payload(const std::string& path, std::string& checksum) {
   return payload;
 }
 
+// Text as a tensor of its bytes (archives hold tensors).
+void write_text(torch::serialize::OutputArchive& out, const std::string& key, const std::string& text) {
+  std::vector<std::int64_t> bytes(text.begin(), text.end());
+  out.write(key, at::tensor(bytes, at::kLong));
+}
+
+std::string text_of(const at::Tensor& bytes) {
+  std::string text;
+  for (std::int64_t i = 0; i < bytes.numel(); ++i) text.push_back(static_cast<char>(bytes[i].item<std::int64_t>()));
+  return text;
+}
+
 at::Tensor read_tensor(torch::serialize::InputArchive& in, const std::string& key, const std::string& path) {
   at::Tensor t;
   if (!in.try_read(key, t)) throw InputError(path, key, "a tensor", "nothing (not a layers checkpoint?)");
@@ -100,9 +112,12 @@ void save_checkpoint(const std::string& path, zoo::Model& model, const torch::op
   out.write("epochs_done", at::scalar_tensor(static_cast<std::int64_t>(state.epochs_done), at::kLong));
   out.write("steps", at::scalar_tensor(state.steps, at::kLong));
   out.write("best_val_mm", at::scalar_tensor(state.best_val_mm, at::kDouble));
-  // The model name as bytes (archives hold tensors).
-  std::vector<std::int64_t> name(state.model_name.begin(), state.model_name.end());
-  out.write("model_name", at::tensor(name, at::kLong));
+  write_text(out, "model_name", state.model_name);
+  write_text(out, "selection_kind", state.kind);
+  write_text(out, "selection_split", state.chosen_on);
+  write_text(out, "selection_metric", state.metric);
+  out.write("selection_epoch", at::scalar_tensor(static_cast<std::int64_t>(state.chosen_epoch), at::kLong));
+  out.write("selection_epochs", at::scalar_tensor(static_cast<std::int64_t>(state.epochs), at::kLong));
   std::filesystem::create_directories(std::filesystem::path(path).parent_path().empty()
                                           ? std::filesystem::path(".")
                                           : std::filesystem::path(path).parent_path());
@@ -131,15 +146,25 @@ CheckpointState load_checkpoint(const std::string& path, zoo::Model& model, torc
   }
   CheckpointState state;
   state.checksum = checksum;
-  const at::Tensor name = read_tensor(in, "model_name", path);
-  for (std::int64_t i = 0; i < name.numel(); ++i)
-    state.model_name.push_back(static_cast<char>(name[i].item<std::int64_t>()));
+  state.model_name = text_of(read_tensor(in, "model_name", path));
   if (state.model_name != model.name())
     throw InputError(path, "model_name", "a checkpoint of model '" + model.name() + "'",
                      "one of model '" + state.model_name + "'");
   state.epochs_done = static_cast<int>(read_tensor(in, "epochs_done", path).item<std::int64_t>());
   state.steps = read_tensor(in, "steps", path).item<std::int64_t>();
   state.best_val_mm = read_tensor(in, "best_val_mm", path).item<double>();
+  // The selection record; a checkpoint saved before it has none.
+  at::Tensor kind, split, metric, epoch, epochs;
+  if (in.try_read("selection_kind", kind) && in.try_read("selection_split", split) &&
+      in.try_read("selection_metric", metric) && in.try_read("selection_epoch", epoch) &&
+      in.try_read("selection_epochs", epochs)) {
+    state.recorded = true;
+    state.kind = text_of(kind);
+    state.chosen_on = text_of(split);
+    state.metric = text_of(metric);
+    state.chosen_epoch = static_cast<int>(epoch.item<std::int64_t>());
+    state.epochs = static_cast<int>(epochs.item<std::int64_t>());
+  }
   torch::serialize::InputArchive model_archive, norm_archive;
   if (!in.try_read("model", model_archive)) throw InputError(path, "model", "the model's parameters", "nothing");
   try {

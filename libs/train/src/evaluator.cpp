@@ -210,6 +210,26 @@ RolloutResult decode(const std::string& bytes) {
   return r;
 }
 
+// ---- what chose the checkpoint (docs/training.md, "Selection") ------------
+json selection_of(const CheckpointState& state, const std::string& file, const std::string& evaluated_on) {
+  const std::string name = std::filesystem::path(file).filename().string();
+  const std::string kind = state.recorded                                 ? state.kind
+                           : name == data::run_layout::checkpoint("best") ? "best"
+                           : name == data::run_layout::checkpoint("last") ? "last"
+                                                                          : "unknown";
+  const std::string chosen_on = kind == "last"            ? "none"
+                                : !state.recorded         ? "unknown"
+                                : state.chosen_on.empty() ? "none"
+                                                          : state.chosen_on;
+  const bool chosen = kind != "last" && state.recorded && !state.chosen_on.empty();
+  return {{"checkpoint", kind},
+          {"chosen_on", chosen_on},
+          {"evaluated_on", evaluated_on},
+          {"chosen_epoch", chosen ? json(state.chosen_epoch) : json(nullptr)},
+          {"epochs", state.recorded ? json(state.epochs) : json(nullptr)},
+          {"metric", chosen ? json(state.metric) : json(nullptr)}};
+}
+
 }  // namespace
 
 std::string resolve_checkpoint(const ExperimentConfig& config, const std::string& which) {
@@ -231,6 +251,16 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
   report.split = !options.split.empty()       ? options.split
                  : !config.eval.split.empty() ? config.eval.split
                                               : config.data.test_split;
+  const json selection = selection_of(state, report.checkpoint, report.split);
+  report.checkpoint_kind = selection["checkpoint"].get<std::string>();
+  report.chosen_on = selection["chosen_on"].get<std::string>();
+  if (report.chosen_on == config.data.test_split)
+    throw InputError(report.checkpoint, "selection.chosen_on",
+                     "a checkpoint chosen on a split other than data.test_split '" + config.data.test_split + "'",
+                     "one chosen on '" + report.chosen_on + "'");
+  if (root && report.chosen_on == report.split)
+    spdlog::warn("{}: chosen on '{}', the split it is evaluated on: these figures are optimistic", report.checkpoint,
+                 report.split);
   const int horizon = options.horizon >= 0 ? options.horizon : config.eval.horizon;
   report.out_dir =
       !options.out_dir.empty()
@@ -399,6 +429,7 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
               // Ties these results to the exact checkpoint bytes they came from.
               {"checkpoint_fnv1a64", state.checksum},
               {"trained_epochs", state.epochs_done},
+              {"selection", selection},
               {"experiment", config.source},
               {"dataset", config.data.dataset},
               {"split", report.split},

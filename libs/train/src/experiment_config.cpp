@@ -1,6 +1,10 @@
 // Reading an experiment file (see experiment_config.h).
 #include "layers/train/experiment_config.h"
 
+#include <utility>
+
+#include "layers/core/error.h"
+
 namespace layers::train {
 
 ExperimentConfig read_experiment(const cfg::Node& tree, const std::string& source) {
@@ -13,6 +17,18 @@ ExperimentConfig load_experiment(const std::string& path, const std::vector<std:
   cfg::Node tree = cfg::load_file(path);
   for (const std::string& s : sets) cfg::apply_set(tree, s);
   return read_experiment(tree, path);
+}
+
+void check_selection(const ExperimentConfig& config) {
+  const DataConfig& d = config.data;
+  for (const auto& [field, split] : {std::pair<const char*, const std::string*>{"data.val_split", &d.val_split},
+                                     std::pair<const char*, const std::string*>{"data.train_split", &d.train_split}}) {
+    if (*split == d.test_split)
+      throw InputError(config.source, field,
+                       "a split other than data.test_split '" + d.test_split +
+                           "' (training and the choice of the best checkpoint never read the test split)",
+                       "'" + *split + "'");
+  }
 }
 
 }  // namespace layers::train

@@ -5,6 +5,7 @@
 #include <spdlog/spdlog.h>
 #include <torch/nn/utils/clip_grad.h>
 #include <torch/optim/adam.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -12,6 +13,7 @@
 #include <numeric>
 #include <optional>
 
+#include "layers/core/atomic_file.h"
 #include "layers/core/error.h"
 #include "layers/core/progress.h"
 #include "layers/data/run_layout.h"
@@ -118,6 +120,30 @@ void check_same_start(dist::Group& group, const CheckpointState& state, const st
                          ", a different one on another rank");
 }
 
+// What compares epochs for the best checkpoint (the selection record).
+std::string selection_metric(const TrainConfig& t) {
+  return "mean rollout error (mm), " + std::to_string(t.val_horizon) + " frames, " +
+         (t.val_sequences > 0 ? "first " + std::to_string(t.val_sequences) : std::string("all")) + " sequences";
+}
+
+// <run.output>/selection.json: what chose checkpoint-best.pt, for people
+// (the evaluator reads the same record from the checkpoint itself).
+void write_selection(const ExperimentConfig& config, const CheckpointState& state) {
+  const bool chosen = !state.chosen_on.empty();
+  const nlohmann::ordered_json doc = {
+      {"checkpoint", data::run_layout::checkpoint("best")},
+      {"chosen_on", chosen ? nlohmann::ordered_json(state.chosen_on) : nlohmann::ordered_json("none")},
+      {"metric", chosen ? nlohmann::ordered_json(state.metric) : nlohmann::ordered_json(nullptr)},
+      {"chosen_epoch", chosen ? nlohmann::ordered_json(state.chosen_epoch) : nlohmann::ordered_json(nullptr)},
+      {"best_val_error_mm", chosen ? nlohmann::ordered_json(state.best_val_mm) : nlohmann::ordered_json(nullptr)},
+      {"epochs_done", state.epochs_done},
+      {"epochs", state.epochs},
+      {"train_split", config.data.train_split},
+      {"test_split", config.data.test_split}};
+  write_text_atomic((std::filesystem::path(config.run.output) / data::run_layout::kSelection).string(),
+                    doc.dump(2) + "\n");
+}
+
 }  // namespace
 
 std::string checkpoint_path(const ExperimentConfig& config, const std::string& which) {
@@ -139,12 +165,19 @@ TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& re
 
   CheckpointState state;
   state.model_name = s.model->name();
+  state.epochs = t.epochs;
+  // Saves checkpoint-<which>.pt with the selection record naming it.
+  auto save = [&](const char* which, const torch::optim::Optimizer* optimizer) {
+    state.kind = which;
+    save_checkpoint(checkpoint_path(config, which), *s.model, optimizer, state);
+  };
   if (params.empty()) {
     // Nothing to learn (reference models): the checkpoint holds the
     // normalisation, so evaluation runs the same way for every model.
     if (!root) return report;
-    save_checkpoint(report.last_checkpoint, *s.model, nullptr, state);
-    save_checkpoint(report.best_checkpoint, *s.model, nullptr, state);
+    save("last", nullptr);
+    save("best", nullptr);
+    write_selection(config, state);
     spdlog::info("model '{}' has no trainable parameters: saved {} without training", s.model->name(),
                  report.last_checkpoint);
     return report;
@@ -152,6 +185,7 @@ TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& re
   torch::optim::Adam optimizer(params, torch::optim::AdamOptions(t.lr));
   if (options.resume && std::filesystem::exists(report.last_checkpoint)) {
     state = load_checkpoint(report.last_checkpoint, *s.model, &optimizer);
+    state.epochs = t.epochs;
     spdlog::info("resuming from {} after epoch {} ({} steps)", report.last_checkpoint, state.epochs_done, state.steps);
   }
   if (group) {
@@ -246,14 +280,19 @@ TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& re
       report.epochs.push_back(e);
       continue;
     }
-    save_checkpoint(report.last_checkpoint, *s.model, &optimizer, state);
+    save("last", &optimizer);
     if (e.val_error_mm >= 0 && (state.best_val_mm < 0 || e.val_error_mm < state.best_val_mm)) {
+      // Chosen on the validation split alone (check_selection: never the test split).
       state.best_val_mm = e.val_error_mm;
-      save_checkpoint(report.best_checkpoint, *s.model, &optimizer, state);
-      save_checkpoint(report.last_checkpoint, *s.model, &optimizer, state);  // same best in both
+      state.chosen_on = config.data.val_split;
+      state.metric = selection_metric(t);
+      state.chosen_epoch = e.epoch;
+      save("best", &optimizer);
+      save("last", &optimizer);  // same best in both
     } else if (e.val_error_mm < 0) {
-      save_checkpoint(report.best_checkpoint, *s.model, &optimizer, state);
+      save("best", &optimizer);  // no validation: the latest epoch, nothing chosen
     }
+    write_selection(config, state);
     if (group)
       spdlog::info(
           "epoch {}/{}: loss {:.4g}, val error {:.2f} mm, lr {:.3g}, {:.1f} frames/s on {} ranks, {:.1f} s "
@@ -270,10 +309,10 @@ TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& re
   // No epoch ran now (e.g. train.epochs: 0): the checkpoints still exist,
   // so evaluating the untrained model works the same way.
   if (!root) return report;
-  if (!std::filesystem::exists(report.last_checkpoint))
-    save_checkpoint(report.last_checkpoint, *s.model, &optimizer, state);
-  if (!std::filesystem::exists(report.best_checkpoint))
-    save_checkpoint(report.best_checkpoint, *s.model, &optimizer, state);
+  if (!std::filesystem::exists(report.last_checkpoint)) save("last", &optimizer);
+  if (!std::filesystem::exists(report.best_checkpoint)) save("best", &optimizer);
+  if (!std::filesystem::exists(std::filesystem::path(config.run.output) / data::run_layout::kSelection))
+    write_selection(config, state);
   return report;
 }
 

@@ -26,7 +26,18 @@ struct FakeRun {
   std::vector<double> step_errors = {1.0, 2.0, 3.0};
   long diverged_at = -1;  // absolute frame of sequence s2, -1: stable
   std::string dataset = "/nonexistent/dataset";
+  // metrics.json's `selection` (what chose the checkpoint); chosen_on "":
+  // an evaluation made before the record (no such key).
+  std::string chosen_on;
+  std::string evaluated_on = "test";
 };
+
+// `"selection": {...},` of metrics.json ("" without a record).
+inline std::string selection_field(const FakeRun& r) {
+  if (r.chosen_on.empty()) return "";
+  return R"("selection": {"checkpoint": "best", "chosen_on": ")" + r.chosen_on + R"(", "evaluated_on": ")" +
+         r.evaluated_on + R"x(", "chosen_epoch": 2, "epochs": 3, "metric": "mean rollout error (mm)"},)x";
+}
 
 inline std::string number_or_null(double v) { return v != v ? "null" : std::to_string(v); }
 
@@ -60,7 +71,8 @@ inline std::string metrics_json(const FakeRun& r) {
   return R"({
   "model": ")" +
          r.model + R"(",
-  "checkpoint": "x/checkpoint-best.pt", "trained_epochs": 3, "experiment": "e.yaml",
+  "checkpoint": "x/checkpoint-best.pt", "trained_epochs": 3, "experiment": "e.yaml", )" +
+         selection_field(r) + R"(
   "dataset": ")" +
          r.dataset + R"(", "split": "test", "subsets": [], "inner_only": false,
   "horizon": 27, "diverge_mm": 1000.0, "sequences": 2, "frames": 54,

@@ -283,6 +283,65 @@ TEST_F(StudyTest, SelectionOnTheTestSplitIsRefused) {
   EXPECT_TRUE(study::run_study(dir.file("peek_study.yaml"), {}, actions(), {}).ok());
 }
 
+// An experiment repeated over seeds is one run per seed, <name>/seed-<s>
+// with run.seed = s (from the experiment's run.seed on): listed by a dry
+// run, fingerprinted and skipped each on its own, picked by --only.
+TEST_F(StudyTest, SeedsRepeatAnExperimentAsRunsOfTheirOwn) {
+  study_file = dir.write("seeds.yaml", "output: " + dir.file("sd") +
+                                           "\ndataset: {config: gen.yaml, folder: " + dir.file("data") +
+                                           "}\nsteps: [train, eval, report]\nexperiments:\n"
+                                           "  - {name: a, file: exp.yaml, seeds: 3, set: [run.seed=5]}\n"
+                                           "  - {name: b, file: exp.yaml}\n");
+  const std::vector<study::StudyRun> runs = study::resolve_runs(study::load_study(study_file));
+  ASSERT_EQ(runs.size(), 4u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(runs[k].name, "a/seed-" + std::to_string(5 + k));
+    EXPECT_EQ(runs[k].experiment, "a");
+    EXPECT_EQ(runs[k].dir, dir.file("sd/a/seed-" + std::to_string(5 + k)));
+    EXPECT_EQ(runs[k].config.run.seed, 5 + k);
+    EXPECT_EQ(runs[k].config.run.output, runs[k].dir);
+  }
+  EXPECT_EQ(runs[3].name, "b");  // one seed: the plain run folder
+  EXPECT_EQ(runs[3].dir, dir.file("sd/b"));
+
+  // The dry run lists every repetition and writes nothing.
+  study::StudyOptions dry;
+  dry.dry_run = true;
+  const auto listed = run({}, dry);
+  for (const char* who : {"a/seed-5 train", "a/seed-6 train", "a/seed-7 train", "b train", "a/seed-6 eval-test"})
+    EXPECT_EQ(status(listed, who), StepStatus::WouldRun) << who;
+  EXPECT_FALSE(fs::exists(dir.file("sd/a")));
+
+  const auto first = run();
+  EXPECT_TRUE(first.ok());
+  EXPECT_EQ(calls["train a/seed-6"], 1);
+  EXPECT_EQ(report_runs, 4u);
+  EXPECT_NE(read_text_file(dir.file("sd/a/seed-6/experiment.yaml")).find("seed: 6"), std::string::npos);
+  // Each repetition is its own run: losing one seed's checkpoint reruns that seed only.
+  fs::remove(dir.file("sd/a/seed-7/checkpoint-best.pt"));
+  const auto again = run();
+  EXPECT_EQ(status(again, "a/seed-7 train"), StepStatus::Ran);
+  EXPECT_EQ(status(again, "a/seed-5 train"), StepStatus::Current);
+  EXPECT_EQ(status(again, "a/seed-6 eval-test"), StepStatus::Current);
+
+  // --only: an experiment is all its seeds, a run one of them.
+  study::StudyOptions only;
+  only.force = true;
+  only.only = {"a/seed-5"};
+  run({}, only);
+  EXPECT_EQ(calls["train a/seed-5"], 2);
+  EXPECT_EQ(calls["train a/seed-6"], 1);
+  only.only = {"a"};
+  run({}, only);
+  EXPECT_EQ(calls["train a/seed-6"], 2);
+  EXPECT_EQ(calls["train b"], 1);
+
+  // The study's seeds repeat every experiment without its own.
+  const auto both = study::resolve_runs(study::load_study(study_file, {"seeds=2"}));
+  EXPECT_EQ(both.size(), 5u);
+  EXPECT_EQ(both.back().name, "b/seed-1");
+}
+
 TEST_F(StudyTest, BadStudyFilesNameFileAndKey) {
   auto message = [&](const std::string& text) -> std::string {
     const std::string f = dir.write("bad.yaml", text);
@@ -311,6 +370,7 @@ TEST_F(StudyTest, BadStudyFilesNameFileAndKey) {
   EXPECT_NE(message(head + "experiments: [{name: a, file: exp.yaml}]\ncolour: red\n").find("colour"),
             std::string::npos);
   EXPECT_NE(message(head + "experiments: []\n").find("experiments"), std::string::npos);
+  EXPECT_NE(message(head + "experiments: [{name: a, file: exp.yaml, seeds: -1}]\n").find("seeds"), std::string::npos);
 }
 
 // Without dataset.config the folder is a finished dataset: it is handed to

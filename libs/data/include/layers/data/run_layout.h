@@ -5,12 +5,16 @@
 //
 //   <run>/experiment.yaml            the resolved experiment
 //   <run>/checkpoint-{last,best}.pt  training
+//   <run>/selection.json             training: what chose checkpoint-best.pt
 //   <run>/eval-<split>/metrics.json, sequences.csv, predictions.h5
 //   <run>/bench.json                 `layers bench`
 //   <run>/steps.yaml                 `layers run`'s records (also <study>/steps.yaml)
 //   <study>/report/report.md         the study's report
+//   <study>/<name>/seed-<s>/         one repetition of a study experiment
+//                                    repeated over seeds (run.seed = s)
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 namespace layers::data::run_layout {
@@ -18,6 +22,7 @@ namespace layers::data::run_layout {
 inline constexpr const char* kExperiment = "experiment.yaml";
 inline constexpr const char* kBench = "bench.json";
 inline constexpr const char* kSteps = "steps.yaml";
+inline constexpr const char* kSelection = "selection.json";    // written with the checkpoints
 inline constexpr const char* kMetrics = "metrics.json";        // in eval-<split>/
 inline constexpr const char* kSequences = "sequences.csv";     // in eval-<split>/
 inline constexpr const char* kPredictions = "predictions.h5";  // in eval-<split>/ (eval.save_predictions)
@@ -30,6 +35,10 @@ std::string checkpoint(const std::string& which);
 std::string eval_folder(const std::string& split);
 // Whether a file or folder name is an eval-<split> folder.
 bool is_eval_folder(const std::string& name);
+// "seed-<seed>": the run folder of one repetition of a study experiment.
+std::string seed_folder(std::uint64_t seed);
+// Whether a folder name is seed-<digits>; `seed` (optional) gets the number.
+bool is_seed_folder(const std::string& name, std::uint64_t* seed = nullptr);
 // Whether a name in a run folder shows a run was made there: a checkpoint,
 // bench.json or an eval-<split> folder.
 bool is_result(const std::string& name);

@@ -6,8 +6,14 @@
 //                      divergence, per garment type, ground truth beside
 //                      predictions, notes on anything missing
 // <out>/summary.csv, summary.json, per_type.csv, by_step.csv, bench.csv
-//                      the tables (tables.h)
+//                      the tables (tables.h); seeds.csv (seeds.h)
 // <out>/charts/        PNG charts with their gnuplot scripts and data
+//
+// Selection: each run says which split chose its checkpoint and which it
+// is evaluated on; a run whose checkpoint was chosen on the test split or
+// on the split it is evaluated on is marked in report.md and listed in
+// ReportResult::selection_flags (run_results.h selection_flag). A run
+// folder holding seed-<s> folders stands for those (expand_seed_folders).
 //
 // Missing pieces (a run without evaluation or bench.json, no gnuplot, a
 // chart gnuplot failed on, no ground truth for the picture) never stop the
@@ -25,7 +31,7 @@
 namespace layers::report {
 
 struct ReportInputs {
-  std::vector<std::string> runs;  // run folders (run.output of experiments)
+  std::vector<std::string> runs;  // run folders (run.output of experiments, or folders of seed-<s> runs)
   std::string title = "layers report";
   std::string split;                // eval-<split> to read (default: see load_run)
   std::string gnuplot = "gnuplot";  // program, a path or a name on PATH
@@ -34,11 +40,12 @@ struct ReportInputs {
 };
 
 struct ReportResult {
-  std::string report;                     // path of report.md
-  std::vector<std::string> files;         // every file written, report.md included
-  std::vector<std::string> charts;        // the PNGs drawn
-  std::vector<std::string> problems;      // missing pieces, as in report.md
-  std::vector<std::string> pareto_front;  // run names on the front, fastest first
+  std::string report;                        // path of report.md
+  std::vector<std::string> files;            // every file written, report.md included
+  std::vector<std::string> charts;           // the PNGs drawn
+  std::vector<std::string> problems;         // missing pieces, as in report.md
+  std::vector<std::string> selection_flags;  // "<run>: <why>" for each run marked for its selection
+  std::vector<std::string> pareto_front;     // run names on the front, fastest first
   std::size_t runs_with_metrics = 0;
 };
 

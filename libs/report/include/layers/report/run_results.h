@@ -11,7 +11,12 @@
 // The exact crossing rates (h_crossing, l_crossing) and the paper's
 // L-collision (l_collision_plain, beside our l_collision with its open-edge
 // rule) are optional: a metrics.json written before the evaluator measured
-// them still loads, with those values absent.
+// them still loads, with those values absent; so is its `selection` (what
+// chose the checkpoint), read as "unknown" when absent.
+//
+// A folder named seed-<s> is one repetition of a study experiment repeated
+// over seeds (<study>/<name>/seed-<s>): it is labelled "<name>/seed-<s>",
+// and seeds.h groups such runs by <name>.
 #pragma once
 
 #include <cstdint>
@@ -54,6 +59,17 @@ struct SequenceMetrics {
   std::string diverge_reason;
 };
 
+// What chose the evaluated checkpoint (metrics.json's `selection`,
+// libs/train evaluator.h); "unknown" for an evaluation made before it.
+struct SelectionRecord {
+  std::string checkpoint = "unknown";  // best, last
+  std::string chosen_on = "unknown";   // the split whose validation error chose it; none: nothing chosen
+  std::string evaluated_on;            // the evaluated split (metrics.json's split when absent)
+  std::int64_t chosen_epoch = 0;       // 1-based; 0 = none or unknown
+  std::int64_t epochs = 0;             // train.epochs; 0 = unknown
+  std::string metric;                  // what compared the epochs ("" = none or unknown)
+};
+
 struct EvalResults {
   std::string file;  // the metrics.json read
   std::string model, split, dataset, checkpoint;
@@ -67,6 +83,7 @@ struct EvalResults {
   std::vector<StepMetrics> by_step;
   std::vector<SequenceMetrics> per_sequence;
   std::string predictions;  // eval-<split>/predictions.h5 when it exists
+  SelectionRecord selection;
 
   // The rollout step of the earliest divergence over all sequences, -1 when
   // none diverged. Rollouts start from the ground truth at frames 0 and 1,
@@ -90,10 +107,14 @@ struct BenchResults {
 };
 
 struct RunResults {
-  std::string dir;      // the run folder as given
-  std::string name;     // its last path component: the run's label everywhere
-  std::string model;    // metrics.json's model, else experiment.yaml's model.name
-  std::string dataset;  // experiment.yaml's data.dataset, else metrics.json's dataset
+  std::string dir;                  // the run folder as given
+  std::string name;                 // its last path component: the run's label everywhere
+  std::string model;                // metrics.json's model, else experiment.yaml's model.name
+  std::string dataset;              // experiment.yaml's data.dataset, else metrics.json's dataset
+  std::string test_split = "test";  // experiment.yaml's data.test_split (default "test")
+  std::string experiment;           // the folder's name; for a seed-<s> folder, its parent's name
+  bool repeated = false;            // a seed-<s> folder (name "<experiment>/seed-<s>")
+  std::uint64_t seed = 0;           // its <s>
   std::optional<EvalResults> eval;
   std::optional<BenchResults> bench;
   std::vector<std::string> problems;  // readable messages about missing or bad pieces (without the folder)
@@ -105,6 +126,16 @@ struct RunResults {
 // field of the wrong type.
 EvalResults parse_metrics(const std::string& json_text, const std::string& file);
 BenchResults parse_bench(const std::string& json_text, const std::string& file);
+
+// Why the run's figures cannot be trusted as a held-out result, "" when
+// they can or nothing is known: its checkpoint was chosen on the test split
+// (RunResults::test_split) or on the split it is evaluated on.
+std::string selection_flag(const RunResults& run);
+
+// The run folders with each folder that holds no run of its own but
+// seed-<s> folders (a study experiment repeated over seeds) replaced by
+// those, in seed order.
+std::vector<std::string> expand_seed_folders(const std::vector<std::string>& dirs);
 
 // Reads a run folder. `split` picks eval-<split>/; empty: eval-test when
 // present, else the first eval-* folder in name order. Never throws for

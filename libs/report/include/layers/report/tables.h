@@ -8,14 +8,19 @@
 //                 Pareto membership, then the exact H/L-crossing (mean, std)
 //                 and the ground truth's, then the paper's L-collision
 //                 (l_collision_plain; l_collision is ours, with the
-//                 open-edge rule) and the ground truth's (new columns go at
-//                 the end: scripts read the older ones by position)
+//                 open-edge rule) and the ground truth's, then what chose
+//                 the checkpoint (checkpoint, chosen_on, evaluated_on,
+//                 chosen_epoch, epochs, selection_flag: run_results.h
+//                 selection_flag) and the seed columns (experiment, seed:
+//                 empty unless a seed-<s> run) (new columns go at the end:
+//                 scripts read the older ones by position)
 //   per_type.csv  one row per run and garment type (crossings, then the
 //                 paper's L-collision last)
 //   by_step.csv   one row per run and rollout step (the same order)
 //   bench.csv     one row per run and benchmarked scene size
 //   summary.json  all of the above but by_step, plus the Pareto front in
-//                 speed order, the problems met and the charts made
+//                 speed order, the experiments over seeds (seeds.h), the
+//                 problems met and the charts made
 #pragma once
 
 #include <string>

@@ -8,13 +8,18 @@
 //   dataset: {config: ../data/tiny.yaml, folder: data/tiny, set: [], threads: 2}
 //   steps: [train, eval, bench, report]
 //   set: [run.threads=2]               # overrides for every experiment
+//   seeds: 1                           # repetitions of every experiment (run.seed, +1, ...)
 //   eval: {splits: [test], checkpoint: best}
 //   bench: {levels: 1, min_time: 0.3, train: true, far_body: false}
 //   report: {title: ..., split: test, charts: true, frames: 4, sequence: ""}
 //   experiments:
 //     - {name: layersnet, file: ../experiments/layersnet_tiny.yaml, set: [train.epochs=2]}
 //     - {name: deepsd_stab, file: ..., checkpoint: runs/compare_small/deepsd}
+//     - {name: mgnet, file: ..., seeds: 3}  # runs mgnet/seed-0, seed-1, seed-2
 //
+// An experiment repeated over N seeds (its `seeds`, else the study's) is N
+// runs <output>/<name>/seed-<s>, s = its run.seed + k for k = 0..N-1, each
+// with run.seed = s; with one seed it is the run <output>/<name>.
 // dataset.config may be omitted: dataset.folder is then a finished dataset,
 // used as it is and never generated.
 //
@@ -55,6 +60,7 @@ struct StudyExperiment {
   std::vector<std::string> set;    // overrides after the study's `set`
   std::vector<std::string> steps;  // empty: the study's steps
   std::string checkpoint;          // a run folder or checkpoint file to evaluate instead of training
+  int seeds = 0;                   // repetitions over seeds; 0: the study's `seeds`
 
   template <class V>
   void visit(V& v) {
@@ -64,6 +70,8 @@ struct StudyExperiment {
     v("steps", steps, cfg::opt().help("steps of this experiment (default: the study's)"));
     v("checkpoint", checkpoint,
       cfg::opt().help("run folder (its checkpoint-<eval.checkpoint>.pt) or .pt file to evaluate; no training"));
+    v("seeds", seeds,
+      cfg::opt().range(0, 1000).help("repetitions over seeds, runs <name>/seed-<s> (0: the study's seeds)"));
   }
 };
 
@@ -106,6 +114,7 @@ struct StudyConfig {
   StudyDataset dataset;
   std::vector<std::string> steps{"train", "eval", "report"};
   std::vector<std::string> set;
+  int seeds = 1;  // repetitions of each experiment over seeds (an experiment's own `seeds` wins)
   StudyEval eval;
   train::BenchOptions bench = study_bench();
   StudyReport report;
@@ -120,6 +129,8 @@ struct StudyConfig {
     v("dataset", dataset, cfg::opt().required());
     v("steps", steps, cfg::opt().help("train, eval, bench, report"));
     v("set", set, cfg::opt().help("overrides for every experiment"));
+    v("seeds", seeds,
+      cfg::opt().range(1, 1000).help("repetitions of every experiment over seeds: run.seed, run.seed+1, ..."));
     v("eval", eval);
     v("bench", bench);
     v("report", report);

@@ -1,9 +1,11 @@
 // layers/study/runs.h -- the experiments of a study resolved into runs:
 // each experiment file with the study's and its own overrides, run.output
 // = <output>/<name>, data.dataset = the study's dataset folder, its steps,
-// splits and the checkpoint its eval and bench use.
+// splits and the checkpoint its eval and bench use. An experiment repeated
+// over seeds is one run per seed, <output>/<name>/seed-<s> (config.h).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -14,7 +16,10 @@ namespace layers::study {
 
 // One experiment of a study, resolved.
 struct StudyRun {
-  std::string name, dir;           // dir = <output>/<name>
+  std::string name, dir;   // dir = <output>/<name>; repeated: name <name>/seed-<s>, dir <output>/<name>/seed-<s>
+  std::string experiment;  // the experiment's name in the study file
+  std::uint64_t seed = 0;  // run.seed
+  bool repeated = false;   // one of several seeds
   train::ExperimentConfig config;  // with run.output = dir, data.dataset = the study's folder
   std::string config_yaml;         // the resolved experiment (saved as <dir>/experiment.yaml)
   std::vector<std::string> steps;  // train, eval, bench (report is the study's)

@@ -1,7 +1,8 @@
 // layers/train/checkpoint.h -- one self-contained checkpoint file: the
 // model's parameters and buffers, its normalisation statistics, the
-// optimiser state and the training position (epoch, step, best validation
-// error). Written to a temporary name and renamed, so a crash never leaves
+// optimiser state, the training position (epoch, step, best validation
+// error) and what chose it (the selection record: which checkpoint, the
+// split and epoch that chose it). Written to a temporary name and renamed, so a crash never leaves
 // a broken checkpoint behind. The file is a header line
 // "layers-checkpoint 1 fnv1a64 <hash> <size>" and the torch archive the
 // hash covers; loading verifies it (docs/training.md, "Checkpoints").
@@ -26,6 +27,13 @@ struct CheckpointState {
   double best_val_mm = -1;  // < 0: no validation yet
   std::string model_name;   // the registered model it belongs to
   std::string checksum;     // on load: the verified fnv1a64 of the archive ("" for one without)
+  // The selection record (docs/training.md, "Selection").
+  std::string kind;       // "best" or "last": which checkpoint this file was saved as
+  std::string chosen_on;  // split whose validation error chose the best epoch ("" = nothing chosen)
+  std::string metric;     // what was compared on it ("" = nothing chosen)
+  int chosen_epoch = 0;   // epoch (1-based) of the best validation error (0 = none)
+  int epochs = 0;         // train.epochs when it was saved
+  bool recorded = false;  // on load: the file carries the record (false for one saved before it)
 };
 
 // `optimizer` may be null (nothing to train, or an evaluation copy).

@@ -9,6 +9,14 @@
 //   predictions.h5   the rollouts as LAYERS-H5 (ground-truth body and wind,
 //                    predicted garments; frames 0 and 1 are the ground truth
 //                    the rollout started from) -- `layers export` reads it
+// metrics.json's `selection` says what chose the checkpoint: `checkpoint`
+// (best, last; unknown for another file saved before the record),
+// `chosen_on` (the split whose validation error chose it; none for the
+// last checkpoint or a run without validation; unknown for a checkpoint
+// saved before the record), `evaluated_on`, `chosen_epoch`, `epochs`,
+// `metric`. A checkpoint chosen on data.test_split is refused (InputError);
+// one evaluated on the split that chose it is evaluated with a warning
+// (its figures are optimistic; `layers report` marks it).
 // Errors are real-world millimetres (the paper's figures are at 10x
 // scale). Collisions are the paper's vertex-normal H/L rates (L as the
 // paper defines it, `l_collision_plain`, and ours with the open-edge rule,
@@ -54,6 +62,7 @@ struct MetricSummary {
 
 struct EvalReport {
   std::string model, checkpoint, split, out_dir;
+  std::string checkpoint_kind, chosen_on;  // metrics.json's selection.checkpoint and .chosen_on
   std::int64_t sequences = 0, frames = 0, diverged = 0;
   MetricSummary overall;
   std::vector<std::pair<std::string, MetricSummary>> per_type;  // garment type -> summary

@@ -138,4 +138,11 @@ ExperimentConfig read_experiment(const cfg::Node& tree, const std::string& sourc
 // Loads `path`, applies `sets` (key.path=value) and reads it.
 ExperimentConfig load_experiment(const std::string& path, const std::vector<std::string>& sets = {});
 
+// The selection policy (docs/training.md, "Selection"): training reads
+// data.train_split and the best checkpoint is chosen on data.val_split, so
+// neither may be data.test_split. InputError naming config.source and the
+// field otherwise. `layers train`, `layers eval` and every study
+// (libs/study runs.cpp) check it before anything runs.
+void check_selection(const ExperimentConfig& config);
+
 }  // namespace layers::train

@@ -1,0 +1,128 @@
+// Experiments repeated over seeds: grouping their runs and the statistics
+// over seeds (see seeds.h).
+#include "layers/report/seeds.h"
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "text.h"
+
+namespace layers::report {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Every metric of MetricStats with its column name.
+struct MetricField {
+  const char* name;
+  Stat MetricStats::*stat;
+};
+constexpr MetricField kMetrics[] = {{"error_mm", &MetricStats::error_mm},
+                                    {"h_collision", &MetricStats::h_collision},
+                                    {"l_collision", &MetricStats::l_collision},
+                                    {"h_crossing", &MetricStats::h_crossing},
+                                    {"l_crossing", &MetricStats::l_crossing}};
+
+// Mean and population std of the finite values (count 0 when none).
+Stat stat_of(const std::vector<double>& values) {
+  Stat s;
+  double sum = 0;
+  for (double v : values)
+    if (std::isfinite(v)) sum += v, ++s.count;
+  if (s.count == 0) return s;
+  s.mean = sum / static_cast<double>(s.count);
+  double squares = 0;
+  for (double v : values)
+    if (std::isfinite(v)) squares += (v - s.mean) * (v - s.mean);
+  s.std = std::sqrt(squares / static_cast<double>(s.count));
+  return s;
+}
+
+// The folder that holds a seed run's seed-<s> folder (its experiment).
+std::string experiment_folder(const RunResults& r) {
+  const fs::path dir(r.dir);
+  const fs::path folder = dir.has_filename() ? dir : dir.parent_path();
+  return fs::absolute(folder).lexically_normal().parent_path().string();
+}
+
+void summarise(SeedGroup& g, const std::vector<RunResults>& runs) {
+  for (const MetricField& m : kMetrics) {
+    std::vector<double> means, spreads;
+    for (std::size_t i : g.runs) {
+      means.push_back((runs[i].eval->overall.*m.stat).mean);
+      spreads.push_back((runs[i].eval->overall.*m.stat).std);
+    }
+    g.over_seeds.*m.stat = stat_of(means);
+    const Stat spread = stat_of(spreads);
+    (g.over_sequences.*m.stat).mean = spread.mean;
+    (g.over_sequences.*m.stat).count = spread.count;
+  }
+  std::vector<double> ms;
+  for (std::size_t i : g.runs) {
+    const EvalResults& e = *runs[i].eval;
+    ms.push_back(e.ms_per_frame);
+    g.diverged += e.diverged;
+  }
+  g.ms_per_frame = stat_of(ms).mean;
+  const EvalResults& first = *runs[g.runs.front()].eval;
+  g.model = runs[g.runs.front()].model;
+  g.split = first.split;
+  g.sequences = first.sequences;
+}
+
+}  // namespace
+
+std::vector<SeedGroup> seed_groups(const std::vector<RunResults>& runs) {
+  std::vector<SeedGroup> groups;
+  std::vector<std::string> keys;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const RunResults& r = runs[i];
+    if (!r.repeated || !r.eval) continue;
+    const std::string key = experiment_folder(r);
+    std::size_t k = 0;
+    while (k < keys.size() && keys[k] != key) ++k;
+    if (k == keys.size()) {
+      keys.push_back(key);
+      groups.emplace_back();
+      groups.back().experiment = r.experiment;
+    }
+    groups[k].runs.push_back(i);
+    groups[k].seeds.push_back(r.seed);
+  }
+  std::vector<SeedGroup> several;
+  for (SeedGroup& g : groups) {
+    if (g.runs.size() < 2) continue;
+    summarise(g, runs);
+    several.push_back(std::move(g));
+  }
+  return several;
+}
+
+int seed_group_of(const std::vector<SeedGroup>& groups, std::size_t run) {
+  for (std::size_t g = 0; g < groups.size(); ++g)
+    for (std::size_t i : groups[g].runs)
+      if (i == run) return static_cast<int>(g);
+  return -1;
+}
+
+std::string seeds_csv(const std::vector<RunResults>& runs) {
+  std::ostringstream out;
+  out << "experiment,model,split,seeds,seed_list,sequences";
+  for (const MetricField& m : kMetrics)
+    out << ',' << m.name << ',' << m.name << "_std_seeds," << m.name << "_std_sequences";
+  out << ",ms_per_frame,diverged\n";
+  for (const SeedGroup& g : seed_groups(runs)) {
+    std::string seeds;
+    for (std::uint64_t s : g.seeds) seeds += (seeds.empty() ? "" : " ") + std::to_string(s);
+    out << csv_field(g.experiment) << ',' << csv_field(g.model) << ',' << csv_field(g.split) << ',' << g.runs.size()
+        << ',' << seeds << ',' << g.sequences;
+    for (const MetricField& m : kMetrics)
+      out << ',' << exact((g.over_seeds.*m.stat).mean) << ',' << exact((g.over_seeds.*m.stat).std) << ','
+          << exact((g.over_sequences.*m.stat).mean);
+    out << ',' << exact(g.ms_per_frame) << ',' << g.diverged << '\n';
+  }
+  return out.str();
+}
+
+}  // namespace layers::report

@@ -1,0 +1,174 @@
+// What the report says about selection and seeds, on run folders the test
+// writes: which split chose each checkpoint and which it is evaluated on,
+// the mark on a run chosen on the test split (or on the evaluated split),
+// evaluations made before the record ("unknown", never a crash), and the
+// mean and std over the seeds of a study experiment's seed-<s> runs.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "layers/core/text_file.h"
+#include "layers/report/report.h"
+#include "layers/report/seeds.h"
+#include "report_fixtures.h"
+
+namespace layers::report {
+namespace {
+
+using layers::test::TempDir;
+using testing::FakeRun;
+
+// The CSV's rows as maps from column name to cell (no quoted commas here).
+std::vector<std::map<std::string, std::string>> csv_rows(const std::string& text) {
+  std::stringstream in(text);
+  auto cells = [](const std::string& line) {
+    std::vector<std::string> out;
+    std::stringstream s(line);
+    for (std::string c; std::getline(s, c, ',');) out.push_back(c);
+    if (!line.empty() && line.back() == ',') out.push_back("");
+    return out;
+  };
+  std::string line;
+  std::getline(in, line);
+  const std::vector<std::string> header = cells(line);
+  std::vector<std::map<std::string, std::string>> rows;
+  while (std::getline(in, line)) {
+    const std::vector<std::string> c = cells(line);
+    std::map<std::string, std::string> row;
+    for (std::size_t i = 0; i < header.size() && i < c.size(); ++i) row[header[i]] = c[i];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+ReportInputs tables_only(const std::vector<std::string>& runs) {
+  ReportInputs inputs;
+  inputs.runs = runs;
+  inputs.charts = false;
+  return inputs;
+}
+
+TEST(Selection, ReportSaysWhichSplitChoseWhatAndMarksTheTestSplit) {
+  TempDir dir("report-selection");
+  FakeRun fair, peek, same, old;
+  fair.chosen_on = "val";
+  peek.chosen_on = "test";  // a checkpoint chosen on the test split
+  same.chosen_on = "val", same.evaluated_on = "val";
+  // `old` has no record: evaluated before metrics.json carried it.
+  const std::vector<std::string> runs = {testing::write_run(dir, "fair", fair), testing::write_run(dir, "peek", peek),
+                                         testing::write_run(dir, "same", same), testing::write_run(dir, "old", old)};
+
+  const RunResults loaded = load_run(runs[0]);
+  ASSERT_TRUE(loaded.eval);
+  EXPECT_EQ(loaded.eval->selection.checkpoint, "best");
+  EXPECT_EQ(loaded.eval->selection.chosen_on, "val");
+  EXPECT_EQ(loaded.eval->selection.evaluated_on, "test");
+  EXPECT_EQ(loaded.eval->selection.chosen_epoch, 2);
+  EXPECT_EQ(selection_flag(loaded), "");
+  const RunResults unknown = load_run(runs[3]);
+  ASSERT_TRUE(unknown.eval);
+  EXPECT_EQ(unknown.eval->selection.chosen_on, "unknown");
+  EXPECT_EQ(unknown.eval->selection.evaluated_on, "test");
+  EXPECT_EQ(selection_flag(unknown), "");
+  EXPECT_NE(selection_flag(load_run(runs[1])).find("test split"), std::string::npos);
+  EXPECT_NE(selection_flag(load_run(runs[2])).find("evaluated on"), std::string::npos);
+
+  const ReportResult r = write_report(tables_only(runs), dir.file("out"));
+  EXPECT_EQ(r.runs_with_metrics, 4u);
+  ASSERT_EQ(r.selection_flags.size(), 2u);
+  EXPECT_EQ(r.selection_flags[0].rfind("peek: ", 0), 0u) << r.selection_flags[0];
+  EXPECT_EQ(r.selection_flags[1].rfind("same: ", 0), 0u) << r.selection_flags[1];
+
+  const std::string md = read_text_file(r.report);
+  EXPECT_NE(md.find("**⚠ Selection:** 2 runs"), std::string::npos) << md;
+  EXPECT_NE(md.find("| peek **⚠ chosen on the test split (test)** | mymodel |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| same **⚠ chosen on val, the split evaluated** | mymodel |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| fair | mymodel |"), std::string::npos) << md;
+  EXPECT_NE(md.find("### Selection"), std::string::npos);
+  EXPECT_NE(md.find("| fair | best | val | 2 / 3 | mean rollout error (mm) | test |  |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| old | unknown | unknown | - / - | - | test |  |"), std::string::npos) << md;
+
+  const auto rows = csv_rows(read_text_file(dir.file("out/summary.csv")));
+  ASSERT_EQ(rows.size(), 4u);
+  EXPECT_EQ(rows[0].at("chosen_on"), "val");
+  EXPECT_EQ(rows[0].at("evaluated_on"), "test");
+  EXPECT_EQ(rows[0].at("selection_flag"), "");
+  EXPECT_EQ(rows[1].at("chosen_on"), "test");
+  EXPECT_NE(rows[1].at("selection_flag"), "");
+  EXPECT_EQ(rows[3].at("checkpoint"), "unknown");
+  const nlohmann::json summary = nlohmann::json::parse(read_text_file(dir.file("out/summary.json")));
+  EXPECT_EQ(summary["runs"][1]["selection"]["chosen_on"], "test");
+  EXPECT_NE(summary["runs"][1]["selection"]["flag"].get<std::string>(), "");
+}
+
+TEST(Seeds, MeanAndStdOverSeedsBesideTheSpreadOverSequences) {
+  TempDir dir("report-seeds");
+  // A study experiment over three seeds (<name>/seed-<s>) and a plain run.
+  const double errors[] = {10.0, 12.0, 14.0}, spreads[] = {1.0, 2.0, 3.0}, h[] = {0.01, 0.02, 0.03};
+  for (int k = 0; k < 3; ++k) {
+    FakeRun run;
+    run.error = errors[k], run.error_std = spreads[k], run.h = h[k], run.ms_per_frame = 1.0 + k;
+    run.chosen_on = "val";
+    testing::write_run(dir, "net/seed-" + std::to_string(k), run);
+  }
+  FakeRun plain;
+  plain.chosen_on = "val";
+  testing::write_run(dir, "plain", plain);
+
+  // The experiment's folder stands for its seeds.
+  const ReportResult r = write_report(tables_only({dir.file("net"), dir.file("plain")}), dir.file("out"));
+  EXPECT_EQ(r.runs_with_metrics, 4u);
+
+  std::vector<RunResults> runs;
+  for (const std::string& d : expand_seed_folders({dir.file("net"), dir.file("plain")})) runs.push_back(load_run(d));
+  ASSERT_EQ(runs.size(), 4u);
+  EXPECT_EQ(runs[1].name, "net/seed-1");
+  EXPECT_EQ(runs[1].experiment, "net");
+  EXPECT_TRUE(runs[1].repeated);
+  EXPECT_EQ(runs[1].seed, 1u);
+  EXPECT_FALSE(runs[3].repeated);
+  const std::vector<SeedGroup> groups = seed_groups(runs);
+  ASSERT_EQ(groups.size(), 1u);
+  const SeedGroup& g = groups[0];
+  EXPECT_EQ(g.experiment, "net");
+  EXPECT_EQ(g.seeds, (std::vector<std::uint64_t>{0, 1, 2}));
+  const double std_over_seeds = std::sqrt(8.0 / 3.0);  // population std of 10, 12, 14
+  EXPECT_NEAR(g.over_seeds.error_mm.mean, 12.0, 1e-9);
+  EXPECT_NEAR(g.over_seeds.error_mm.std, std_over_seeds, 1e-9);
+  EXPECT_EQ(g.over_seeds.error_mm.count, 3);
+  EXPECT_NEAR(g.over_sequences.error_mm.mean, 2.0, 1e-9);  // mean of the seeds' stds over sequences
+  EXPECT_NEAR(g.over_seeds.h_collision.mean, 0.02, 1e-9);
+  EXPECT_NEAR(g.over_seeds.h_collision.std, std::sqrt(2.0 / 3.0) * 0.01, 1e-9);
+  EXPECT_NEAR(g.ms_per_frame, 2.0, 1e-9);
+
+  const std::string md = read_text_file(r.report);
+  EXPECT_NE(md.find("| net (3 seeds) | mymodel | 1234 | test (2) | 12.0 ± 1.6 (sequences ± 2.0) | 2.00% ± 0.82 |"),
+            std::string::npos)
+      << md;
+  EXPECT_EQ(md.find("| net/seed-1 | mymodel"), std::string::npos) << "seed rows are collapsed in the models table";
+  EXPECT_NE(md.find("- `net` per seed, error (mm): seed 0 10.0, seed 1 12.0, seed 2 14.0"), std::string::npos) << md;
+  EXPECT_NE(md.find("| plain | mymodel |"), std::string::npos) << md;
+
+  const auto seeds = csv_rows(read_text_file(dir.file("out/seeds.csv")));
+  ASSERT_EQ(seeds.size(), 1u);
+  EXPECT_EQ(seeds[0].at("experiment"), "net");
+  EXPECT_EQ(seeds[0].at("seeds"), "3");
+  EXPECT_EQ(seeds[0].at("seed_list"), "0 1 2");
+  EXPECT_NEAR(std::stod(seeds[0].at("error_mm")), 12.0, 1e-6);
+  EXPECT_NEAR(std::stod(seeds[0].at("error_mm_std_seeds")), std_over_seeds, 1e-6);
+  EXPECT_NEAR(std::stod(seeds[0].at("error_mm_std_sequences")), 2.0, 1e-6);
+  // Each seed's values stay in summary.csv.
+  const auto summary = csv_rows(read_text_file(dir.file("out/summary.csv")));
+  ASSERT_EQ(summary.size(), 4u);
+  EXPECT_EQ(summary[2].at("run"), "net/seed-2");
+  EXPECT_EQ(summary[2].at("experiment"), "net");
+  EXPECT_EQ(summary[2].at("seed"), "2");
+  EXPECT_NEAR(std::stod(summary[2].at("error_mm_mean")), 14.0, 1e-6);
+  EXPECT_EQ(summary[3].at("seed"), "");
+}
+
+}  // namespace
+}  // namespace layers::report
