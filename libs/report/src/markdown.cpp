@@ -61,11 +61,11 @@ void seed_row(std::ostringstream& md, const SeedGroup& g, const std::vector<RunR
      << " | " << first.parameters << " | " << md_cell(g.split) << " (" << g.sequences << ") | "
      << mean_pm_std(m.error_mm.mean, m.error_mm.std)
      << (std::isfinite(spread) ? " (sequences ± " + fixed(spread, 1) + ")" : std::string()) << " | "
-     << percent_pm(m.h_collision) << " | " << percent_pm(m.l_collision) << " | " << percent(first.truth_h_collision)
-     << " / " << percent(first.truth_l_collision) << " | " << percent_pm(m.h_crossing) << " | "
-     << percent_pm(m.l_crossing) << " | " << percent(first.truth_h_crossing) << " / " << percent(first.truth_l_crossing)
-     << " | " << g.diverged << " of " << g.sequences * static_cast<std::int64_t>(g.runs.size()) << " | "
-     << ms(g.ms_per_frame) << " |  |\n";
+     << percent_pm(m.h_collision) << " | " << percent_pm(m.l_collision_plain) << " | " << percent_pm(m.l_collision)
+     << " | " << percent(first.truth_h_collision) << " / " << percent(first.truth_l_collision_plain) << " / "
+     << percent(first.truth_l_collision) << " | " << percent_pm(m.h_crossing) << " | " << percent_pm(m.l_crossing)
+     << " | " << percent(first.truth_h_crossing) << " / " << percent(first.truth_l_crossing) << " | " << g.diverged
+     << " of " << g.sequences * static_cast<std::int64_t>(g.runs.size()) << " | " << ms(g.ms_per_frame) << " |  |\n";
 }
 
 // Which split chose each run's checkpoint and which it is evaluated on.

@@ -18,11 +18,10 @@ struct MetricField {
   const char* name;
   Stat MetricStats::*stat;
 };
-constexpr MetricField kMetrics[] = {{"error_mm", &MetricStats::error_mm},
-                                    {"h_collision", &MetricStats::h_collision},
-                                    {"l_collision", &MetricStats::l_collision},
-                                    {"h_crossing", &MetricStats::h_crossing},
-                                    {"l_crossing", &MetricStats::l_crossing}};
+constexpr MetricField kMetrics[] = {
+    {"error_mm", &MetricStats::error_mm},       {"h_collision", &MetricStats::h_collision},
+    {"l_collision", &MetricStats::l_collision}, {"l_collision_plain", &MetricStats::l_collision_plain},
+    {"h_crossing", &MetricStats::h_crossing},   {"l_crossing", &MetricStats::l_crossing}};
 
 // Mean and population std of the finite values (count 0 when none).
 Stat stat_of(const std::vector<double>& values) {

@@ -113,8 +113,9 @@ TEST(RunResults, MetricsWithoutCrossingsStillLoad) {
 
   const std::vector<RunResults> runs = {load_run(testing::write_run(dir, "old", old))};
   ASSERT_TRUE(runs[0].eval.has_value()) << ::testing::PrintToString(runs[0].problems);
-  EXPECT_EQ(lines(summary_csv(runs))[1],
-            "old,mymodel,test,2,54,1234,2,10,1.5,0.02,0.01,0.05,0,0,0.0645,0,,yes,,,,,,,,,,unknown,unknown,test,,,,old,");
+  EXPECT_EQ(
+      lines(summary_csv(runs))[1],
+      "old,mymodel,test,2,54,1234,2,10,1.5,0.02,0.01,0.05,0,0,0.0645,0,,yes,,,,,,,,,,unknown,unknown,test,,,,old,");
   EXPECT_EQ(lines(per_type_csv(runs))[1], "old,mymodel,jacket,2,11,0.5,0.01,0,0.05,0,,,,,,");
   EXPECT_EQ(lines(by_step_csv(runs))[2], "old,mymodel,2,2,0.02,0.05,2,,,");
   ReportInputs inputs;
@@ -137,7 +138,7 @@ TEST(RunResults, MetricsWithoutThePapersLCollisionStillLoad) {
   EXPECT_DOUBLE_EQ(runs[0].eval->overall.l_collision.mean, 0.05);
   EXPECT_EQ(lines(summary_csv(runs))[1],
             "before,mymodel,test,2,54,1234,2,10,1.5,0.02,0.01,0.05,0,0,0.0645,0,,yes,0.004,"
-            "0.001,0.006,0.002,0,0.0025,,,");
+            "0.001,0.006,0.002,0,0.0025,,,,unknown,unknown,test,,,,before,");
   const auto doc = nlohmann::json::parse(summary_json("T", runs, {}, {}));
   EXPECT_TRUE(doc["runs"][0]["overall"]["l_collision_plain"]["mean"].is_null());
   EXPECT_TRUE(doc["runs"][0]["truth"]["l_collision_plain"].is_null());
