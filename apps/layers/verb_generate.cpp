@@ -87,7 +87,8 @@ VerbRun register_generate(CLI::App& app, const Global&) {
                   report.simulate_cpu_seconds / report.simulated_frames, report.seconds);
     for (const auto& r : report.skip_reasons) std::printf("skipped %s\n", r.c_str());
     if (report.finalized)
-      std::printf("dataset complete: dataset.yaml, splits.yaml, stats.h5 written\n");
+      std::printf("dataset complete: dataset.yaml, splits.yaml%s written\n",
+                  report.stats ? ", stats.h5" : " (no train split: no stats.h5)");
     else if (options.finalize)
       std::printf("dataset not complete yet: other shards are missing\n");
     else

@@ -229,7 +229,11 @@ GenerateReport generate_dataset(const GeneratorConfig& config, const std::string
   if (failure) std::rethrow_exception(failure);
   if (options.progress && !todo.empty()) progress.finish();
 
-  if (options.finalize) report.finalized = finalize(layout, config_yaml).done();
+  if (options.finalize) {
+    const FinalizeReport fin = finalize(layout, config_yaml);
+    report.finalized = fin.done();
+    report.stats = fin.stats;
+  }
   report.seconds = wall.seconds();
   return report;
 }

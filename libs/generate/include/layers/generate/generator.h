@@ -44,7 +44,8 @@ struct GenerateReport {
   double simulate_seconds = 0;      // summed over scenes (all threads), wall clock
   double simulate_cpu_seconds = 0;  // the same in CPU time of the simulating threads
   double seconds = 0;               // wall clock
-  bool finalized = false;           // dataset.yaml, splits.yaml and stats.h5 written
+  bool finalized = false;           // dataset.yaml, splits.yaml (and stats.h5, below) written
+  bool stats = false;               // stats.h5 written (false when the train split is empty)
 };
 
 struct FinalizeReport {
