@@ -106,7 +106,13 @@ double MeshCrossings::a_vertex_share() const {
   return static_cast<double>(a_vertices_on_crossings()) / static_cast<double>(a_vertices.size());
 }
 
-void visit_crossings(const TriMesh& a, const FaceTree& tree, const std::function<void(int, int)>& visit) {
+namespace {
+
+// Calls visit(f, g) for every face f of `a` and face g of the tree's mesh
+// that cross, testing only the pairs that pass(f, g) lets through (a
+// cheap filter before the exact test).
+template <class Pass, class Visit>
+void cross_pairs(const TriMesh& a, const FaceTree& tree, Pass&& pass, Visit&& visit) {
   const TriMesh& b = tree.mesh();
   for (int f = 0; f < a.num_faces(); ++f) {
     const Vec3d a0 = corner(a, f, 0), a1 = corner(a, f, 1), a2 = corner(a, f, 2);
@@ -115,9 +121,16 @@ void visit_crossings(const TriMesh& a, const FaceTree& tree, const std::function
     box.extend(a1.cast<float>());
     box.extend(a2.cast<float>());
     tree.visit(box, [&](int g) {
-      if (triangles_cross(a0, a1, a2, corner(b, g, 0), corner(b, g, 1), corner(b, g, 2))) visit(f, g);
+      if (pass(f, g) && triangles_cross(a0, a1, a2, corner(b, g, 0), corner(b, g, 1), corner(b, g, 2))) visit(f, g);
     });
   }
+}
+
+}  // namespace
+
+void visit_crossings(const TriMesh& a, const FaceTree& tree, const std::function<void(int, int)>& visit) {
+  cross_pairs(
+      a, tree, [](int, int) { return true; }, visit);
 }
 
 namespace {
@@ -129,8 +142,7 @@ MeshCrossings crossings_kept(const TriMesh& a, const FaceTree& tree, Keep&& keep
   MeshCrossings out;
   out.a_faces.assign(static_cast<std::size_t>(a.num_faces()), 0);
   out.a_vertices.assign(static_cast<std::size_t>(a.num_vertices()), 0);
-  visit_crossings(a, tree, [&](int f, int g) {
-    if (!keep(f, g)) return;
+  cross_pairs(a, tree, keep, [&](int f, int) {
     ++out.pairs;
     out.a_faces[f] = 1;
     for (int k = 0; k < 3; ++k) out.a_vertices[a.faces(f, k)] = 1;
@@ -166,25 +178,20 @@ MeshCrossings self_crossings(const FaceTree& tree) {
     for (int k = 0; k < 3; ++k) out.a_vertices[mesh.faces(f, k)] = 1;
   };
   // Each pair once (g > f), neighbours rejected before the exact test.
-  for (int f = 0; f < mesh.num_faces(); ++f) {
-    const Vec3d a0 = corner(mesh, f, 0), a1 = corner(mesh, f, 1), a2 = corner(mesh, f, 2);
-    if (!a0.allFinite() || !a1.allFinite() || !a2.allFinite()) continue;
-    Eigen::AlignedBox3f box(a0.cast<float>());
-    box.extend(a1.cast<float>());
-    box.extend(a2.cast<float>());
-    tree.visit(box, [&](int g) {
-      if (g <= f) return;
-      for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 3; ++j) {
-          if (mesh.faces(f, i) == mesh.faces(g, j)) return;
-        }
+  const auto apart = [&](int f, int g) {
+    if (g <= f) return false;
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) {
+        if (mesh.faces(f, i) == mesh.faces(g, j)) return false;
       }
-      if (!triangles_cross(a0, a1, a2, corner(mesh, g, 0), corner(mesh, g, 1), corner(mesh, g, 2))) return;
-      ++out.pairs;
-      mark(f);
-      mark(g);
-    });
-  }
+    }
+    return true;
+  };
+  cross_pairs(mesh, tree, apart, [&](int f, int g) {
+    ++out.pairs;
+    mark(f);
+    mark(g);
+  });
   return out;
 }
 

@@ -142,6 +142,19 @@ at::Tensor surface_penalty(const char* loss, const char* points_arg, const char*
   return (eps - d).clamp_min(0).pow(2).sum() / violating;
 }
 
+// The arguments of a normal loss, checked: pred and truth of one shape on
+// one device, and at least one face; returns the faces as int64.
+at::Tensor checked_normal_inputs(const char* loss, const at::Tensor& pred, const at::Tensor& truth,
+                                 const at::Tensor& faces) {
+  check_points(loss, "pred", pred);
+  check_points(loss, "truth", truth);
+  check_same_device(loss, "truth", truth, pred);
+  if (truth.size(0) != pred.size(0)) fail(loss, "truth", "the same shape as pred " + describe(pred), describe(truth));
+  at::Tensor f = checked_faces(loss, "faces", faces, pred);
+  if (f.size(0) == 0) fail(loss, "faces", "at least one face", "none");
+  return f;
+}
+
 }  // namespace
 
 at::Tensor position_mse(const at::Tensor& pred, const at::Tensor& truth) {
@@ -155,26 +168,14 @@ at::Tensor position_mse(const at::Tensor& pred, const at::Tensor& truth) {
 }
 
 at::Tensor normal_loss(const at::Tensor& pred, const at::Tensor& truth, const at::Tensor& faces) {
-  constexpr const char* loss = "normal_loss";
-  check_points(loss, "pred", pred);
-  check_points(loss, "truth", truth);
-  check_same_device(loss, "truth", truth, pred);
-  if (truth.size(0) != pred.size(0)) fail(loss, "truth", "the same shape as pred " + describe(pred), describe(truth));
-  at::Tensor f = checked_faces(loss, "faces", faces, pred);
-  if (f.size(0) == 0) fail(loss, "faces", "at least one face", "none");
+  const at::Tensor f = checked_normal_inputs("normal_loss", pred, truth, faces);
   at::Tensor n_pred = unit_rows(doubled_area_normals(pred, f));
   at::Tensor n_truth = unit_rows(doubled_area_normals(truth, f));
   return (n_pred - n_truth).pow(2).sum(1).mean();
 }
 
 at::Tensor vertex_normal_loss(const at::Tensor& pred, const at::Tensor& truth, const at::Tensor& faces) {
-  constexpr const char* loss = "vertex_normal_loss";
-  check_points(loss, "pred", pred);
-  check_points(loss, "truth", truth);
-  check_same_device(loss, "truth", truth, pred);
-  if (truth.size(0) != pred.size(0)) fail(loss, "truth", "the same shape as pred " + describe(pred), describe(truth));
-  at::Tensor f = checked_faces(loss, "faces", faces, pred);
-  if (f.size(0) == 0) fail(loss, "faces", "at least one face", "none");
+  const at::Tensor f = checked_normal_inputs("vertex_normal_loss", pred, truth, faces);
   return (area_weighted_normals(pred, f) - area_weighted_normals(truth, f)).pow(2).sum(1).mean();
 }
 
