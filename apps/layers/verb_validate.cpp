@@ -29,7 +29,8 @@ EvalLCollision eval_l_collision(const generate::StoredFrame& f) {
   if (inner.empty() || outer.empty()) return {};
   const geometry::TriMesh inner_mesh = geometry::concatenate(inner);
   const geometry::Points outer_points = geometry::concatenate(outer).vertices;
-  return {zoo::l_collision_plain_rate(outer_points, inner_mesh), zoo::l_collision_rate(outer_points, inner_mesh)};
+  const zoo::LCollisionRates l = zoo::l_collision_rates(outer_points, inner_mesh);
+  return {l.plain, l.ours};
 }
 
 // Mean of the frames' values that are not NaN (NaN when there are none).

@@ -88,8 +88,9 @@ FrameRates frame_rates(const zoo::SequenceStatic& seq, const std::vector<geometr
     geometry::TriMesh inner_m = inner_mesh(seq, garments);
     if (inner_m.num_vertices() > 0) {
       const geometry::Points outer_v = points_of(outer_p);
-      r.l_collision = zoo::l_collision_rate(outer_v, inner_m);
-      r.l_collision_plain = zoo::l_collision_plain_rate(outer_v, inner_m);
+      const zoo::LCollisionRates l = zoo::l_collision_rates(outer_v, inner_m);
+      r.l_collision = l.ours;
+      r.l_collision_plain = l.plain;
     }
   }
   // body_crossings() takes the garments as one mesh, vertices in order:

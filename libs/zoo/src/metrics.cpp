@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "layers/core/error.h"
+#include "layers/geometry/topology.h"
 
 namespace layers::zoo {
 
@@ -29,23 +30,30 @@ double h_collision_rate(const geometry::Points& garment, const geometry::TriMesh
   return behind_share(garment, geometry::Surface::from_mesh(body, "body"));
 }
 
-namespace {
-
-// Share of outer vertices behind the inner garment; `open` says whether a
-// nearest inner vertex on an open edge gives a verdict (the two L rules).
-double layer_behind_share(const geometry::Points& outer, const geometry::TriMesh& inner,
-                          geometry::Surface::OpenEdges open) {
-  return behind_share(outer, geometry::Surface::from_mesh(inner, "inner garment", open));
+LCollisionRates l_collision_rates(const geometry::Points& outer, const geometry::TriMesh& inner) {
+  if (outer.rows() == 0) throw Error("collision rate: no vertices to test");
+  const geometry::Surface surface = geometry::Surface::from_mesh(inner, "inner garment");
+  const std::vector<char> open = geometry::boundary_vertices(inner.faces, inner.num_vertices());
+  Eigen::Index plain = 0, ours = 0;
+  for (Eigen::Index i = 0; i < outer.rows(); ++i) {
+    const Eigen::RowVector3f x = outer.row(i);
+    const geometry::Neighbour h = surface.index().nearest(x);
+    if (h.index < 0) continue;
+    // Behind the nearest vertex's normal plane (a NaN offset is not behind).
+    if (!((x - surface.vertices().row(h.index)).dot(surface.normals().row(h.index)) < 0.0f)) continue;
+    ++plain;
+    ours += open[static_cast<std::size_t>(h.index)] ? 0 : 1;
+  }
+  const double n = static_cast<double>(outer.rows());
+  return {static_cast<double>(plain) / n, static_cast<double>(ours) / n};
 }
 
-}  // namespace
-
 double l_collision_plain_rate(const geometry::Points& outer, const geometry::TriMesh& inner) {
-  return layer_behind_share(outer, inner, geometry::Surface::OpenEdges::Count);
+  return l_collision_rates(outer, inner).plain;
 }
 
 double l_collision_rate(const geometry::Points& outer, const geometry::TriMesh& inner) {
-  return layer_behind_share(outer, inner, geometry::Surface::OpenEdges::Ignore);
+  return l_collision_rates(outer, inner).ours;
 }
 
 MeanStd mean_std(const std::vector<double>& values) {

@@ -44,6 +44,12 @@ double l_collision_plain_rate(const geometry::Points& outer, const geometry::Tri
 // hanging below a shorter inner garment: ~5% of the outer vertices in
 // collision-free ground truth.)
 double l_collision_rate(const geometry::Points& outer, const geometry::TriMesh& inner);
+// Both at once (what every evaluation reports): one inner surface and one
+// nearest-vertex query per outer vertex serve both rules.
+struct LCollisionRates {
+  double plain = 0, ours = 0;
+};
+LCollisionRates l_collision_rates(const geometry::Points& outer, const geometry::TriMesh& inner);
 
 // Mean and population standard deviation (divided by n, as numpy's std) of
 // per-sequence values; count = number of values, all zero when empty.
