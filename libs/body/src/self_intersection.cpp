@@ -5,6 +5,7 @@
 #include <cctype>
 #include <memory>
 
+#include "layers/geometry/intersect.h"
 #include "layers/geometry/nearest.h"
 #include "layers/geometry/normals.h"
 #include "layers/geometry/topology.h"
@@ -64,11 +65,22 @@ SelfIntersection::SelfIntersection(const Body& body, IntersectionOptions options
   std::vector<int> joint_part(body.skeleton.num_joints());
   for (int j = 0; j < body.skeleton.num_joints(); ++j) joint_part[j] = part_of_joint(body.skeleton.names[j]);
   part_.assign(nv, -1);
+  std::vector<std::array<float, kNumBodyParts>> share(nv);
   for (int v = 0; v < nv; ++v) {
-    std::array<float, kNumBodyParts> share{};
-    for (int k = 0; k < 4; ++k) share[joint_part[body.weights.index(v, k)]] += body.weights.weight(v, k);
+    share[v].fill(0.0f);
+    for (int k = 0; k < 4; ++k) share[v][joint_part[body.weights.index(v, k)]] += body.weights.weight(v, k);
     for (int p = 0; p < kNumBodyParts; ++p)
-      if (share[p] >= kCoreWeight) part_[v] = p;
+      if (share[v][p] >= kCoreWeight) part_[v] = p;
+  }
+  const int nf = static_cast<int>(body.rest.faces.rows());
+  region_.assign(nf, static_cast<signed char>(BodyPart::torso));
+  for (int f = 0; f < nf; ++f) {
+    for (int p = 1; p < kNumBodyParts; ++p) {
+      float mean = 0.0f;
+      for (int k = 0; k < 3; ++k) mean += share[body.rest.faces(f, k)][p] / 3.0f;
+      if (mean >= 0.5f) region_[f] = static_cast<signed char>(p);
+    }
+    region_faces_[region_[f]].push_back(f);
   }
   // Core vertices within a few rings of a blend zone.
   const geometry::Adjacency adj = geometry::vertex_adjacency(body.rest.faces, nv);
@@ -129,7 +141,47 @@ FrameIntersection SelfIntersection::check(const geometry::Points& posed) const {
       }
     }
   }
+  if (options_.exact) count_crossings(posed, out);
   return out;
+}
+
+void SelfIntersection::count_crossings(const geometry::Points& posed, FrameIntersection& out) const {
+  // One face tree per region (only the regions a pair needs, only when the
+  // two regions' boxes overlap); a pair's count is crossings() of one
+  // region's faces against the other's tree.
+  std::array<Box, kNumBodyParts> box;
+  for (int p = 0; p < kNumBodyParts; ++p)
+    for (int f : region_faces_[p])
+      for (int k = 0; k < 3; ++k) box[p].add(posed.row(body_.rest.faces(f, k)));
+  const auto submesh = [&](int p) {
+    geometry::TriMesh m{posed, geometry::Faces(static_cast<Eigen::Index>(region_faces_[p].size()), 3)};
+    for (std::size_t i = 0; i < region_faces_[p].size(); ++i)
+      m.faces.row(static_cast<Eigen::Index>(i)) = body_.rest.faces.row(region_faces_[p][i]);
+    return m;
+  };
+  std::array<std::unique_ptr<geometry::FaceTree>, kNumBodyParts> tree;
+  std::array<std::unique_ptr<geometry::TriMesh>, kNumBodyParts> mesh;
+  // Region pairs (a's faces against b's tree): each arm against the rest,
+  // each leg against the torso and the other leg.
+  static const std::vector<std::pair<int, int>> pairs = {{1, 0}, {2, 0}, {1, 3}, {1, 4}, {2, 3},
+                                                         {2, 4}, {1, 2}, {3, 4}, {3, 0}, {4, 0}};
+  for (const auto& [a, b] : pairs) {
+    const bool apart = (box[a].lo.array() > box[b].hi.array()).any() || (box[b].lo.array() > box[a].hi.array()).any();
+    if (apart || region_faces_[a].empty() || region_faces_[b].empty()) continue;
+    if (!mesh[a]) mesh[a] = std::make_unique<geometry::TriMesh>(submesh(a));
+    if (!tree[b]) tree[b] = std::make_unique<geometry::FaceTree>(submesh(b));
+    const int n = static_cast<int>(geometry::crossings(*mesh[a], *tree[b]).pairs);
+    if (n == 0) continue;
+    out.crossings += n;
+    // Arms move for any contact they are part of; legs share the rest.
+    const bool arm_a = a == 1 || a == 2, arm_b = b == 1 || b == 2;
+    if (arm_a) out.limb_crossings[limb(a)] += n;
+    if (arm_b) out.limb_crossings[limb(b)] += n;
+    if (!arm_a && !arm_b) {
+      out.limb_crossings[2] += n;
+      out.limb_crossings[3] += n;
+    }
+  }
 }
 
 }  // namespace layers::body

@@ -39,12 +39,38 @@ BodySequence generate_body_sequence(const body::Body& body, const MotionSource& 
     found[f] = check_pose(body, si, poses[f]);
     report.worst_before = std::max(report.worst_before, found[f].depth);
     if (found[f].intersects(tol)) ++report.intersecting;
+    report.crossing_before += found[f].crossings;
   }
 
-  if (options.resolve && report.intersecting > 0) {
+  const auto needs_repair = [&](const std::vector<body::FrameIntersection>& r) {
+    return std::any_of(r.begin(), r.end(), [&](const body::FrameIntersection& x) { return x.needs_repair(tol); });
+  };
+  if (options.resolve && needs_repair(found)) {
     std::vector<char> was_bad(n);
     for (int f = 0; f < n; ++f) was_bad[f] = found[f].intersects(tol);
-    repair_intersections(body, si, {options.max_arm_correction, options.max_leg_correction}, poses, found);
+    const RepairLimits limits{options.max_arm_correction, options.max_leg_correction};
+    const std::vector<body::Pose> original = poses;
+    repair_intersections(body, si, limits, poses, found);
+    const auto deep = [&](const std::vector<body::FrameIntersection>& r) {
+      return std::count_if(r.begin(), r.end(), [&](const body::FrameIntersection& x) { return x.intersects(tol); });
+    };
+    // Clearing the exact crossings moves more and can leave frames deeper
+    // than the tolerance that a repair of the depth alone clears: then the
+    // depth alone is repaired (a frame is never lost to the crossings).
+    if (options.intersection.exact && deep(found) > 0) {
+      body::IntersectionOptions depth_only = options.intersection;
+      depth_only.exact = false;
+      const body::SelfIntersection plain(body, depth_only);
+      std::vector<body::Pose> plain_poses = original;
+      std::vector<body::FrameIntersection> plain_found(n);
+      for (int f = 0; f < n; ++f) plain_found[f] = check_pose(body, plain, original[f]);
+      repair_intersections(body, plain, limits, plain_poses, plain_found);
+      if (deep(plain_found) < deep(found)) {
+        poses = std::move(plain_poses);
+        for (int f = 0; f < n; ++f) found[f] = check_pose(body, si, poses[f]);
+        report.exact_repair = false;
+      }
+    }
     for (int f = 0; f < n; ++f) report.resolved += was_bad[f] && !found[f].intersects(tol);
   }
 
@@ -52,6 +78,7 @@ BodySequence generate_body_sequence(const body::Body& body, const MotionSource& 
   for (int f = 0; f < n; ++f) {
     bad[f] = found[f].intersects(tol);
     report.remaining += bad[f];
+    report.crossing_after += found[f].crossings;
     report.worst_after = std::max(report.worst_after, found[f].depth);
   }
 

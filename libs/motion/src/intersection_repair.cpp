@@ -12,7 +12,7 @@ namespace {
 
 constexpr double kStep = 0.05;        // rad per search step
 constexpr double kSpreadSigma = 2.0;  // frames: corrections spread over about 3 sigma each side
-constexpr int kRounds = 3;            // search / spread rounds
+constexpr int kRounds = 6;            // search / spread rounds
 constexpr int kRunGap = 12;           // frames: affected frames closer than this share one way
 
 // Limb roots (left arm, right arm, left leg, right leg) and the joint whose
@@ -72,27 +72,56 @@ class Repair {
   body::Pose pose(int f, const Corrections& c) const { return corrected(body_.skeleton, limbs_, original_[f], c); }
 
   // Steps the channels of the offending limbs (arms the way given per
-  // arm) until frame f is clean or at the limits; true when clean.
-  bool search(int f, Corrections& c, body::FrameIntersection r, const std::array<int, 2>& way) const {
+  // arm) until frame f is clean or at the limits. A limb is offending while
+  // deeper than the tolerance or, until its limit is reached, while it
+  // crosses another region exactly; at its limit with crossings left its
+  // turn goes back to where it started and only its depth counts. Returns
+  // 2 when every exact crossing cleared, 1 when only the depth verdict
+  // did, 0 when not even that.
+  int search(int f, Corrections& c, body::FrameIntersection r, const std::array<int, 2>& way) const {
     const double tol = si_.options().tolerance;
-    while (r.intersects(tol)) {
-      bool moved = false;
+    const Corrections start = c;
+    std::array<bool, 4> exact{true, true, true, true};
+    // One probe with every crossing limb at its limit: a limb still
+    // crossing there gives its crossings up at once (the steps would not
+    // clear them, and cost a check each).
+    Corrections probe = c;
+    bool crossing = false;
+    for (int limb = 0; limb < 4; ++limb) {
+      if (r.limb_crossings[limb] == 0) continue;
+      crossing = true;
+      probe[channel(limb, way)] = limit(limb);
+    }
+    if (crossing) {
+      const body::FrameIntersection p = check(f, probe);
+      for (int limb = 0; limb < 4; ++limb) exact[limb] = p.limb_crossings[limb] == 0;
+    }
+    for (;;) {
+      bool offending = false, moved = false;
       for (int limb = 0; limb < 4; ++limb) {
-        if (r.limb_depth[limb] <= tol) continue;
-        const int ch = limb < 2 ? kArmChannel[way[limb]][limb] : limb;
-        const double limit = limb < 2 ? limits_.arm : limits_.leg;
-        if (c[ch] + kStep <= limit + 1e-9) {
+        const bool deep = r.limb_depth[limb] > tol;
+        if (!deep && !(exact[limb] && r.limb_crossings[limb] > 0)) continue;
+        offending = true;
+        const int ch = channel(limb, way);
+        if (c[ch] + kStep <= limit(limb) + 1e-9) {
           c[ch] += kStep;
+          moved = true;
+        } else if (exact[limb]) {
+          exact[limb] = false;
+          c[ch] = start[ch];
           moved = true;
         }
       }
-      if (!moved) return false;
+      if (!offending) return std::all_of(exact.begin(), exact.end(), [](bool e) { return e; }) ? 2 : 1;
+      if (!moved) return 0;
       r = check(f, c);
     }
-    return true;
   }
 
  private:
+  static int channel(int limb, const std::array<int, 2>& way) { return limb < 2 ? kArmChannel[way[limb]][limb] : limb; }
+  double limit(int limb) const { return limb < 2 ? limits_.arm : limits_.leg; }
+
   const body::Body& body_;
   const body::SelfIntersection& si_;
   RepairLimits limits_;
@@ -124,36 +153,48 @@ void repair_intersections(const body::Body& body, const body::SelfIntersection& 
   const std::vector<body::Pose> original = poses;
   const Repair repair(body, checker, limits, original);
 
-  // Which way each arm goes: per run of frames where it intersects, the
-  // way (abduct, forward, backward) that alone clears most of them.
+  // Which way each arm goes (abduct, forward, backward), per frame.
   std::array<std::vector<int>, 2> way{std::vector<int>(n, 0), std::vector<int>(n, 0)};
-  // clears[f][w]: 1 when way w alone clears frame f, 0 when not, -1 untried.
+  // clears[f][w]: what way w alone achieves on frame f (search()'s 0, 1
+  // or 2), -1 untried.
   std::vector<std::array<int, kWays>> clears(n, {-1, -1, -1});
   auto try_way = [&](int f, int w) {
     if (clears[f][w] < 0) {
       Corrections c{};
-      clears[f][w] = repair.search(f, c, found[f], {w, w}) ? 1 : 0;
+      clears[f][w] = repair.search(f, c, found[f], {w, w});
     }
-    return clears[f][w] == 1;
+    return clears[f][w];
   };
+  // Per run of frames, the way that passes the depth verdict on the most
+  // frames, then clears the exact crossings on the most; abduction when it
+  // clears every frame of the run. Runs of deep frames choose first; runs
+  // of frames that only cross choose for the frames the first left alone.
   for (int a = 0; a < 2; ++a) {
-    std::vector<char> affected(n);
-    for (int f = 0; f < n; ++f) affected[f] = found[f].limb_depth[a] > tol;
-    for (const auto& [first, last] : runs(affected)) {
-      // Abduction when it clears the whole run; else the best scoring way.
-      std::array<int, kWays> score{};
-      int frames = 0;
-      for (int f = first; f <= last; ++f)
-        if (affected[f]) {
-          ++frames;
-          score[0] += try_way(f, 0);
+    std::vector<char> deep(n), chosen(n, 0);
+    for (int f = 0; f < n; ++f) deep[f] = found[f].limb_depth[a] > tol;
+    const auto choose = [&](const std::vector<char>& affected) {
+      for (const auto& [first, last] : runs(affected)) {
+        const long frames = std::count(affected.begin() + first, affected.begin() + last + 1, 1);
+        std::array<long, kWays> score{};
+        const auto score_of = [&](int w) {
+          for (int f = first; f <= last; ++f) {
+            if (!affected[f]) continue;
+            const int q = try_way(f, w);
+            score[w] += (q >= 1 ? 2 * frames + 1 : 0) + (q == 2 ? 1 : 0);
+          }
+        };
+        score_of(0);
+        if (score[0] < frames * (2 * frames + 2))
+          for (int w = 1; w < kWays; ++w) score_of(w);
+        const int best = static_cast<int>(std::max_element(score.begin(), score.end()) - score.begin());
+        for (int f = first; f <= last; ++f) {
+          if (chosen[f]) continue;
+          way[a][f] = best;
+          chosen[f] = 1;
         }
-      if (score[0] < frames)
-        for (int w = 1; w < kWays; ++w)
-          for (int f = first; f <= last; ++f) score[w] += affected[f] && try_way(f, w);
-      const int chosen = static_cast<int>(std::max_element(score.begin(), score.end()) - score.begin());
-      for (int f = first; f <= last; ++f) way[a][f] = chosen;
-    }
+      }
+    };
+    choose(deep);
   }
 
   std::array<std::vector<double>, kChannels> need, applied;
@@ -169,7 +210,7 @@ void repair_intersections(const body::Body& body, const body::SelfIntersection& 
   for (int round = 0; round < kRounds; ++round) {
     bool grew = false;
     for (int f = 0; f < n; ++f) {
-      if (!found[f].intersects(tol)) continue;
+      if (!found[f].needs_repair(tol)) continue;
       Corrections c = at(applied, f);
       repair.search(f, c, found[f], {way[0][f], way[1][f]});
       for (int ch = 0; ch < kChannels; ++ch) {

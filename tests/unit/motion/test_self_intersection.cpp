@@ -52,6 +52,26 @@ TEST(SelfIntersection, DetectsAnArmInTheTorso) {
   EXPECT_GT(r.vertices, 10);
 }
 
+TEST(SelfIntersection, ExactCrossingsSeeWhatTheNearestVertexTestMisses) {
+  const body::Body& b = body::test::body();
+  // The left arm down and swung across the back: its hand sits inside the
+  // lower back, deeper than the nearest-vertex test's reach.
+  body::Pose p = body::rest_pose(b.skeleton);
+  p.local[b.skeleton.require("LeftArm")] = body::rot_x(0.6) * body::rot_z(-1.2);
+  const geometry::Points posed = body::pose_body(b, p).vertices;
+  const body::SelfIntersection exact(b);
+  const body::FrameIntersection r = exact.check(posed);
+  EXPECT_FALSE(r.intersects(exact.options().tolerance));  // the depth verdict is blind here
+  EXPECT_GT(r.limb_crossings[0], 20);
+  EXPECT_EQ(r.limb_crossings[1], 0);
+  EXPECT_TRUE(r.needs_repair(exact.options().tolerance));
+  body::IntersectionOptions o;
+  o.exact = false;
+  EXPECT_EQ(body::SelfIntersection(b, o).check(posed).crossings, 0);
+  // Rest poses have no crossings between regions.
+  EXPECT_EQ(exact.check(b.rest.vertices).crossings, 0);
+}
+
 TEST(SelfIntersection, SequencesResolveSmallIntersections) {
   const body::Body& b = body::test::body();
   // 40 frames: the left arm sinks into the torso (a little) and back.
@@ -69,7 +89,9 @@ TEST(SelfIntersection, SequencesResolveSmallIntersections) {
   for (int f = 0; f < seq.num_frames; ++f) {
     std::copy(seq.positions.begin() + static_cast<std::ptrdiff_t>(f) * b.num_vertices() * 3,
               seq.positions.begin() + static_cast<std::ptrdiff_t>(f + 1) * b.num_vertices() * 3, v.data());
-    EXPECT_LE(si.check(v).depth, 0.004) << "frame " << f;
+    const body::FrameIntersection r = si.check(v);
+    EXPECT_LE(r.depth, 0.004) << "frame " << f;
+    EXPECT_EQ(r.limb_crossings[0], 0) << "frame " << f;  // the arm's exact crossings cleared too
   }
 }
 

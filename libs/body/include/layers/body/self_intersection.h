@@ -12,6 +12,17 @@
 // inside, by depth -(x - h) . n. Bounding boxes skip pairs that cannot
 // touch. Depths are attributed to the limb that should move (an arm, or
 // both legs for leg/leg and leg/torso contact).
+//
+// That test is blind where it matters most for cloth: in the blend zones
+// (a hand sunk into the buttocks, an armpit folding into the chest, the
+// inner thighs pressing through each other at the groin) and deeper than
+// `max_distance`. With `exact` on, check() also counts the exact crossings
+// (layers::geometry::crossings, one face tree per region) between faces of different
+// regions: every face is labelled by the part that carries at least half
+// of its skinning weight (torso otherwise, blend zones included), and a
+// crossing between two regions is attributed as above. Crossings inside
+// one region (fingers, toes, elbow and knee pits, the groin's own folds)
+// are not counted: no limb turn clears them.
 #pragma once
 
 #include <array>
@@ -30,13 +41,24 @@ const char* body_part_name(BodyPart part);
 struct IntersectionOptions {
   double tolerance = 0.004;    // m: deeper than this counts as intersecting
   double max_distance = 0.06;  // m: farther from the nearest surface vertex is not tested
+  bool exact = true;           // also count exact crossings between regions
 };
 
 struct FrameIntersection {
   double depth = 0.0;                  // deepest penetration found (m)
   std::array<double, 4> limb_depth{};  // left arm, right arm, left leg, right leg
   int vertices = 0;                    // vertices deeper than the tolerance
+  // Exact crossings between regions (face pairs), all and per limb.
+  int crossings = 0;
+  std::array<int, 4> limb_crossings{};
+  // The verdict that drops frames: deeper than the tolerance.
   bool intersects(double tolerance) const { return depth > tolerance; }
+  // What the repair clears where its limits allow: the verdict above and
+  // every exact crossing between regions.
+  bool needs_repair(double tolerance) const { return intersects(tolerance) || crossings > 0; }
+  bool limb_needs_repair(int limb, double tolerance) const {
+    return limb_depth[limb] > tolerance || limb_crossings[limb] > 0;
+  }
 };
 
 // Keeps a reference to `body`, which must outlive it.
@@ -52,11 +74,15 @@ class SelfIntersection {
   const std::vector<int>& part() const { return part_; }
 
  private:
+  void count_crossings(const geometry::Points& posed, FrameIntersection& out) const;
+
   const Body& body_;
   IntersectionOptions options_;
   std::vector<int> part_;
   std::array<std::vector<int>, kNumBodyParts> members_;  // core vertices per part
   std::vector<char> near_blend_;                         // core vertex next to a blend zone
+  std::vector<signed char> region_;                      // per face: the part carrying >= 1/2 of its weight
+  std::array<std::vector<int>, kNumBodyParts> region_faces_;
 };
 
 }  // namespace layers::body

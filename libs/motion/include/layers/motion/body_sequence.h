@@ -35,6 +35,12 @@ struct IntersectionReport {
   int remaining = 0;                             // frames still intersecting after resolution
   int dropped = 0;                               // frames removed by the policy
   double worst_before = 0.0, worst_after = 0.0;  // deepest penetration (m), before and after resolution
+  // Exact crossings between body regions (SelfIntersection's `exact`):
+  // crossing face pairs summed over the frames, before and after
+  // resolution, and whether the repair aimed at them too (false: that left
+  // frames deep, and the depth alone was repaired instead).
+  long crossing_before = 0, crossing_after = 0;
+  bool exact_repair = true;
   double share_intersecting() const { return frames ? static_cast<double>(intersecting) / frames : 0.0; }
 };
 
