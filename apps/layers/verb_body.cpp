@@ -117,10 +117,11 @@ VerbRun register_body(CLI::App& app, const Global&) {
         "%d resolved, %d remaining (worst %.1f mm), %d dropped\n",
         report.intersecting, report.frames, 100.0 * report.share_intersecting(), config.intersection_tolerance_mm,
         1000.0 * report.worst_before, report.resolved, report.remaining, 1000.0 * report.worst_after, report.dropped);
-    std::printf("exact crossings between body regions: %.1f face pairs per frame before repair, %.1f after%s\n",
-                report.frames ? static_cast<double>(report.crossing_before) / report.frames : 0.0,
-                report.frames ? static_cast<double>(report.crossing_after) / report.frames : 0.0,
-                report.exact_repair ? "" : " (aiming at them left frames deep: the depth alone was repaired)");
+    std::printf(
+        "exact crossings between body regions: %.1f face pairs per frame before repair, %.1f after (the repair "
+        "aimed at those of %d of 4 limbs)\n",
+        report.frames ? static_cast<double>(report.crossing_before) / report.frames : 0.0,
+        report.frames ? static_cast<double>(report.crossing_after) / report.frames : 0.0, report.crossing_limbs);
 
     if (!a->export_format.empty()) {
       std::string dir =

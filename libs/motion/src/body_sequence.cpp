@@ -34,6 +34,7 @@ BodySequence generate_body_sequence(const body::Body& body, const MotionSource& 
   std::vector<body::FrameIntersection> found(n);
   IntersectionReport report;
   report.frames = n;
+  report.crossing_limbs = options.intersection.exact ? 4 : 0;
   for (int f = 0; f < n; ++f) {
     poses[f] = motion.pose(f);
     found[f] = check_pose(body, si, poses[f]);
@@ -48,29 +49,39 @@ BodySequence generate_body_sequence(const body::Body& body, const MotionSource& 
   if (options.resolve && needs_repair(found)) {
     std::vector<char> was_bad(n);
     for (int f = 0; f < n; ++f) was_bad[f] = found[f].intersects(tol);
-    const RepairLimits limits{options.max_arm_correction, options.max_leg_correction};
     const std::vector<body::Pose> original = poses;
-    repair_intersections(body, si, limits, poses, found);
+    const std::vector<body::FrameIntersection> before = found;
     const auto deep = [&](const std::vector<body::FrameIntersection>& r) {
       return std::count_if(r.begin(), r.end(), [&](const body::FrameIntersection& x) { return x.intersects(tol); });
     };
-    // Clearing the exact crossings moves more and can leave frames deeper
-    // than the tolerance that a repair of the depth alone clears: then the
-    // depth alone is repaired (a frame is never lost to the crossings).
-    if (options.intersection.exact && deep(found) > 0) {
-      body::IntersectionOptions depth_only = options.intersection;
-      depth_only.exact = false;
-      const body::SelfIntersection plain(body, depth_only);
-      std::vector<body::Pose> plain_poses = original;
-      std::vector<body::FrameIntersection> plain_found(n);
-      for (int f = 0; f < n; ++f) plain_found[f] = check_pose(body, plain, original[f]);
-      repair_intersections(body, plain, limits, plain_poses, plain_found);
-      if (deep(plain_found) < deep(found)) {
-        poses = std::move(plain_poses);
-        for (int f = 0; f < n; ++f) found[f] = check_pose(body, si, poses[f]);
-        report.exact_repair = false;
+    RepairLimits limits{options.max_arm_correction, options.max_leg_correction, {}};
+    limits.crossings.fill(options.intersection.exact);
+    repair_intersections(body, si, limits, poses, found);
+    // Aiming at the crossings moves more, and the spread of a large turn
+    // can push a neighbouring frame's arm into the body. Frames the depth
+    // alone would clear are never lost to that: the limbs left deep stop
+    // aiming at their crossings, then the legs too, then every limb, and
+    // the repair with the fewest deep frames is kept.
+    // (Legs turned outwards can press a thigh into a hanging hand, so the
+    // second try also leaves the legs' crossings.)
+    for (int attempt = 0; attempt < 3 && options.intersection.exact && deep(found) > 0; ++attempt) {
+      RepairLimits fewer = limits;
+      for (int limb = 0; limb < 4; ++limb) {
+        bool drop = attempt == 2 || (attempt == 1 && limb >= 2);
+        for (int f = 0; f < n && !drop; ++f) drop = found[f].limb_depth[limb] > tol;
+        if (drop) fewer.crossings[limb] = false;
+      }
+      std::vector<body::Pose> p = original;
+      std::vector<body::FrameIntersection> r = before;
+      repair_intersections(body, si, fewer, p, r);
+      if (deep(r) < deep(found)) {
+        poses = std::move(p);
+        found = std::move(r);
+        limits = fewer;
       }
     }
+    report.crossing_limbs = static_cast<int>(std::count(limits.crossings.begin(), limits.crossings.end(), true));
+    for (int f = 0; f < n; ++f) found[f] = check_pose(body, si, poses[f]);
     for (int f = 0; f < n; ++f) report.resolved += was_bad[f] && !found[f].intersects(tol);
   }
 

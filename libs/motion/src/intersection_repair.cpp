@@ -67,7 +67,16 @@ class Repair {
     geometry::Points v;
     const body::Pose p = corrected(body_.skeleton, limbs_, original_[f], c);
     body::skin(body_.rest.vertices, body_.weights, body_.skeleton, body::forward_kinematics(body_.skeleton, p), v);
-    return si_.check(v);
+    return masked(si_.check(v));
+  }
+  // The crossings of limbs not aimed at are left out.
+  body::FrameIntersection masked(body::FrameIntersection r) const {
+    r.crossings = 0;
+    for (int limb = 0; limb < 4; ++limb) {
+      if (!limits_.crossings[limb]) r.limb_crossings[limb] = 0;
+      r.crossings += r.limb_crossings[limb];
+    }
+    return r;
   }
   body::Pose pose(int f, const Corrections& c) const { return corrected(body_.skeleton, limbs_, original_[f], c); }
 
@@ -152,6 +161,8 @@ void repair_intersections(const body::Body& body, const body::SelfIntersection& 
   const int n = static_cast<int>(poses.size());
   const std::vector<body::Pose> original = poses;
   const Repair repair(body, checker, limits, original);
+  // Work on the crossings aimed at; `found` gets the full check back at the end.
+  for (body::FrameIntersection& r : found) r = repair.masked(r);
 
   // Which way each arm goes (abduct, forward, backward), per frame.
   std::array<std::vector<int>, 2> way{std::vector<int>(n, 0), std::vector<int>(n, 0)};

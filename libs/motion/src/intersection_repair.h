@@ -8,6 +8,7 @@
 // that still fail.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "layers/body/self_intersection.h"
@@ -17,6 +18,9 @@ namespace layers::motion {
 struct RepairLimits {
   double arm = 0.9;  // rad
   double leg = 0.35;
+  // Per limb (left arm, right arm, left leg, right leg): whether its exact
+  // crossings are aimed at (else only its depth is).
+  std::array<bool, 4> crossings{true, true, true, true};
 };
 
 // `found` holds the check of every pose and is updated with the result.

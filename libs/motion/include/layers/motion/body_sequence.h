@@ -37,10 +37,10 @@ struct IntersectionReport {
   double worst_before = 0.0, worst_after = 0.0;  // deepest penetration (m), before and after resolution
   // Exact crossings between body regions (SelfIntersection's `exact`):
   // crossing face pairs summed over the frames, before and after
-  // resolution, and whether the repair aimed at them too (false: that left
-  // frames deep, and the depth alone was repaired instead).
+  // resolution, and for how many limbs the repair aimed at them (4, fewer
+  // where aiming at them left frames deep that the depth alone clears).
   long crossing_before = 0, crossing_after = 0;
-  bool exact_repair = true;
+  int crossing_limbs = 0;
   double share_intersecting() const { return frames ? static_cast<double>(intersecting) / frames : 0.0; }
 };
 
