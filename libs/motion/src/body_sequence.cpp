@@ -34,7 +34,7 @@ BodySequence generate_body_sequence(const body::Body& body, const MotionSource& 
   std::vector<body::FrameIntersection> found(n);
   IntersectionReport report;
   report.frames = n;
-  report.crossing_limbs = options.intersection.exact ? 4 : 0;
+  report.crossing_limbs = options.intersection.exact ? 2 : 0;
   for (int f = 0; f < n; ++f) {
     poses[f] = motion.pose(f);
     found[f] = check_pose(body, si, poses[f]);
@@ -55,19 +55,21 @@ BodySequence generate_body_sequence(const body::Body& body, const MotionSource& 
       return std::count_if(r.begin(), r.end(), [&](const body::FrameIntersection& x) { return x.intersects(tol); });
     };
     RepairLimits limits{options.max_arm_correction, options.max_leg_correction, {}};
-    limits.crossings.fill(options.intersection.exact);
+    // The arms' crossings only: clearing the thighs' (a spin's, a squat's)
+    // takes the legs' whole 0.35 rad, moves the feet apart by a quarter of a
+    // metre and presses skirts and dresses into the body (measured on
+    // small's scenes).
+    limits.crossings = {options.intersection.exact, options.intersection.exact, false, false};
     repair_intersections(body, si, limits, poses, found);
     // Aiming at the crossings moves more, and the spread of a large turn
     // can push a neighbouring frame's arm into the body. Frames the depth
-    // alone would clear are never lost to that: the limbs left deep stop
-    // aiming at their crossings, then the legs too, then every limb, and
-    // the repair with the fewest deep frames is kept.
-    // (Legs turned outwards can press a thigh into a hanging hand, so the
-    // second try also leaves the legs' crossings.)
-    for (int attempt = 0; attempt < 3 && options.intersection.exact && deep(found) > 0; ++attempt) {
+    // alone would clear are never lost to that: the arms left deep stop
+    // aiming at their crossings, then both do, and the repair with the
+    // fewest deep frames is kept.
+    for (int attempt = 0; attempt < 2 && options.intersection.exact && deep(found) > 0; ++attempt) {
       RepairLimits fewer = limits;
       for (int limb = 0; limb < 4; ++limb) {
-        bool drop = attempt == 2 || (attempt == 1 && limb >= 2);
+        bool drop = attempt == 1;
         for (int f = 0; f < n && !drop; ++f) drop = found[f].limb_depth[limb] > tol;
         if (drop) fewer.crossings[limb] = false;
       }

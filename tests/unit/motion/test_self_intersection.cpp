@@ -85,7 +85,7 @@ TEST(SelfIntersection, SequencesResolveSmallIntersections) {
   EXPECT_LE(seq.intersection.worst_after, 0.004);
   EXPECT_GT(seq.intersection.crossing_before, 0);
   EXPECT_EQ(seq.intersection.crossing_after, 0);
-  EXPECT_EQ(seq.intersection.crossing_limbs, 4);
+  EXPECT_EQ(seq.intersection.crossing_limbs, 2);  // the arms
   // Every written frame is clean.
   const body::SelfIntersection si(b);
   geometry::Points v(b.num_vertices(), 3);
