@@ -37,7 +37,26 @@ struct Box {
   bool contains(const Eigen::RowVector3f& p, float margin) const {
     return (p.array() >= lo.array() - margin).all() && (p.array() <= hi.array() + margin).all();
   }
+  // Farther apart than `margin` along some axis.
+  bool apart(const Box& o, float margin) const {
+    return (lo.array() > o.hi.array() + margin).any() || (o.lo.array() > hi.array() + margin).any();
+  }
 };
+
+// The part pairs tested (a against b's surface, or a's faces against b's):
+// each arm against the rest, each leg against the torso and the other leg.
+constexpr std::array<std::pair<int, int>, 10> kPairs = {
+    {{1, 0}, {2, 0}, {1, 3}, {1, 4}, {2, 3}, {2, 4}, {1, 2}, {3, 4}, {3, 0}, {4, 0}}};
+
+// The limbs a crossing between parts a and b is attributed to: the arms
+// among them, else both legs.
+std::array<bool, 4> moved_limbs(int a, int b) {
+  std::array<bool, 4> m{};
+  m[0] = a == 1 || b == 1;
+  m[1] = a == 2 || b == 2;
+  if (!m[0] && !m[1]) m[2] = m[3] = true;
+  return m;
+}
 
 // Limb index (0..3) of a part, -1 for the torso.
 int limb(int part) { return part - 1; }
@@ -99,21 +118,20 @@ SelfIntersection::SelfIntersection(const Body& body, IntersectionOptions options
 }
 
 FrameIntersection SelfIntersection::check(const geometry::Points& posed) const {
+  return check(posed, {true, true, true, true});
+}
+
+FrameIntersection SelfIntersection::check(const geometry::Points& posed, const std::array<bool, 4>& crossings) const {
   FrameIntersection out;
   const geometry::Points normals = geometry::vertex_normals(posed, body_.rest.faces);
   std::array<Box, kNumBodyParts> box;
   for (int p = 0; p < kNumBodyParts; ++p)
     for (int v : members_[p]) box[p].add(posed.row(v));
 
-  // Which surfaces each part's vertices are tested against.
-  static const std::vector<std::pair<int, int>> pairs = {{1, 0}, {2, 0}, {1, 3}, {1, 4}, {2, 3},
-                                                         {2, 4}, {1, 2}, {3, 4}, {3, 0}, {4, 0}};
   const float gate = static_cast<float>(options_.max_distance);
   std::array<std::unique_ptr<geometry::PointIndex>, kNumBodyParts> index;
-  for (const auto& [a, b] : pairs) {
-    const bool apart =
-        (box[a].lo.array() > box[b].hi.array() + gate).any() || (box[b].lo.array() > box[a].hi.array() + gate).any();
-    if (apart) continue;
+  for (const auto& [a, b] : kPairs) {
+    if (box[a].apart(box[b], gate)) continue;
     if (!index[b]) {
       geometry::Points pts(static_cast<Eigen::Index>(members_[b].size()), 3);
       for (std::size_t i = 0; i < members_[b].size(); ++i)
@@ -141,14 +159,15 @@ FrameIntersection SelfIntersection::check(const geometry::Points& posed) const {
       }
     }
   }
-  if (options_.exact) count_crossings(posed, out);
+  if (options_.exact) count_crossings(posed, crossings, out);
   return out;
 }
 
-void SelfIntersection::count_crossings(const geometry::Points& posed, FrameIntersection& out) const {
-  // One face tree per region (only the regions a pair needs, only when the
-  // two regions' boxes overlap); a pair's count is crossings() of one
-  // region's faces against the other's tree.
+void SelfIntersection::count_crossings(const geometry::Points& posed, const std::array<bool, 4>& wanted,
+                                       FrameIntersection& out) const {
+  // One face tree per region (only the regions a wanted pair needs, only
+  // when the two regions' boxes overlap); a pair's count is crossings() of
+  // one region's faces against the other's tree.
   std::array<Box, kNumBodyParts> box;
   for (int p = 0; p < kNumBodyParts; ++p)
     for (int f : region_faces_[p])
@@ -161,26 +180,16 @@ void SelfIntersection::count_crossings(const geometry::Points& posed, FrameInter
   };
   std::array<std::unique_ptr<geometry::FaceTree>, kNumBodyParts> tree;
   std::array<std::unique_ptr<geometry::TriMesh>, kNumBodyParts> mesh;
-  // Region pairs (a's faces against b's tree): each arm against the rest,
-  // each leg against the torso and the other leg.
-  static const std::vector<std::pair<int, int>> pairs = {{1, 0}, {2, 0}, {1, 3}, {1, 4}, {2, 3},
-                                                         {2, 4}, {1, 2}, {3, 4}, {3, 0}, {4, 0}};
-  for (const auto& [a, b] : pairs) {
-    const bool apart = (box[a].lo.array() > box[b].hi.array()).any() || (box[b].lo.array() > box[a].hi.array()).any();
-    if (apart || region_faces_[a].empty() || region_faces_[b].empty()) continue;
+  for (const auto& [a, b] : kPairs) {
+    const std::array<bool, 4> moved = moved_limbs(a, b);
+    bool asked = false;
+    for (int limb = 0; limb < 4; ++limb) asked = asked || (moved[limb] && wanted[limb]);
+    if (!asked || region_faces_[a].empty() || region_faces_[b].empty() || box[a].apart(box[b], 0.0f)) continue;
     if (!mesh[a]) mesh[a] = std::make_unique<geometry::TriMesh>(submesh(a));
     if (!tree[b]) tree[b] = std::make_unique<geometry::FaceTree>(submesh(b));
     const int n = static_cast<int>(geometry::crossings(*mesh[a], *tree[b]).pairs);
-    if (n == 0) continue;
     out.crossings += n;
-    // Arms move for any contact they are part of; legs share the rest.
-    const bool arm_a = a == 1 || a == 2, arm_b = b == 1 || b == 2;
-    if (arm_a) out.limb_crossings[limb(a)] += n;
-    if (arm_b) out.limb_crossings[limb(b)] += n;
-    if (!arm_a && !arm_b) {
-      out.limb_crossings[2] += n;
-      out.limb_crossings[3] += n;
-    }
+    for (int limb = 0; limb < 4; ++limb) out.limb_crossings[limb] += moved[limb] ? n : 0;
   }
 }
 

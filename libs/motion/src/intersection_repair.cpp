@@ -67,9 +67,10 @@ class Repair {
     geometry::Points v;
     const body::Pose p = corrected(body_.skeleton, limbs_, original_[f], c);
     body::skin(body_.rest.vertices, body_.weights, body_.skeleton, body::forward_kinematics(body_.skeleton, p), v);
-    return masked(si_.check(v));
+    return si_.check(v, limits_.crossings);
   }
-  // The crossings of limbs not aimed at are left out.
+  // A full check seen as check() gives it: the crossings of limbs not
+  // aimed at left out.
   body::FrameIntersection masked(body::FrameIntersection r) const {
     r.crossings = 0;
     for (int limb = 0; limb < 4; ++limb) {
@@ -161,7 +162,7 @@ void repair_intersections(const body::Body& body, const body::SelfIntersection& 
   const int n = static_cast<int>(poses.size());
   const std::vector<body::Pose> original = poses;
   const Repair repair(body, checker, limits, original);
-  // Work on the crossings aimed at; `found` gets the full check back at the end.
+  // Work on the crossings aimed at (the caller re-checks for the full count).
   for (body::FrameIntersection& r : found) r = repair.masked(r);
 
   // Which way each arm goes (abduct, forward, backward), per frame.
@@ -176,36 +177,29 @@ void repair_intersections(const body::Body& body, const body::SelfIntersection& 
     }
     return clears[f][w];
   };
-  // Per run of frames, the way that passes the depth verdict on the most
-  // frames, then clears the exact crossings on the most; abduction when it
-  // clears every frame of the run. Runs of deep frames choose first; runs
-  // of frames that only cross choose for the frames the first left alone.
+  // Per run of frames where an arm is deep, the way that passes the depth
+  // verdict on the most frames, then clears the exact crossings on the
+  // most; abduction when it clears every frame of the run. Frames that
+  // only cross keep abduction, which turns the arm away from the body.
   for (int a = 0; a < 2; ++a) {
-    std::vector<char> deep(n), chosen(n, 0);
+    std::vector<char> deep(n);
     for (int f = 0; f < n; ++f) deep[f] = found[f].limb_depth[a] > tol;
-    const auto choose = [&](const std::vector<char>& affected) {
-      for (const auto& [first, last] : runs(affected)) {
-        const long frames = std::count(affected.begin() + first, affected.begin() + last + 1, 1);
-        std::array<long, kWays> score{};
-        const auto score_of = [&](int w) {
-          for (int f = first; f <= last; ++f) {
-            if (!affected[f]) continue;
-            const int q = try_way(f, w);
-            score[w] += (q >= 1 ? 2 * frames + 1 : 0) + (q == 2 ? 1 : 0);
-          }
-        };
-        score_of(0);
-        if (score[0] < frames * (2 * frames + 2))
-          for (int w = 1; w < kWays; ++w) score_of(w);
-        const int best = static_cast<int>(std::max_element(score.begin(), score.end()) - score.begin());
+    for (const auto& [first, last] : runs(deep)) {
+      const long frames = std::count(deep.begin() + first, deep.begin() + last + 1, 1);
+      std::array<long, kWays> score{};
+      const auto score_of = [&](int w) {
         for (int f = first; f <= last; ++f) {
-          if (chosen[f]) continue;
-          way[a][f] = best;
-          chosen[f] = 1;
+          if (!deep[f]) continue;
+          const int q = try_way(f, w);
+          score[w] += (q >= 1 ? 2 * frames + 1 : 0) + (q == 2 ? 1 : 0);
         }
-      }
-    };
-    choose(deep);
+      };
+      score_of(0);
+      if (score[0] < frames * (2 * frames + 2))
+        for (int w = 1; w < kWays; ++w) score_of(w);
+      const int best = static_cast<int>(std::max_element(score.begin(), score.end()) - score.begin());
+      for (int f = first; f <= last; ++f) way[a][f] = best;
+    }
   }
 
   std::array<std::vector<double>, kChannels> need, applied;

@@ -23,7 +23,8 @@ struct RepairLimits {
   std::array<bool, 4> crossings{true, true, true, true};
 };
 
-// `found` holds the check of every pose and is updated with the result.
+// `found` holds the check of every pose and is updated with the result,
+// counting only the crossings of the limbs `limits.crossings` aims at.
 void repair_intersections(const body::Body& body, const body::SelfIntersection& checker, const RepairLimits& limits,
                           std::vector<body::Pose>& poses, std::vector<body::FrameIntersection>& found);
 

@@ -54,11 +54,8 @@ struct FrameIntersection {
   // The verdict that drops frames: deeper than the tolerance.
   bool intersects(double tolerance) const { return depth > tolerance; }
   // What the repair clears where its limits allow: the verdict above and
-  // every exact crossing between regions.
+  // every exact crossing counted.
   bool needs_repair(double tolerance) const { return intersects(tolerance) || crossings > 0; }
-  bool limb_needs_repair(int limb, double tolerance) const {
-    return limb_depth[limb] > tolerance || limb_crossings[limb] > 0;
-  }
 };
 
 // Keeps a reference to `body`, which must outlive it.
@@ -68,13 +65,17 @@ class SelfIntersection {
 
   // `posed`: the skin vertices of one frame (same order as body.rest).
   FrameIntersection check(const geometry::Points& posed) const;
+  // The same, counting only the crossings attributed to the limbs marked
+  // in `crossings` (left arm, right arm, left leg, right leg): the region
+  // pairs no marked limb moves for are not tested.
+  FrameIntersection check(const geometry::Points& posed, const std::array<bool, 4>& crossings) const;
 
   const IntersectionOptions& options() const { return options_; }
   // Per skin vertex its part, or -1 in a blend zone.
   const std::vector<int>& part() const { return part_; }
 
  private:
-  void count_crossings(const geometry::Points& posed, FrameIntersection& out) const;
+  void count_crossings(const geometry::Points& posed, const std::array<bool, 4>& wanted, FrameIntersection& out) const;
 
   const Body& body_;
   IntersectionOptions options_;
