@@ -109,13 +109,13 @@ int garment_layer(const std::string& type) {
 }
 
 GarmentMesh build_garment(const std::string& type, const TPoseBody& body, const GarmentParams& params,
-                          std::uint64_t seed, const std::vector<const GarmentMesh*>& under) {
+                          std::uint64_t seed, const std::vector<const GarmentMesh*>& under, const EaseProfile* room) {
   const int layer = garment_layer(type);
   validate(params);
   const garment::Landmarks marks = garment::measure(body);
   Envelope env(body);
   for (const GarmentMesh* g : under) env.add_garment(g->mesh(), body);
-  const FitContext ctx{env, marks, std::min(0.01, params.edge_length / 2)};
+  const FitContext ctx{env, marks, std::min(0.01, params.edge_length / 2), room};
 
   garment::Rng rng(mix(seed, type_salt(type)));
   Pattern pattern;
@@ -145,7 +145,8 @@ GarmentMesh build_garment(const std::string& type, const body::Body& body, const
 }
 
 std::vector<GarmentMesh> build_outfit(const std::vector<std::string>& inner, const std::string& outer,
-                                      const TPoseBody& body, const GarmentParams& params, std::uint64_t seed) {
+                                      const TPoseBody& body, const GarmentParams& params, std::uint64_t seed,
+                                      const EaseProfile* room) {
   for (const auto& t : inner)
     if (garment_layer(t) != 0) throw InputError(kConfig, "inner", "inner garment types", "'" + t + "'");
   if (!outer.empty() && garment_layer(outer) != 1)
@@ -168,7 +169,7 @@ std::vector<GarmentMesh> build_outfit(const std::vector<std::string>& inner, con
   for (std::size_t k = 0; k < order.size(); ++k) {
     std::vector<const GarmentMesh*> under;
     for (const GarmentMesh& g : out) under.push_back(&g);
-    out.push_back(build_garment(order[k], body, params, mix(seed, k), under));
+    out.push_back(build_garment(order[k], body, params, mix(seed, k), under, room));
   }
   return out;
 }

@@ -261,7 +261,7 @@ TopQuarters build_top(Pattern& pattern, const FitContext& ctx, const TopSpec& sp
   if (y_ap - spec.hem < 4 * ctx.step) throw Error("garment top: hem too close to the armpit");
 
   // Neckline ends (angles where the armpit row reaches x = +-n_w).
-  const Radial top_row = horizontal_section(ctx.env, y_ap, torso_section(y_ap, spec.ease, spec.hang));
+  const Radial top_row = horizontal_section(ctx.env, y_ap, torso_section(ctx, y_ap, spec.ease, spec.hang));
   const double a_min = std::min(top_row.point(0.0).x(), -top_row.point(kPi).x());
   const double n_w = std::min(ctx.marks.neck_half_width + spec.neck_extra, 0.6 * a_min);
   const double fl = angle_at_x(top_row, n_w, 0.0, kPi / 2), fr = angle_at_x(top_row, -n_w, kPi / 2, kPi);

@@ -95,10 +95,10 @@ std::vector<double> column_fractions(const std::vector<body::Vec3>& arc, int n, 
 
 }  // namespace
 
-SectionSpec torso_section(double y, const EaseProfile& ease, const EaseProfile& hang) {
+SectionSpec torso_section(const FitContext& ctx, double y, const EaseProfile& ease, const EaseProfile& hang) {
   SectionSpec spec;
   spec.parts = kTorsoParts;
-  spec.ease = ease(y);
+  spec.ease = ctx.room ? std::max(ease(y), (*ctx.room)(y)) : ease(y);
   spec.hang = hang(y);
   return spec;
 }
@@ -108,7 +108,7 @@ TubeRows tube_rows(const FitContext& ctx, const std::vector<double>& heights, co
                    const std::vector<double>& back_knots, const std::vector<double>& x_uniform) {
   TubeRows out;
   std::vector<Radial> sections;
-  for (double y : heights) sections.push_back(horizontal_section(ctx.env, y, torso_section(y, ease, hang)));
+  for (double y : heights) sections.push_back(horizontal_section(ctx.env, y, torso_section(ctx, y, ease, hang)));
   auto build = [&](const std::vector<double>& knots, std::vector<std::vector<body::Vec3>>& rows,
                    std::vector<int>& cols) {
     const int segs = static_cast<int>(knots.size()) - 1;

@@ -8,11 +8,13 @@
 #include <algorithm>
 #include <cmath>
 #include <ctime>
+#include <optional>
 
 #include "layers/body/body_arrays.h"
 #include "layers/body/pose_body.h"
 #include "layers/core/error.h"
 #include "layers/core/progress.h"
+#include "layers/garment/garment_leg_room.h"
 #include "layers/generate/body_data.h"
 #include "layers/generate/outfit.h"
 #include "layers/motion/body_sequence.h"
@@ -89,8 +91,10 @@ SceneSimulation::SceneSimulation(const GeneratorConfig& config, const SceneSpec&
 }
 
 void SceneSimulation::add_garments() {
-  garments_ = fit_outfit(generated_.body, spec_, config_.garments.fit);
   const body::BodyFrame t_pose = body::pose_body(generated_.body, generated_.body.t_pose);
+  std::optional<garment::EaseProfile> room;
+  if (config_.garments.leg_room) room = leg_room(t_pose);
+  garments_ = fit_outfit(generated_.body, spec_, config_.garments.fit, room ? &*room : nullptr);
   place_ = rigid_fit(t_pose.vertices, body_frame(0));
   for (auto& g : garments_) {
     geometry::TriMesh rest;
@@ -107,6 +111,24 @@ void SceneSimulation::add_garments() {
     const std::string what = spec_.id + " " + g.name;
     solver_.add_cloth(sim::Cloth(rest, sim::to_material(garment_attributes(g.attributes, what), {}, what), options));
   }
+}
+
+garment::EaseProfile SceneSimulation::leg_room(const body::BodyFrame& t_pose) const {
+  // Every frame of the motion in the T-pose's pelvis frame (root joint).
+  const motion::BodySequence& motion = generated_.sequence;
+  const Eigen::Quaterniond to_t_pose = t_pose.joints.rotation[0];
+  const Eigen::Vector3d t_pose_root = t_pose.joints.position[0];
+  std::vector<geometry::Points> frames;
+  frames.reserve(static_cast<std::size_t>(motion.num_frames));
+  for (int f = 0; f < motion.num_frames; ++f) {
+    const float* q = motion.root_rot.data() + static_cast<std::ptrdiff_t>(f) * 4;
+    const float* r = motion.root.data() + static_cast<std::ptrdiff_t>(f) * 3;
+    const Eigen::Quaterniond root(q[0], q[1], q[2], q[3]);
+    Eigen::Isometry3d to_pelvis = Eigen::Translation3d(t_pose_root) * (to_t_pose * root.conjugate()) *
+                                  Eigen::Translation3d(-Eigen::Vector3d(r[0], r[1], r[2]));
+    frames.push_back((to_pelvis * body_frame(f).cast<double>().transpose()).transpose().cast<float>());
+  }
+  return garment::leg_room(garment::t_pose_body(generated_.body), frames);
 }
 
 geometry::Points SceneSimulation::body_frame(int frame) const {

@@ -40,6 +40,7 @@
 #include "layers/core/config.h"
 #include "layers/garment/garment_body.h"
 #include "layers/garment/garment_pattern.h"
+#include "layers/garment/garment_pieces.h"
 #include "layers/geometry/penetration.h"
 
 namespace layers::garment {
@@ -104,17 +105,22 @@ const std::vector<std::string>& garment_types();
 int garment_layer(const std::string& type);
 
 // Builds one garment around `body`, over the garments in `under` (their
-// vertices are enclosed with the layer clearance). Deterministic for a seed.
+// vertices are enclosed with the layer clearance). With `room`, its torso
+// sections are at least that loose per height (garment_leg_room.h).
+// Deterministic for a seed.
 GarmentMesh build_garment(const std::string& type, const TPoseBody& body, const GarmentParams& params,
-                          std::uint64_t seed, const std::vector<const GarmentMesh*>& under = {});
+                          std::uint64_t seed, const std::vector<const GarmentMesh*>& under = {},
+                          const EaseProfile* room = nullptr);
 GarmentMesh build_garment(const std::string& type, const body::Body& body, const GarmentParams& params,
                           std::uint64_t seed);
 
 // An outfit: `inner` is one type, or "tshirt" with "pants" or "skirt";
 // `outer` is "jacket", "jacket_hood" or "" (none). Returns the inner
 // garments (bottom first) then the outer one, each with its layer set.
+// `room` as for build_garment, for every garment of the outfit.
 std::vector<GarmentMesh> build_outfit(const std::vector<std::string>& inner, const std::string& outer,
-                                      const TPoseBody& body, const GarmentParams& params, std::uint64_t seed);
+                                      const TPoseBody& body, const GarmentParams& params, std::uint64_t seed,
+                                      const EaseProfile* room = nullptr);
 
 // Rest-pose contact of a garment: vertices behind (< 0) or closer than
 // `clearance` to a surface, by the nearest-vertex test, among the vertices

@@ -44,7 +44,8 @@ struct EaseProfile {
 struct FitContext {
   const Envelope& env;
   const Landmarks& marks;
-  double step;  // spacing of grid rows and columns (m)
+  double step;                        // spacing of grid rows and columns (m)
+  const EaseProfile* room = nullptr;  // least ease of torso sections per height (garment_leg_room.h)
 };
 
 // Parts that torso sections enclose (no arms, hands, head, neck or feet).

@@ -28,8 +28,9 @@ TubeRows tube_rows(const FitContext& ctx, const std::vector<double>& heights, co
                    const EaseProfile& hang, const std::vector<double>& front_knots,
                    const std::vector<double>& back_knots, const std::vector<double>& x_uniform = {});
 
-// How torso rows are measured at height y (parts, ease, hang).
-SectionSpec torso_section(double y, const EaseProfile& ease, const EaseProfile& hang);
+// How torso rows are measured at height y (parts, ease, hang); the ease
+// is at least ctx.room's there.
+SectionSpec torso_section(const FitContext& ctx, double y, const EaseProfile& ease, const EaseProfile& hang);
 
 // Heights from y0 to y1 (both included) at about `step` spacing, at least 3.
 std::vector<double> row_heights(double y0, double y1, double step);

@@ -95,12 +95,17 @@ struct GarmentSampling {
   garment::GarmentParams fit;  // templates: edge length, ease, lengths, clearances
   std::vector<OutfitConfig> outfits{OutfitConfig{}};
   AttributeRanges attributes;
+  // Skirts and dresses (torso sections below the hips) at least as loose as
+  // the scene's motion spreads the legs (garment_leg_room.h).
+  bool leg_room = true;
 
   template <class V>
   void visit(V& v) {
     v("fit", fit);
     v("outfits", outfits);
     v("attributes", attributes);
+    v("leg_room", leg_room,
+      cfg::opt().help("make skirts and dresses loose enough for the legs' widest spread in the scene's motion"));
   }
 };
 

@@ -19,8 +19,10 @@ namespace layers::generate {
 // first, a bottom before the t-shirt over it, then the outer one), with
 // rest shape, faces, UVs, panels, type, layer and attributes filled in
 // and no positions yet. The outer garment is fitted over the inner ones.
+// `room`: the least ease of torso sections per height (garment_leg_room.h).
 std::vector<data::GarmentData> fit_outfit(const body::Body& body, const SceneSpec& spec,
-                                          const garment::GarmentParams& params);
+                                          const garment::GarmentParams& params,
+                                          const garment::EaseProfile* room = nullptr);
 
 // A garment's attributes as stored in LAYERS-H5 (name -> value) and back;
 // InputError naming `what` for a missing attribute.

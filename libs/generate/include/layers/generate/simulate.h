@@ -10,7 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "layers/body/pose_body.h"
 #include "layers/data/sequence.h"
+#include "layers/garment/garment_pieces.h"
 #include "layers/generate/generator_config.h"
 #include "layers/generate/scene_spec.h"
 #include "layers/motion/body_config.h"
@@ -76,6 +78,8 @@ class SceneSimulation {
 
  private:
   geometry::Points body_frame(int frame) const;
+  // The room the motion needs between the legs (garment_leg_room.h).
+  garment::EaseProfile leg_room(const body::BodyFrame& t_pose) const;
   void add_garments();
 
   GeneratorConfig config_;

@@ -1,0 +1,48 @@
+// The ease a motion's leg spread asks of torso sections (see garment_leg_room.h).
+#include "layers/garment/garment_leg_room.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "layers/garment/garment_section.h"
+
+namespace layers::garment {
+namespace {
+
+constexpr double kBandStep = 0.02;  // m between knots
+constexpr double kBandHalf = 0.01;  // m: skin within this of a knot's height belongs to it
+
+double hull_perimeter(std::vector<Vec2> points) {
+  if (points.size() < 3) return 0.0;
+  const std::vector<Vec2> hull = convex_hull(std::move(points));
+  double length = 0.0;
+  for (std::size_t i = 0; i < hull.size(); ++i) length += (hull[(i + 1) % hull.size()] - hull[i]).norm();
+  return length;
+}
+
+}  // namespace
+
+EaseProfile leg_room(const TPoseBody& body, const std::vector<geometry::Points>& frames) {
+  const Landmarks m = measure(body);
+  const auto& rest = body.mesh.vertices;
+  EaseProfile room;
+  for (double y = m.hip; y > m.ankle + kBandHalf; y -= kBandStep) {
+    std::vector<int> band;
+    for (int v = 0; v < rest.rows(); ++v)
+      if (std::abs(rest(v, 1) - y) <= kBandHalf) band.push_back(v);
+    std::vector<Vec2> points(band.size());
+    const auto outline = [&](const geometry::Points& p) {
+      for (std::size_t i = 0; i < band.size(); ++i) points[i] = Vec2(p(band[i], 0), p(band[i], 2));
+      return hull_perimeter(points);
+    };
+    const double at_rest = outline(rest);
+    double widest = 0.0;
+    for (const geometry::Points& f : frames) widest = std::max(widest, outline(f));
+    room.at(y, (1.0 + kLegRoomMargin) * std::max(0.0, widest - at_rest) / (2.0 * M_PI));
+  }
+  // Nothing above the hips (the profile is constant beyond its knots).
+  room.at(m.hip + kBandStep, 0.0);
+  return room;
+}
+
+}  // namespace layers::garment
