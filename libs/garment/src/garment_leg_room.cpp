@@ -9,8 +9,10 @@
 namespace layers::garment {
 namespace {
 
-constexpr double kBandStep = 0.02;  // m between knots
-constexpr double kBandHalf = 0.01;  // m: skin within this of a knot's height belongs to it
+constexpr double kBandStep = 0.02;      // m between knots
+constexpr double kBandHalf = 0.02;      // m: skin within this of a knot's height belongs to it (bands overlap:
+                                        // the skin's rows are up to 3 cm apart along the shins)
+constexpr std::size_t kBandPoints = 8;  // fewer skin vertices in a band: no knot there
 
 double hull_perimeter(std::vector<Vec2> points) {
   if (points.size() < 3) return 0.0;
@@ -30,6 +32,7 @@ EaseProfile leg_room(const TPoseBody& body, const std::vector<geometry::Points>&
     std::vector<int> band;
     for (int v = 0; v < rest.rows(); ++v)
       if (std::abs(rest(v, 1) - y) <= kBandHalf) band.push_back(v);
+    if (band.size() < kBandPoints) continue;
     std::vector<Vec2> points(band.size());
     const auto outline = [&](const geometry::Points& p) {
       for (std::size_t i = 0; i < band.size(); ++i) points[i] = Vec2(p(band[i], 0), p(band[i], 2));
