@@ -1,7 +1,8 @@
 // Finding and running Blender (see blender_runner.h).
 #include "blender_runner.h"
 
-#include <sys/wait.h>
+#include "child_command.h"
+
 #include <unistd.h>
 
 #include <cstdlib>
@@ -17,12 +18,6 @@ namespace {
 bool executable(const std::string& path) { return !path.empty() && ::access(path.c_str(), X_OK) == 0; }
 
 }  // namespace
-
-std::string shell_quote(const std::string& text) {
-  std::string out = "'";
-  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
 
 std::string find_blender(const std::string& explicit_path) {
   if (!explicit_path.empty()) {
@@ -48,12 +43,9 @@ std::string find_blender(const std::string& explicit_path) {
 
 int run_blender(const std::string& blender, int threads, const std::string& script, const std::string& args,
                 const std::string& log) {
-  const std::string command = shell_quote(blender) + " -b -t " + std::to_string(threads) +
-                              " --factory-startup --python-exit-code 1 --python " + shell_quote(script) + " -- " +
-                              args + " > " + shell_quote(log) + " 2>&1 < /dev/null";
-  const int status = std::system(command.c_str());
-  if (status == -1 || !WIFEXITED(status)) return -1;
-  return WEXITSTATUS(status);
+  return run_logged(shell_quote(blender) + " -b -t " + std::to_string(threads) +
+                        " --factory-startup --python-exit-code 1 --python " + shell_quote(script) + " -- " + args,
+                    log);
 }
 
 std::string blender_failure(const std::string& log) {

@@ -4,6 +4,8 @@
 
 #include <string>
 
+#include "child_command.h"
+
 namespace layers::app {
 
 // The script's text, compiled in from scripts/blender/crosscheck_sim.py
@@ -26,8 +28,5 @@ int run_blender(const std::string& blender, int threads, const std::string& scri
 // "crosscheck_sim: error" line, else Blender's last "Error" line, else the
 // last non-empty line.
 std::string blender_failure(const std::string& log);
-
-// `text` quoted for /bin/sh.
-std::string shell_quote(const std::string& text);
 
 }  // namespace layers::app

@@ -3,10 +3,13 @@
 // outputs are current (libs/study/include/layers/study/study.h,
 // docs/studies.md). This file binds the study's steps to the libraries, all
 // in-process: layers::generate for the dataset, layers::train for
-// train/eval/bench and layers::report (write_report) for the report.
+// train/eval/bench and layers::report (write_report) for the report; with
+// --lanes, runs go to child `layers run --only <run>` processes.
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 
+#include "child_command.h"
 #include "layers/core/config.h"
 #include "layers/core/error.h"
 #include "layers/core/text_file.h"
@@ -113,7 +116,22 @@ study::StudyActions library_actions() {
 
 }  // namespace
 
-VerbRun register_run(CLI::App& app, const Global&) {
+// A lane: this binary as `layers run <file> [--set ...] --only <run>`, its
+// output appended to <run>/lane.log.
+std::function<bool(const study::StudyRun&)> lane_action(const std::string& file, const std::vector<std::string>& sets,
+                                                        const std::string& log_level) {
+  std::error_code ec;
+  const std::string self = fs::read_symlink("/proc/self/exe", ec).string();
+  if (ec) throw Error("run --lanes: cannot find this binary (/proc/self/exe): " + ec.message());
+  std::string command = shell_quote(self) + " --log-level " + shell_quote(log_level) + " run " + shell_quote(file);
+  for (const std::string& s : sets) command += " --set " + shell_quote(s);
+  return [command](const study::StudyRun& run) {
+    const std::string log = (fs::path(run.dir) / "lane.log").string();
+    return run_logged(command + " --only " + shell_quote(run.name), log, true) == 0;
+  };
+}
+
+VerbRun register_run(CLI::App& app, const Global& global) {
   auto* cmd = app.add_subcommand(
       "run", "Run a study (configs/studies/*.yaml): dataset, train, eval, bench, report; current steps are skipped");
   struct Args {
@@ -127,8 +145,14 @@ VerbRun register_run(CLI::App& app, const Global&) {
   cmd->add_option("--only", a->options.only, "run only this experiment (repeatable; leaves the report out)");
   cmd->add_flag("--force", a->options.force, "rerun every step of this study, current or not");
   cmd->add_flag("--dry-run", a->options.dry_run, "print which steps are current and which would run");
-  return [a]() {
-    const study::StudyResult r = study::run_study(a->file, a->sets, library_actions(), a->options);
+  cmd->add_option("--lanes", a->options.lanes,
+                  "run this many of the study's runs at a time, each as `layers run --only <run>` with its log in "
+                  "<run>/lane.log (after the dataset step; the report once they end)")
+      ->capture_default_str();
+  return [a, &global]() {
+    study::StudyActions actions = library_actions();
+    if (a->options.lanes > 1) actions.lane = lane_action(a->file, a->sets, global.log_level);
+    const study::StudyResult r = study::run_study(a->file, a->sets, actions, a->options);
     using S = study::StepStatus;
     std::printf("%zu steps ran, %zu current", r.count(S::Ran), r.count(S::Current));
     if (a->options.dry_run) std::printf(", %zu would run", r.count(S::WouldRun));

@@ -298,4 +298,26 @@ TEST(CliRun, StudyGeneratesItsDatasetOnceThenReusesIt) {
   auto other = run_command(test::layers_bin() + " run " + study + " --set \"dataset.set=[sequences=3, frames=5]\"");
   EXPECT_EQ(other.exit_code, 1) << other.output;
   EXPECT_NE(other.output.find("made with another generator config"), std::string::npos) << other.output;
+
+  // Two runs in two lanes: each a child `layers run --only`, its output in
+  // its run's lane.log; this process then finds them current and reports.
+  const std::string lanes = dir.write(
+      "lanes.yaml", "name: lanes\noutput: " + dir.file("lane-runs") + "\ndataset:\n  config: " + src +
+                        "/configs/data/tiny.yaml\n  folder: " + dir.file("data") +
+                        "\n  set: [sequences=3, frames=4, drape_frames=2, body.transition_frames=2, "
+                        "sequences_per_shard=3, garments.fit.edge_length=0.1, sim.validation.max_l_penetration=1, "
+                        "sim.validation.max_h_penetration=1, sim.validation.max_stretch=100]\nsteps: [train, eval, "
+                        "report]\nexperiments:\n  - {name: static, file: " +
+                        src + "/configs/experiments/static_tiny.yaml}\n  - {name: skinned, file: " + src +
+                        "/configs/experiments/skinned_tiny.yaml}\n");
+  auto laned = run_command(test::layers_bin() + " run " + lanes + " --lanes 2");
+  ASSERT_EQ(laned.exit_code, 0) << laned.output;
+  EXPECT_NE(laned.output.find("2 runs in 2 lanes"), std::string::npos) << laned.output;
+  for (const char* run : {"static", "skinned"}) {
+    const std::string log = read_text_file(dir.file(std::string("lane-runs/") + run + "/lane.log"));
+    EXPECT_NE(log.find("eval-test: done"), std::string::npos) << log;
+    EXPECT_TRUE(fs::exists(dir.file(std::string("lane-runs/") + run + "/eval-test/metrics.json")));
+  }
+  EXPECT_EQ(laned.output.find("eval-test: running"), std::string::npos) << laned.output;  // not here
+  EXPECT_TRUE(fs::exists(dir.file("lane-runs/report/report.md")));
 }

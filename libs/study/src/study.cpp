@@ -4,9 +4,12 @@
 #include "layers/study/study.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <mutex>
 #include <set>
+#include <thread>
 
 #include "layers/core/atomic_file.h"
 #include "layers/core/error.h"
@@ -159,6 +162,51 @@ Step report_step(const StudyConfig& study, const std::vector<StudyRun>& runs, co
   return s;
 }
 
+// Hands every run to actions.lane, `lanes` at a time; returns the names of
+// the runs whose lane failed.
+std::set<std::string> run_lanes(const std::string& study, const std::vector<StudyRun>& runs, int lanes,
+                                const StudyActions& actions) {
+  std::mutex mutex;
+  std::size_t next = 0;
+  std::set<std::string> failed;
+  const auto say = [&](const std::string& line) {
+    const std::lock_guard<std::mutex> lock(mutex);
+    std::printf("[%s] %s\n", study.c_str(), line.c_str());
+    std::fflush(stdout);
+  };
+  const auto worker = [&] {
+    for (;;) {
+      const StudyRun* run = nullptr;
+      {
+        const std::lock_guard<std::mutex> lock(mutex);
+        if (next == runs.size()) return;
+        run = &runs[next++];
+      }
+      say(run->name + ": lane started");
+      const auto start = std::chrono::steady_clock::now();
+      bool ok = false;
+      try {
+        ok = actions.lane(*run);
+      } catch (const std::exception& e) {
+        say(run->name + ": lane could not start: " + e.what());
+      }
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      char took[32];
+      std::snprintf(took, sizeof took, "%.1f s", seconds);
+      say(run->name + (ok ? ": lane done in " : ": lane FAILED after ") + took);
+      if (!ok) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        failed.insert(run->name);
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  const std::size_t n = std::min(runs.size(), static_cast<std::size_t>(lanes));
+  for (std::size_t i = 0; i < n; ++i) pool.emplace_back(worker);
+  for (std::thread& t : pool) t.join();
+  return failed;
+}
+
 // Studies in the order `requires` asks, each once.
 class StudyOrder {
  public:
@@ -209,11 +257,25 @@ class StudyOrder {
       return;
     }
     const std::string dataset_fp = dataset_fingerprint(study.dataset.folder);
-    std::vector<Step> steps;
-    for (const StudyRun& r : runs) {
-      if (!options_.dry_run) {
+    if (!options_.dry_run)
+      for (const StudyRun& r : runs) {
         fs::create_directories(r.dir);
         save_experiment(r);
+      }
+    // Lanes run each run's steps elsewhere; the loop below then finds them
+    // current, or blocks the runs whose lane failed.
+    std::set<std::string> lane_failed;
+    if (top && options_.lanes > 1 && !options_.dry_run && runs.size() > 1) {
+      std::printf("[%s] %zu runs in %d lanes (logs: <run>/lane.log)\n", study.name.c_str(), runs.size(),
+                  options_.lanes);
+      std::fflush(stdout);
+      lane_failed = run_lanes(study.name, runs, options_.lanes, actions_);
+    }
+    std::vector<Step> steps;
+    for (const StudyRun& r : runs) {
+      if (lane_failed.count(r.name)) {
+        runner.block(r.name, "(all steps)", "its lane failed (" + (fs::path(r.dir) / "lane.log").string() + ")");
+        continue;
       }
       for (Step& s : run_steps(study, r, dataset_fp, actions_)) steps.push_back(std::move(s));
     }
@@ -245,6 +307,11 @@ std::size_t StudyResult::count(StepStatus status) const {
 
 StudyResult run_study(const std::string& path, const std::vector<std::string>& sets, const StudyActions& actions,
                       const StudyOptions& options) {
+  if (options.lanes < 1) throw UsageError("--lanes: expected 1 or more, got " + std::to_string(options.lanes));
+  if (options.lanes > 1 && options.force)
+    throw UsageError("--lanes with --force: force runs one at a time (--force --only <run>), or without lanes");
+  if (options.lanes > 1 && !options.dry_run && !actions.lane)
+    throw Error("layers run: lanes asked for, but this program cannot start them");
   StudyResult result;
   StudyOrder order(actions, options, result);
   order.run_file(path, sets, true);

@@ -4,10 +4,12 @@
 // training reruns, dry runs, required studies and bad study files.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <mutex>
 
 #include "layers/core/error.h"
 #include "layers/core/text_file.h"
@@ -209,6 +211,59 @@ TEST_F(StudyTest, OnlyAndForce) {
   for (const auto& s : r.steps) EXPECT_NE(s.step, "report");
   o.only = {"c"};
   EXPECT_THROW(run({}, o), InputError);
+}
+
+// Lanes: each run's steps go to the lane action (here the same study run
+// in-process with --only, one lane at a time under a lock, as a child
+// `layers run --only` would); this process then finds them current and
+// writes the report. A failed lane blocks its run only.
+TEST_F(StudyTest, LanesRunEachRunElsewhereThenReport) {
+  std::mutex lock;
+  std::vector<std::string> lanes;
+  std::string fail_lane;
+  study::StudyActions a = actions();
+  a.lane = [&](const study::StudyRun& run) {
+    const std::lock_guard<std::mutex> hold(lock);
+    lanes.push_back(run.name);
+    if (run.name == fail_lane) return false;
+    study::StudyOptions one;
+    one.only = {run.name};
+    return study::run_study(study_file, {}, actions(), one).ok();
+  };
+  study::StudyOptions o;
+  o.lanes = 2;
+  const auto r = study::run_study(study_file, {}, a, o);
+  EXPECT_TRUE(r.ok());
+  std::sort(lanes.begin(), lanes.end());
+  EXPECT_EQ(lanes, (std::vector<std::string>{"a", "b"}));
+  EXPECT_EQ(calls["train a"], 1);  // in its lane only
+  EXPECT_EQ(calls["train b"], 1);
+  EXPECT_EQ(status(r, "a train"), StepStatus::Current);
+  EXPECT_EQ(status(r, "b bench"), StepStatus::Current);
+  EXPECT_EQ(status(r, "report"), StepStatus::Ran);
+  EXPECT_EQ(report_runs, 2u);
+
+  // A lane that fails: its run is blocked, the other is current, and the
+  // report is not blocked (current here: none of its inputs changed).
+  fail_lane = "b";
+  fs::remove(dir.file("out/b/checkpoint-best.pt"));
+  const auto failed = study::run_study(study_file, {}, a, o);
+  EXPECT_FALSE(failed.ok());
+  EXPECT_EQ(status(failed, "b (all steps)"), StepStatus::Blocked);
+  EXPECT_EQ(status(failed, "a train"), StepStatus::Current);
+  EXPECT_EQ(status(failed, "report"), StepStatus::Current);
+
+  // Dry runs start no lane; lanes below 1, or with --force, are refused.
+  lanes.clear();
+  o.dry_run = true;
+  study::run_study(study_file, {}, a, o);
+  EXPECT_TRUE(lanes.empty());
+  o.dry_run = false;
+  o.force = true;
+  EXPECT_THROW(study::run_study(study_file, {}, a, o), UsageError);
+  o.force = false;
+  o.lanes = 0;
+  EXPECT_THROW(study::run_study(study_file, {}, a, o), UsageError);
 }
 
 TEST_F(StudyTest, RequiredStudyRunsFirstAndLendsItsCheckpoint) {

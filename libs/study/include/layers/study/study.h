@@ -38,12 +38,21 @@ struct StudyActions {
   std::function<void(const StudyRun& run, const train::BenchOptions& bench)> bench;  // -> <dir>/bench.json
   std::function<void(const StudyConfig& study, const std::vector<std::string>& run_dirs, const std::string& out)>
       report;  // -> <out>/report.md
+  // Lanes (StudyOptions::lanes): runs every step of the run named `run`
+  // elsewhere, e.g. in a child `layers run <file> --only <run>`; true when
+  // it succeeded. `run` lists where its log goes.
+  std::function<bool(const StudyRun& run)> lane;
 };
 
 struct StudyOptions {
   std::vector<std::string> only;  // run only these experiments (the report step is then left out)
   bool force = false;             // rerun every selected step
   bool dry_run = false;           // print what would run, run nothing
+  // More than 1: after the dataset step, the top study's runs go to
+  // StudyActions::lane, this many at a time, and this process then checks
+  // them (all current, or blocked where a lane failed) and writes the
+  // report. Not with `force`.
+  int lanes = 1;
 };
 
 struct StudyResult {
@@ -54,7 +63,8 @@ struct StudyResult {
 };
 
 // Runs the study file (after the studies it requires, each once), one step
-// at a time, printing one line per step ("<run> <step>: current, skipped").
+// at a time (or its runs in lanes), printing one line per step ("<run>
+// <step>: current, skipped").
 // A failing step is reported and blocks only what depends on it; the other
 // runs go on. `sets` apply to this file only.
 StudyResult run_study(const std::string& path, const std::vector<std::string>& sets, const StudyActions& actions,
