@@ -4,6 +4,9 @@
 #include <sys/wait.h>
 
 #include <cstdlib>
+#include <filesystem>
+
+#include "layers/core/error.h"
 
 namespace layers::app {
 
@@ -18,6 +21,13 @@ int run_logged(const std::string& command, const std::string& log, bool append) 
   const int status = std::system(line.c_str());  // glibc's system() is thread-safe
   if (status == -1 || !WIFEXITED(status)) return -1;
   return WEXITSTATUS(status);
+}
+
+std::string this_executable(const std::string& verb) {
+  std::error_code ec;
+  const std::string self = std::filesystem::read_symlink("/proc/self/exe", ec).string();
+  if (ec) throw Error(verb + ": cannot find this binary (/proc/self/exe): " + ec.message());
+  return self;
 }
 
 }  // namespace layers::app

@@ -17,11 +17,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "child_command.h"
 #include "layers/core/error.h"
 #include "verbs.h"
 
@@ -89,9 +89,7 @@ VerbRun register_launch(CLI::App& app, const Global& global) {
   cmd->footer("Example: layers launch --nproc 2 -- train configs/experiments/layersnet_tiny.yaml");
   return [a, &global]() {
     if (a->command.front() == "launch") throw UsageError("launch: the command after -- is a verb other than launch");
-    std::error_code ec;
-    const std::string self = std::filesystem::read_symlink("/proc/self/exe", ec).string();
-    if (ec) throw Error("launch: cannot find this binary (/proc/self/exe): " + ec.message());
+    const std::string self = this_executable("launch");
     const int port = a->port > 0 ? a->port : free_port();
     std::vector<std::string> argv_text{self, "--log-level", global.log_level};
     argv_text.insert(argv_text.end(), a->command.begin(), a->command.end());

@@ -120,10 +120,8 @@ study::StudyActions library_actions() {
 // output appended to <run>/lane.log.
 std::function<bool(const study::StudyRun&)> lane_action(const std::string& file, const std::vector<std::string>& sets,
                                                         const std::string& log_level) {
-  std::error_code ec;
-  const std::string self = fs::read_symlink("/proc/self/exe", ec).string();
-  if (ec) throw Error("run --lanes: cannot find this binary (/proc/self/exe): " + ec.message());
-  std::string command = shell_quote(self) + " --log-level " + shell_quote(log_level) + " run " + shell_quote(file);
+  std::string command = shell_quote(this_executable("run --lanes")) + " --log-level " + shell_quote(log_level) +
+                        " run " + shell_quote(file);
   for (const std::string& s : sets) command += " --set " + shell_quote(s);
   return [command](const study::StudyRun& run) {
     const std::string log = (fs::path(run.dir) / "lane.log").string();

@@ -17,9 +17,7 @@ constexpr std::size_t kBandPoints = 8;  // fewer skin vertices in a band: no kno
 double hull_perimeter(std::vector<Vec2> points) {
   if (points.size() < 3) return 0.0;
   const std::vector<Vec2> hull = convex_hull(std::move(points));
-  double length = 0.0;
-  for (std::size_t i = 0; i < hull.size(); ++i) length += (hull[(i + 1) % hull.size()] - hull[i]).norm();
-  return length;
+  return length(hull) + (hull.front() - hull.back()).norm();
 }
 
 }  // namespace

@@ -47,12 +47,12 @@ sim::GarmentAttributes garment_attributes(const std::map<std::string, double>& v
   return attributes;
 }
 
-std::vector<data::GarmentData> fit_outfit(const body::Body& body, const SceneSpec& spec,
+std::vector<data::GarmentData> fit_outfit(const garment::TPoseBody& body, const SceneSpec& spec,
                                           const garment::GarmentParams& params, const garment::EaseProfile* room) {
   std::vector<std::string> inner;
   std::string outer;
   for (const auto& g : spec.garments) (g.layer == 0 ? inner.push_back(g.type) : void(outer = g.type));
-  const auto meshes = garment::build_outfit(inner, outer, garment::t_pose_body(body), params, spec.seed, room);
+  const auto meshes = garment::build_outfit(inner, outer, body, params, spec.seed, room);
   std::vector<data::GarmentData> out;
   for (const auto& m : meshes) {
     const GarmentSpec* g = nullptr;

@@ -11,7 +11,6 @@
 #include <optional>
 
 #include "layers/body/body_arrays.h"
-#include "layers/body/pose_body.h"
 #include "layers/core/error.h"
 #include "layers/core/progress.h"
 #include "layers/garment/garment_leg_room.h"
@@ -91,11 +90,11 @@ SceneSimulation::SceneSimulation(const GeneratorConfig& config, const SceneSpec&
 }
 
 void SceneSimulation::add_garments() {
-  const body::BodyFrame t_pose = body::pose_body(generated_.body, generated_.body.t_pose);
+  const garment::TPoseBody t_pose = garment::t_pose_body(generated_.body);
   std::optional<garment::EaseProfile> room;
   if (config_.garments.leg_room) room = leg_room(t_pose);
-  garments_ = fit_outfit(generated_.body, spec_, config_.garments.fit, room ? &*room : nullptr);
-  place_ = rigid_fit(t_pose.vertices, body_frame(0));
+  garments_ = fit_outfit(t_pose, spec_, config_.garments.fit, room ? &*room : nullptr);
+  place_ = rigid_fit(t_pose.mesh.vertices, body_frame(0));
   for (auto& g : garments_) {
     geometry::TriMesh rest;
     rest.vertices = (place_ * rows(g.rest).cast<double>().transpose()).transpose().cast<float>();
@@ -113,11 +112,12 @@ void SceneSimulation::add_garments() {
   }
 }
 
-garment::EaseProfile SceneSimulation::leg_room(const body::BodyFrame& t_pose) const {
-  // Every frame of the motion in the T-pose's pelvis frame (root joint).
+garment::EaseProfile SceneSimulation::leg_room(const garment::TPoseBody& t_pose) const {
+  // Every frame of the motion in the T-pose's pelvis frame (the root joint,
+  // whose rotation is its own local one).
   const motion::BodySequence& motion = generated_.sequence;
-  const Eigen::Quaterniond to_t_pose = t_pose.joints.rotation[0];
-  const Eigen::Vector3d t_pose_root = t_pose.joints.position[0];
+  const Eigen::Quaterniond to_t_pose = generated_.body.t_pose.local[0].normalized();
+  const Eigen::Vector3d t_pose_root = t_pose.joints[0];
   std::vector<geometry::Points> frames;
   frames.reserve(static_cast<std::size_t>(motion.num_frames));
   for (int f = 0; f < motion.num_frames; ++f) {
@@ -128,7 +128,7 @@ garment::EaseProfile SceneSimulation::leg_room(const body::BodyFrame& t_pose) co
                                   Eigen::Translation3d(-Eigen::Vector3d(r[0], r[1], r[2]));
     frames.push_back((to_pelvis * body_frame(f).cast<double>().transpose()).transpose().cast<float>());
   }
-  return garment::leg_room(garment::t_pose_body(generated_.body), frames);
+  return garment::leg_room(t_pose, frames);
 }
 
 geometry::Points SceneSimulation::body_frame(int frame) const {

@@ -4,7 +4,6 @@
 #include "layers/study/study.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <mutex>
@@ -13,6 +12,7 @@
 
 #include "layers/core/atomic_file.h"
 #include "layers/core/error.h"
+#include "layers/core/progress.h"
 #include "layers/core/text_file.h"
 #include "layers/data/run_layout.h"
 #include "lists.h"
@@ -183,17 +183,14 @@ std::set<std::string> run_lanes(const std::string& study, const std::vector<Stud
         run = &runs[next++];
       }
       say(run->name + ": lane started");
-      const auto start = std::chrono::steady_clock::now();
+      const Timer timer;
       bool ok = false;
       try {
         ok = actions.lane(*run);
       } catch (const std::exception& e) {
         say(run->name + ": lane could not start: " + e.what());
       }
-      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      char took[32];
-      std::snprintf(took, sizeof took, "%.1f s", seconds);
-      say(run->name + (ok ? ": lane done in " : ": lane FAILED after ") + took);
+      say(run->name + (ok ? ": lane done in " : ": lane FAILED after ") + Progress::format_duration(timer.seconds()));
       if (!ok) {
         const std::lock_guard<std::mutex> lock(mutex);
         failed.insert(run->name);

@@ -19,8 +19,9 @@ namespace layers::generate {
 // first, a bottom before the t-shirt over it, then the outer one), with
 // rest shape, faces, UVs, panels, type, layer and attributes filled in
 // and no positions yet. The outer garment is fitted over the inner ones.
-// `room`: the least ease of torso sections per height (garment_leg_room.h).
-std::vector<data::GarmentData> fit_outfit(const body::Body& body, const SceneSpec& spec,
+// `body`: the scene's body in its T-pose (garment::t_pose_body). `room`:
+// the least ease of torso sections per height (garment_leg_room.h).
+std::vector<data::GarmentData> fit_outfit(const garment::TPoseBody& body, const SceneSpec& spec,
                                           const garment::GarmentParams& params,
                                           const garment::EaseProfile* room = nullptr);
 

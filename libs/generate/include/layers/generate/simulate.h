@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "layers/body/pose_body.h"
 #include "layers/data/sequence.h"
+#include "layers/garment/garment_body.h"
 #include "layers/garment/garment_pieces.h"
 #include "layers/generate/generator_config.h"
 #include "layers/generate/scene_spec.h"
@@ -79,7 +79,7 @@ class SceneSimulation {
  private:
   geometry::Points body_frame(int frame) const;
   // The room the motion needs between the legs (garment_leg_room.h).
-  garment::EaseProfile leg_room(const body::BodyFrame& t_pose) const;
+  garment::EaseProfile leg_room(const garment::TPoseBody& t_pose) const;
   void add_garments();
 
   GeneratorConfig config_;
