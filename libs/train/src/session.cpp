@@ -2,12 +2,12 @@
 #include "layers/train/session.h"
 
 #include <ATen/Context.h>
-#include <ATen/Parallel.h>
 
 #include <filesystem>
 
 #include "layers/core/error.h"
 #include "layers/data/stats.h"
+#include "layers/train/compute_threads.h"
 #include "layers/zoo/model_config.h"
 
 namespace layers::train {
@@ -23,7 +23,7 @@ Session open_session(const ExperimentConfig& config, const zoo::Registry& regist
   }
   if (config.run.device == "cuda" && !at::hasCUDA())
     throw InputError(config.source, "run.device", "a device this build can use (cpu)", "cuda, but torch has no CUDA");
-  if (config.run.threads > 0) at::set_num_threads(config.run.threads);
+  set_compute_threads(config.run.threads);
   at::manual_seed(config.run.seed);
   Session s{config, data::Dataset::open(config.data.dataset), nullptr, GarmentSelection{config.data.inner_only},
             config.run.device == "cuda" && device_index >= 0

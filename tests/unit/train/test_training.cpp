@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <ATen/Parallel.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +12,7 @@
 
 #include "layers/core/error.h"
 #include "layers/train/checkpoint.h"
+#include "layers/train/compute_threads.h"
 #include "layers/train/evaluator.h"
 #include "layers/train/session.h"
 #include "layers/train/trainer.h"
@@ -43,6 +46,21 @@ at::Tensor params_of(const ExperimentConfig& c, zoo::Registry& registry) {
   std::vector<at::Tensor> all;
   for (const at::Tensor& p : s.model->parameters()) all.push_back(p.detach().flatten());
   return at::cat(all);
+}
+
+TEST_F(Fixture, RunThreadsReachTorchAndOpenBlas) {
+  // run.threads must bound OpenBLAS's pool too: torch's setting alone
+  // leaves it at one thread per core.
+  ExperimentConfig c = config("threads");
+  c.run.threads = 2;
+  open_session(c, registry);
+  EXPECT_EQ(at::get_num_threads(), 2);
+  if (blas_threads() < 0) GTEST_SKIP() << "the loaded BLAS is not OpenBLAS";
+  EXPECT_EQ(blas_threads(), 2);
+  c.run.threads = 1;
+  open_session(c, registry);
+  EXPECT_EQ(at::get_num_threads(), 1);
+  EXPECT_EQ(blas_threads(), 1);
 }
 
 TEST_F(Fixture, TrainingLowersTheLossAndValidates) {
