@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# scripts/keep_results.sh -- copy what a study's report is made of out of
+# its output folder into a folder kept with the repository (docs/results/),
+# without checkpoints or predictions: every run's experiment.yaml,
+# selection.json, bench.json, lane.log and eval-*/metrics.json, the
+# study's steps.yaml and report/ (Markdown, CSV, JSON, charts), and the
+# dataset's dataset.yaml (its per-sequence content hashes say which data
+# the figures are on). `layers report --runs <dest>/<run> ...` rebuilds a
+# report from the copy, so runs of later sessions can join it.
+#
+#   bash scripts/keep_results.sh runs/table9_small docs/results/table9_small [data/small]
+#
+# Refuses (exit 1) to write into a destination that exists: nothing kept
+# is overwritten. Exit 2 on usage errors.
+set -euo pipefail
+
+if [ $# -lt 2 ] || [ $# -gt 3 ]; then
+  echo "usage: keep_results.sh STUDY_OUTPUT DEST [DATASET_FOLDER]" >&2
+  exit 2
+fi
+src="$1"
+dest="$2"
+data="${3:-}"
+if [ ! -d "$src" ]; then
+  echo "keep_results: $src: expected a study output folder, got no such folder" >&2
+  exit 1
+fi
+if [ -e "$dest" ]; then
+  echo "keep_results: $dest: expected a new folder, got one that exists (kept results are never overwritten)" >&2
+  exit 1
+fi
+if [ -n "$data" ] && [ ! -f "$data/dataset.yaml" ]; then
+  echo "keep_results: $data/dataset.yaml: expected the dataset's description, got no such file" >&2
+  exit 1
+fi
+
+tmp="$dest.tmp-$$"
+trap 'rm -rf "$tmp"' EXIT
+mkdir -p "$tmp"
+copied=0
+while IFS= read -r -d '' f; do
+  rel="${f#"$src"/}"
+  mkdir -p "$tmp/$(dirname "$rel")"
+  cp -p "$f" "$tmp/$rel"
+  copied=$((copied + 1))
+done < <(find "$src" -type f \( -name experiment.yaml -o -name selection.json -o -name bench.json \
+  -o -name lane.log -o -name steps.yaml -o -path '*/eval-*/metrics.json' -o -path '*/report/*' \) \
+  ! -name '*.pt' ! -name '*.h5' -print0)
+if [ "$copied" -eq 0 ]; then
+  echo "keep_results: $src: expected runs or a report, got no result files" >&2
+  exit 1
+fi
+[ -n "$data" ] && cp -p "$data/dataset.yaml" "$tmp/dataset.yaml"
+mv "$tmp" "$dest"
+trap - EXIT
+echo "keep_results: $copied files from $src kept in $dest"
