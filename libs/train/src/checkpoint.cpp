@@ -118,6 +118,8 @@ void save_checkpoint(const std::string& path, zoo::Model& model, const torch::op
   write_text(out, "selection_metric", state.metric);
   out.write("selection_epoch", at::scalar_tensor(static_cast<std::int64_t>(state.chosen_epoch), at::kLong));
   out.write("selection_epochs", at::scalar_tensor(static_cast<std::int64_t>(state.epochs), at::kLong));
+  out.write("loss_by_epoch", at::tensor(state.loss_by_epoch, at::kDouble));
+  out.write("val_mm_by_epoch", at::tensor(state.val_mm_by_epoch, at::kDouble));
   std::filesystem::create_directories(std::filesystem::path(path).parent_path().empty()
                                           ? std::filesystem::path(".")
                                           : std::filesystem::path(path).parent_path());
@@ -164,6 +166,13 @@ CheckpointState load_checkpoint(const std::string& path, zoo::Model& model, torc
     state.metric = text_of(metric);
     state.chosen_epoch = static_cast<int>(epoch.item<std::int64_t>());
     state.epochs = static_cast<int>(epochs.item<std::int64_t>());
+  }
+  at::Tensor losses, vals;
+  if (in.try_read("loss_by_epoch", losses) && in.try_read("val_mm_by_epoch", vals) && losses.numel() == vals.numel()) {
+    losses = losses.to(at::kDouble).contiguous();
+    vals = vals.to(at::kDouble).contiguous();
+    state.loss_by_epoch.assign(losses.data_ptr<double>(), losses.data_ptr<double>() + losses.numel());
+    state.val_mm_by_epoch.assign(vals.data_ptr<double>(), vals.data_ptr<double>() + vals.numel());
   }
   torch::serialize::InputArchive model_archive, norm_archive;
   if (!in.try_read("model", model_archive)) throw InputError(path, "model", "the model's parameters", "nothing");

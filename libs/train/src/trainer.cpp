@@ -138,6 +138,8 @@ void write_selection(const ExperimentConfig& config, const CheckpointState& stat
       {"best_val_error_mm", chosen ? nlohmann::ordered_json(state.best_val_mm) : nlohmann::ordered_json(nullptr)},
       {"epochs_done", state.epochs_done},
       {"epochs", state.epochs},
+      {"loss_by_epoch", state.loss_by_epoch},
+      {"val_error_mm_by_epoch", state.val_mm_by_epoch},
       {"train_split", config.data.train_split},
       {"test_split", config.data.test_split}};
   write_text_atomic((std::filesystem::path(config.run.output) / data::run_layout::kSelection).string(),
@@ -273,6 +275,11 @@ TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& re
     s.model->train(false);
     e.val_error_mm = validate(s, group);
     state.epochs_done = epoch + 1;
+    // A checkpoint from before the history was kept: the earlier epochs are unknown (NaN).
+    state.loss_by_epoch.resize(static_cast<std::size_t>(epoch), std::nan(""));
+    state.val_mm_by_epoch.resize(static_cast<std::size_t>(epoch), std::nan(""));
+    state.loss_by_epoch.push_back(e.loss);
+    state.val_mm_by_epoch.push_back(e.val_error_mm);
     if (!root) {
       // The best-so-far bookkeeping as on rank 0 (it decides what is saved).
       if (e.val_error_mm >= 0 && (state.best_val_mm < 0 || e.val_error_mm < state.best_val_mm))

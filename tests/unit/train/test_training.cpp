@@ -5,6 +5,7 @@
 
 #include <ATen/Parallel.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -94,6 +95,25 @@ TEST_F(Fixture, ResumingGivesTheSameModelAsOneRun) {
   EXPECT_EQ(r.epochs.size(), 2u);  // epochs 2 and 3 only
   EXPECT_EQ(r.epochs_done, 3);
   EXPECT_TRUE(at::equal(params_of(straight, registry), params_of(split, registry)));
+
+  // The per-epoch history survives the resume: the same three epochs in
+  // both checkpoints and in selection.json.
+  const auto history = [&](const ExperimentConfig& c) {
+    Session s = open_session(c, registry);
+    return load_checkpoint(checkpoint_path(c, "last"), *s.model, nullptr);
+  };
+  const CheckpointState a = history(straight), b = history(split);
+  ASSERT_EQ(a.val_mm_by_epoch.size(), 3u);
+  ASSERT_EQ(a.loss_by_epoch.size(), 3u);
+  EXPECT_EQ(a.val_mm_by_epoch, b.val_mm_by_epoch);
+  EXPECT_EQ(a.loss_by_epoch, b.loss_by_epoch);
+  for (double v : a.val_mm_by_epoch) EXPECT_GT(v, 0.0);
+  std::ifstream file(split.run.output + "/selection.json");
+  const nlohmann::json selection = nlohmann::json::parse(file);
+  ASSERT_EQ(selection.at("val_error_mm_by_epoch").size(), 3u);
+  EXPECT_DOUBLE_EQ(selection.at("val_error_mm_by_epoch")[2].get<double>(), b.val_mm_by_epoch[2]);
+  EXPECT_DOUBLE_EQ(selection.at("best_val_error_mm").get<double>(),
+                   *std::min_element(b.val_mm_by_epoch.begin(), b.val_mm_by_epoch.end()));
 }
 
 TEST_F(Fixture, TrainingNoiseChangesTheStartStateAndStaysDeterministic) {

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace torch::optim {
 class Optimizer;
@@ -34,6 +35,10 @@ struct CheckpointState {
   int chosen_epoch = 0;   // epoch (1-based) of the best validation error (0 = none)
   int epochs = 0;         // train.epochs when it was saved
   bool recorded = false;  // on load: the file carries the record (false for one saved before it)
+  // Per finished epoch (index = epoch - 1): mean training loss and
+  // validation error (mm; -1: no validation). Empty for a checkpoint saved
+  // before they were kept.
+  std::vector<double> loss_by_epoch, val_mm_by_epoch;
 };
 
 // `optimizer` may be null (nothing to train, or an evaluation copy).
