@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # scripts/keep_results.sh -- copy what a study's report is made of out of
 # its output folder into a folder kept with the repository (docs/results/),
-# without checkpoints or predictions: every run's experiment.yaml,
+# without checkpoints, predictions or the picture's point data (the
+# report's charts/frames_*.dat, megabytes; frames.png stays): every run's experiment.yaml,
 # selection.json, bench.json, lane.log and eval-*/metrics.json, the
 # study's steps.yaml and report/ (Markdown, CSV, JSON, charts), and the
 # dataset's dataset.yaml (its per-sequence content hashes say which data
@@ -45,7 +46,7 @@ while IFS= read -r -d '' f; do
   copied=$((copied + 1))
 done < <(find "$src" -type f \( -name experiment.yaml -o -name selection.json -o -name bench.json \
   -o -name lane.log -o -name steps.yaml -o -path '*/eval-*/metrics.json' -o -path '*/report/*' \) \
-  ! -name '*.pt' ! -name '*.h5' -print0)
+  ! -name '*.pt' ! -name '*.h5' ! -name 'frames_*.dat' -print0)
 if [ "$copied" -eq 0 ]; then
   echo "keep_results: $src: expected runs or a report, got no result files" >&2
   exit 1

@@ -16,6 +16,7 @@ echo '{"overall": {}}' > "$study/a/seed-0/eval-test/metrics.json"
 echo "weights" > "$study/a/seed-0/checkpoint-best.pt"
 echo "frames" > "$study/a/seed-0/eval-test/predictions.h5"
 echo "# report" > "$study/report/report.md"
+mkdir -p "$study/report/charts" && echo "1 2 3" > "$study/report/charts/frames_0_0.dat"
 echo "sequences: []" > "$work/data/dataset.yaml"
 
 out="$(bash "$script" "$study" "$work/kept" "$work/data")"
@@ -25,6 +26,7 @@ for f in a/seed-0/experiment.yaml a/seed-0/selection.json a/seed-0/eval-test/met
 done
 [ ! -e "$work/kept/a/seed-0/checkpoint-best.pt" ] || fail "a checkpoint was kept"
 [ ! -e "$work/kept/a/seed-0/eval-test/predictions.h5" ] || fail "predictions were kept"
+[ ! -e "$work/kept/report/charts/frames_0_0.dat" ] || fail "the picture's point data was kept"
 
 # An existing destination: exit 1, one line, nothing changed.
 echo "mine" > "$work/kept/report/report.md"
