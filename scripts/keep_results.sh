@@ -2,8 +2,9 @@
 # scripts/keep_results.sh -- copy what a study's report is made of out of
 # its output folder into a folder kept with the repository (docs/results/),
 # without checkpoints, predictions or the picture's point data (the
-# report's charts/frames_*.dat, megabytes; frames.png stays): every run's experiment.yaml,
-# selection.json, bench.json, lane.log and eval-*/metrics.json, the
+# report's charts/frames_*.dat, megabytes; frames.png stays): every run's
+# experiment.yaml, selection.json, bench.json, lane.log and
+# eval-*/metrics.json, the
 # study's steps.yaml and report/ (Markdown, CSV, JSON, charts), and the
 # dataset's dataset.yaml (its per-sequence content hashes say which data
 # the figures are on). `layers report --runs <dest>/<run> ...` rebuilds a
@@ -35,18 +36,14 @@ if [ -n "$data" ] && [ ! -f "$data/dataset.yaml" ]; then
   exit 1
 fi
 
-tmp="$dest.tmp-$$"
+tmp="$(mkdir -p "$(dirname "$dest")" && cd "$(dirname "$dest")" && pwd)/$(basename "$dest").tmp-$$"
 trap 'rm -rf "$tmp"' EXIT
 mkdir -p "$tmp"
-copied=0
-while IFS= read -r -d '' f; do
-  rel="${f#"$src"/}"
-  mkdir -p "$tmp/$(dirname "$rel")"
-  cp -p "$f" "$tmp/$rel"
-  copied=$((copied + 1))
-done < <(find "$src" -type f \( -name experiment.yaml -o -name selection.json -o -name bench.json \
-  -o -name lane.log -o -name steps.yaml -o -path '*/eval-*/metrics.json' -o -path '*/report/*' \) \
-  ! -name '*.pt' ! -name '*.h5' ! -name 'frames_*.dat' -print0)
+# The result files, copied with their paths below the study folder.
+(cd "$src" && find . -type f \( -name experiment.yaml -o -name selection.json -o -name bench.json \
+  -o -name lane.log -o -name steps.yaml -o -path '*/eval-*/metrics.json' -o -path './report/*' \) \
+  ! -name '*.pt' ! -name '*.h5' ! -name 'frames_*.dat' -exec cp -p --parents -t "$tmp" {} +)
+copied="$(find "$tmp" -type f | wc -l)"
 if [ "$copied" -eq 0 ]; then
   echo "keep_results: $src: expected runs or a report, got no result files" >&2
   exit 1

@@ -8,6 +8,7 @@
 
 #include "deepsd_fixture.h"
 #include "deepsd_model.h"
+#include "layers/train/compute_threads.h"
 
 namespace layers::deepsd {
 namespace {
@@ -56,7 +57,7 @@ double position_mse(DeepsdModel& model, const std::vector<Frame>& frames, at::Te
 
 TEST(DeepsdOverfit, AdamDrivesThePositionMseDownTenfold) {
   torch::manual_seed(3);
-  at::set_num_threads(1);  // tiny tensors: threads only add overhead
+  train::set_compute_threads(1);  // tiny tensors: threads (torch and OpenBLAS) only add overhead
   const Scene scene;
   const std::vector<Frame> frames = sequence(scene, 8);
   const DeepsdParams p = scene_params(16);

@@ -37,6 +37,7 @@ struct CheckpointState {
   bool recorded = false;  // on load: the file carries the record (false for one saved before it)
   // Per finished epoch (index = epoch - 1): mean training loss and
   // validation error (mm; -1: no validation). Empty for a checkpoint saved
+  // before they were kept; NaN for the epochs a resumed training ran
   // before they were kept.
   std::vector<double> loss_by_epoch, val_mm_by_epoch;
 };
