@@ -11,6 +11,7 @@
 
 #include "layers/core/error.h"
 #include "layers/core/log.h"
+#include "layers/core/source_revision.h"
 #include "verbs.h"
 
 int main(int argc, char** argv) {
@@ -28,6 +29,8 @@ int main(int argc, char** argv) {
   app::Global global;
   app.add_option("--log-level", global.log_level, "trace, debug, info, warn, error, critical or off")
       ->capture_default_str();
+  app.set_version_flag("--version", std::string("layers ") + source_revision(),
+                       "Print the source revision this build was made from and exit");
 
   std::map<CLI::App*, app::VerbRun> verbs;
   auto add = [&](app::VerbRun (*reg)(CLI::App&, const app::Global&)) {

@@ -54,6 +54,7 @@ VerbRun register_info(CLI::App& app, const Global&) {
     }
     const auto& m = ds.manifest();
     std::printf("dataset   %s\npath      %s\n", m.name.empty() ? "-" : m.name.c_str(), ds.path().c_str());
+    if (!m.generator_revision.empty()) std::printf("generator %s\n", m.generator_revision.c_str());
     std::printf("sequences %zu  frames %lld  garments %lld\n", ids.size(), static_cast<long long>(frames),
                 static_cast<long long>(garments));
     std::printf("splits   ");

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <vector>
 
+#include "layers/core/atomic_file.h"
 #include "layers/core/config_node.h"
 #include "layers/core/text_file.h"
 #include "run_command.h"
@@ -62,6 +63,16 @@ TEST(CliGenerate, ShardsThenCompleteDatasetThatValidates) {
   EXPECT_EQ(valid.exit_code, 0) << valid.output;
   auto info = run_command(test::layers_bin() + " info " + out);
   EXPECT_NE(info.output.find("sequences 3  frames 18"), std::string::npos) << info.output;
+  // The manifest names the code that simulated the scenes: this build's
+  // revision, as `layers --version` prints it.
+  auto version = run_command(test::layers_bin() + " --version");
+  ASSERT_EQ(version.exit_code, 0) << version.output;
+  ASSERT_EQ(version.output.rfind("layers ", 0), 0u) << version.output;
+  std::string revision = version.output.substr(7);
+  while (!revision.empty() && revision.back() == '\n') revision.pop_back();
+  EXPECT_FALSE(revision.empty());
+  EXPECT_NE(bytes(out + "/dataset.yaml").find("generator_revision: " + revision), std::string::npos);
+  EXPECT_NE(info.output.find("generator " + revision), std::string::npos) << info.output;
   const std::string splits = bytes(out + "/splits.yaml");
   for (const char* key : {"train:", "val:", "test:", "T:", "T+W:", "L:", "L+W:"})
     EXPECT_NE(splits.find(key), std::string::npos) << key << " in " << splits;
@@ -156,6 +167,14 @@ TEST(CliGenerate, SchedulerShardsThenFinalizeMatchOneRun) {
   auto other = run_command(generate(out, "--finalize --set seed=7"));
   EXPECT_EQ(other.exit_code, 1) << other.output;
   EXPECT_NE(other.output.find("different generator config"), std::string::npos) << other.output;
+  // Scenes of another generator revision are never mixed into this one's.
+  const std::string revision = bytes(out + "/generator_revision");
+  write_text_atomic(out + "/generator_revision", "0123456789ab\n");
+  auto mixed = run_command(finalize);
+  EXPECT_EQ(mixed.exit_code, 1) << mixed.output;
+  EXPECT_NE(mixed.output.find("started by the generator of revision 0123456789ab"), std::string::npos) << mixed.output;
+  EXPECT_FALSE(fs::exists(out + "/dataset.yaml"));
+  write_text_atomic(out + "/generator_revision", revision);
   auto done = run_command(finalize);
   ASSERT_EQ(done.exit_code, 0) << done.output;
   EXPECT_NE(done.output.find("dataset complete: 2 shards, 3 sequences, 18 frames"), std::string::npos) << done.output;

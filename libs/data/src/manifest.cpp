@@ -43,6 +43,7 @@ std::string manifest_to_yaml(const DatasetManifest& m) {
   if (!m.generator_yaml.empty()) {
     out << YAML::Key << "generator" << YAML::Value << parse_yaml_text(m.generator_yaml, "<generator config>");
   }
+  if (!m.generator_revision.empty()) out << YAML::Key << "generator_revision" << YAML::Value << m.generator_revision;
   out << YAML::EndMap;
   return std::string("# layers dataset manifest (LAYERS-H5)\n") + out.c_str() + "\n";
 }
@@ -113,6 +114,8 @@ DatasetManifest read_manifest(const std::string& path) {
     out << generator;
     m.generator_yaml = out.c_str();
   }
+  if (root["generator_revision"])
+    m.generator_revision = yaml_scalar<std::string>(root["generator_revision"], path, "generator_revision", "a string");
   return m;
 }
 

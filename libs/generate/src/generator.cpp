@@ -15,6 +15,7 @@
 #include "layers/core/atomic_file.h"
 #include "layers/core/error.h"
 #include "layers/core/progress.h"
+#include "layers/core/source_revision.h"
 #include "layers/core/text_file.h"
 #include "layers/data/content_hash.h"
 #include "layers/data/dataset.h"
@@ -58,12 +59,33 @@ bool check_saved_config(const Layout& layout, const std::string& config_yaml) {
   return true;
 }
 
-// Saves the resolved config, or checks it against the one a previous run
-// of this folder saved.
+// The source revision of the generator that started the folder, saved
+// beside its config: scenes simulated by different code must not end up in
+// one dataset, so a run of another revision is refused. A folder started
+// before revisions were recorded is "unknown", which no build matches.
+void check_revision(const Layout& layout, bool started_before) {
+  const fs::path saved = layout.out / "generator_revision";
+  const std::string mine = source_revision();
+  if (!fs::exists(saved)) {
+    write_text_atomic(saved.string(), std::string(started_before ? "unknown" : mine) + "\n");
+    if (!started_before) return;
+  }
+  std::string theirs = read_text_file(saved.string());
+  while (!theirs.empty() && (theirs.back() == '\n' || theirs.back() == '\r')) theirs.pop_back();
+  if (theirs != mine)
+    throw InputError::message(saved.string(), "",
+                              "this dataset folder was started by the generator of revision " + theirs +
+                                  " and this build is " + mine +
+                                  "; resume or finalize it with that revision's build, or use another --out");
+}
+
+// Saves the resolved config and the generator's revision, or checks them
+// against those a previous run of this folder saved.
 void claim_folder(const Layout& layout, const std::string& config_yaml) {
   fs::create_directories(layout.out / "parts");
-  if (!check_saved_config(layout, config_yaml))
-    write_text_atomic((layout.out / "generator.yaml").string(), config_yaml);
+  const bool started_before = check_saved_config(layout, config_yaml);
+  if (!started_before) write_text_atomic((layout.out / "generator.yaml").string(), config_yaml);
+  check_revision(layout, started_before);
 }
 
 // Merges the finished parts of shard j into its shard file (if all its
@@ -138,6 +160,7 @@ FinalizeReport finalize(const Layout& layout, const std::string& config_yaml) {
   manifest.n_garments = garments;
   manifest.n_shards = layout.n_shards();
   manifest.generator_yaml = config_yaml;
+  manifest.generator_revision = source_revision();  // claim_folder checked it against the folder's
   // Only with parametric motions, so datasets made without them keep their bytes.
   if (layout.config.body.variation) count_motions(layout, motions, manifest);
   data::write_manifest((layout.out / "dataset.yaml").string(), manifest);
@@ -244,6 +267,7 @@ FinalizeReport finalize_dataset(const GeneratorConfig& config, const std::string
     throw InputError::message((layout.out / "generator.yaml").string(), "",
                               "not found: no `layers generate` run has started this dataset folder; generate its "
                               "shards first (same --config, --set and --out)");
+  check_revision(layout, true);
   // Shards whose scenes are all finished but were not merged (a run
   // stopped in between). Only here: a generate run merges only its own
   // shards, so that two runs never merge the same one at once.

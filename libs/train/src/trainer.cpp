@@ -16,6 +16,7 @@
 #include "layers/core/atomic_file.h"
 #include "layers/core/error.h"
 #include "layers/core/progress.h"
+#include "layers/core/source_revision.h"
 #include "layers/data/run_layout.h"
 #include "layers/dist/group.h"
 #include "layers/dist/tensors.h"
@@ -141,7 +142,8 @@ void write_selection(const ExperimentConfig& config, const CheckpointState& stat
       {"loss_by_epoch", state.loss_by_epoch},
       {"val_error_mm_by_epoch", state.val_mm_by_epoch},
       {"train_split", config.data.train_split},
-      {"test_split", config.data.test_split}};
+      {"test_split", config.data.test_split},
+      {"source_revision", source_revision()}};  // the build that wrote this record
   write_text_atomic((std::filesystem::path(config.run.output) / data::run_layout::kSelection).string(),
                     doc.dump(2) + "\n");
 }

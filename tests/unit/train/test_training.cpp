@@ -12,6 +12,7 @@
 #include <iterator>
 
 #include "layers/core/error.h"
+#include "layers/core/source_revision.h"
 #include "layers/train/checkpoint.h"
 #include "layers/train/compute_threads.h"
 #include "layers/train/evaluator.h"
@@ -114,6 +115,7 @@ TEST_F(Fixture, ResumingGivesTheSameModelAsOneRun) {
   EXPECT_DOUBLE_EQ(selection.at("val_error_mm_by_epoch")[2].get<double>(), b.val_mm_by_epoch[2]);
   EXPECT_DOUBLE_EQ(selection.at("best_val_error_mm").get<double>(),
                    *std::min_element(b.val_mm_by_epoch.begin(), b.val_mm_by_epoch.end()));
+  EXPECT_EQ(selection.at("source_revision").get<std::string>(), source_revision());  // the code that trained it
 }
 
 TEST_F(Fixture, TrainingNoiseChangesTheStartStateAndStaysDeterministic) {

@@ -8,6 +8,7 @@
 //   counts: {sequences: n, frames: n, garments: n, shards: n}
 //   motions: {distinct: n, families: {<family>: {sequences: n, distinct: n, skipped: n}}}  # optional
 //   generator: <the generator config, as a YAML mapping; optional>
+//   generator_revision: <source revision of the generator that simulated the scenes; optional>
 //   content_hashes: {<sequence id>: <16 hex digits>, ...}   # optional (content_hash.h)
 #pragma once
 
@@ -33,7 +34,8 @@ struct DatasetManifest {
   std::int64_t n_distinct_motions = -1;                      // -1: not recorded (no motions block)
   std::map<std::string, MotionFamilyCount> motion_families;  // family -> counts
   std::string generator_yaml;                                // YAML text of the generator config; "" if none
-  std::map<std::string, std::string> content_hashes;         // id -> content hash; empty if not recorded
+  std::string generator_revision;  // source_revision() of the generator that made the scenes; "" if not recorded
+  std::map<std::string, std::string> content_hashes;  // id -> content hash; empty if not recorded
 };
 
 std::string manifest_to_yaml(const DatasetManifest& manifest);
