@@ -55,9 +55,15 @@ TEST(MotionVariation, DrawsStayInTheirRangesAndDifferPerSeed) {
       EXPECT_TRUE(within(p.amplitude, v.amplitude)) << m;
       EXPECT_TRUE(within(p.phase, v.phase)) << m;
       const auto t = tokens(m);
-      if (t.count("step")) EXPECT_TRUE(within(p.step_length, v.step_length)) << m;
-      if (kind == "turn") EXPECT_TRUE(within(p.turn_angle, v.turn_angle)) << m;
-      if (kind == "spin") EXPECT_TRUE(within(p.turn_angle, v.spin_rate)) << m;
+      if (t.count("step")) {
+        EXPECT_TRUE(within(p.step_length, v.step_length)) << m;
+      }
+      if (kind == "turn") {
+        EXPECT_TRUE(within(p.turn_angle, v.turn_angle)) << m;
+      }
+      if (kind == "spin") {
+        EXPECT_TRUE(within(p.turn_angle, v.spin_rate)) << m;
+      }
       EXPECT_EQ(t.count("dir") == 1, kind == "turn" || kind == "spin") << m;
       EXPECT_EQ(t.count("variant") == 1, !motion::procedural_variants(kind).empty()) << m;
     }

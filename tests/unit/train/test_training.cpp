@@ -142,7 +142,9 @@ TEST_F(Fixture, CheckpointRestoresParametersAndNormalisation) {
     at::NoGradGuard g;
     tiny.gain_.fill_(0.75);
   }
-  save_checkpoint(dir.path() + "/x.pt", *a.model, nullptr, {2, 17, 3.5, "tiny"});
+  CheckpointState saved;
+  saved.epochs_done = 2, saved.steps = 17, saved.best_val_mm = 3.5, saved.model_name = "tiny";
+  save_checkpoint(dir.path() + "/x.pt", *a.model, nullptr, saved);
   Session b = open_session(c, registry);
   b.model->set_normalization(zoo::Normalization::identity());
   const CheckpointState st = load_checkpoint(dir.path() + "/x.pt", *b.model, nullptr);
@@ -155,7 +157,9 @@ TEST_F(Fixture, CheckpointRestoresParametersAndNormalisation) {
 
   // Another model's checkpoint, and a file that is not one.
   Session other = open_session(config("ckpt2", "exploding"), registry);
-  save_checkpoint(dir.path() + "/other.pt", *other.model, nullptr, {0, 0, -1, "exploding"});
+  CheckpointState theirs;
+  theirs.epochs_done = 0, theirs.steps = 0, theirs.best_val_mm = -1, theirs.model_name = "exploding";
+  save_checkpoint(dir.path() + "/other.pt", *other.model, nullptr, theirs);
   EXPECT_THROW(load_checkpoint(dir.path() + "/other.pt", *b.model, nullptr), InputError);
   std::ofstream(dir.path() + "/junk.pt") << "not a checkpoint";
   EXPECT_THROW(load_checkpoint(dir.path() + "/junk.pt", *b.model, nullptr), InputError);
@@ -169,7 +173,9 @@ TEST_F(Fixture, DamagedCheckpointIsRefusedWithOneLine) {
   ExperimentConfig c = config("ckpt3");
   Session a = open_session(c, registry);
   const std::string good = dir.path() + "/good.pt";
-  save_checkpoint(good, *a.model, nullptr, {1, 2, 3.0, "tiny"});
+  CheckpointState state;
+  state.epochs_done = 1, state.steps = 2, state.best_val_mm = 3.0, state.model_name = "tiny";
+  save_checkpoint(good, *a.model, nullptr, state);
   std::ifstream in(good, std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   ASSERT_EQ(bytes.rfind("layers-checkpoint 1 fnv1a64 ", 0), 0u);
