@@ -74,9 +74,10 @@ void selection_table(std::ostringstream& md, const std::vector<RunResults>& runs
      << "Which split chose each run's checkpoint (`checkpoint-best.pt`: the epoch with the lowest validation "
         "error; `last`: nothing chosen) and which split its figures are on. A run whose checkpoint was chosen on "
         "the test split, or on the split it is evaluated on, is marked ⚠: its figures are not a held-out "
-        "result. \"unknown\": evaluated before evaluations recorded the choice.\n\n"
-     << "| run | checkpoint | chosen on | epoch chosen / epochs | by | evaluated on | |\n"
-     << "|---|---|---|---:|---|---|---|\n";
+        "result. \"unknown\": evaluated before evaluations recorded the choice. Validation error: the chosen "
+        "epoch's (the run's selection.json), what variants are compared by; the test figures above are not.\n\n"
+     << "| run | checkpoint | chosen on | epoch chosen / epochs | by | validation error (mm) | evaluated on | |\n"
+     << "|---|---|---|---:|---|---:|---|---|\n";
   for (const RunResults& r : runs) {
     if (!r.eval) continue;
     const SelectionRecord& s = r.eval->selection;
@@ -84,7 +85,8 @@ void selection_table(std::ostringstream& md, const std::vector<RunResults>& runs
     md << "| " << md_cell(r.name) << " | " << md_cell(s.checkpoint) << " | " << md_cell(s.chosen_on) << " | "
        << (s.chosen_epoch > 0 ? std::to_string(s.chosen_epoch) : "-") << " / "
        << (s.epochs > 0 ? std::to_string(s.epochs) : "-") << " | " << md_cell(s.metric.empty() ? "-" : s.metric)
-       << " | " << md_cell(s.evaluated_on) << " | " << (flag.empty() ? "" : "⚠ " + md_cell(flag)) << " |\n";
+       << " | " << (std::isfinite(s.val_error_mm) ? fixed(s.val_error_mm, 2) : "-") << " | " << md_cell(s.evaluated_on)
+       << " | " << (flag.empty() ? "" : "⚠ " + md_cell(flag)) << " |\n";
   }
   md << "\n";
 }

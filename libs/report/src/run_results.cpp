@@ -332,6 +332,16 @@ RunResults load_run(const std::string& dir, const std::string& split) {
       run.problems.push_back(std::string("cannot read the evaluation: ") + e.what());
     }
   }
+  const fs::path selection = path / run_layout::kSelection;
+  if (run.eval && run.eval->selection.checkpoint == "best" && fs::exists(selection)) {
+    try {
+      const Reader reader(selection.string());
+      const json doc = reader.parse(read_text_file(selection.string()));
+      run.eval->selection.val_error_mm = reader.number(doc, "best_val_error_mm", "best_val_error_mm");
+    } catch (const std::exception& e) {
+      run.problems.push_back(std::string("cannot read the selection record: ") + e.what());
+    }
+  }
   const fs::path bench = path / run_layout::kBench;
   if (!fs::exists(bench)) {
     run.problems.push_back("no bench.json (run `layers bench <experiment.yaml>` for speed by scene size)");

@@ -43,8 +43,9 @@ std::string selection_cells(const RunResults& r) {
   std::ostringstream out;
   out << csv_field(s.checkpoint) << ',' << csv_field(s.chosen_on) << ',' << csv_field(s.evaluated_on) << ','
       << (s.chosen_epoch > 0 ? std::to_string(s.chosen_epoch) : "") << ','
-      << (s.epochs > 0 ? std::to_string(s.epochs) : "") << ',' << csv_field(selection_flag(r)) << ','
-      << csv_field(r.experiment) << ',' << (r.repeated ? std::to_string(r.seed) : "");
+      << (s.epochs > 0 ? std::to_string(s.epochs) : "") << ',' << exact(s.val_error_mm) << ','
+      << csv_field(selection_flag(r)) << ',' << csv_field(r.experiment) << ','
+      << (r.repeated ? std::to_string(r.seed) : "");
   return out.str();
 }
 
@@ -56,6 +57,7 @@ json selection_json(const RunResults& r) {
           {"chosen_epoch", s.chosen_epoch > 0 ? json(s.chosen_epoch) : json(nullptr)},
           {"epochs", s.epochs > 0 ? json(s.epochs) : json(nullptr)},
           {"metric", s.metric},
+          {"val_error_mm", std::isfinite(s.val_error_mm) ? json(s.val_error_mm) : json(nullptr)},
           {"flag", selection_flag(r)}};
 }
 
@@ -93,7 +95,7 @@ std::string summary_csv(const std::vector<RunResults>& runs) {
          "h_collision_std,l_collision,l_collision_std,truth_h_collision,truth_l_collision,diverged,"
          "first_divergence_step,pareto,h_crossing,h_crossing_std,l_crossing,l_crossing_std,truth_h_crossing,"
          "truth_l_crossing,l_collision_plain,l_collision_plain_std,truth_l_collision_plain,checkpoint,chosen_on,"
-         "evaluated_on,chosen_epoch,epochs,selection_flag,experiment,seed\n";
+         "evaluated_on,chosen_epoch,epochs,val_error_mm,selection_flag,experiment,seed\n";
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const RunResults& r = runs[i];
     if (!r.eval) continue;

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -60,6 +61,10 @@ TEST(Selection, ReportSaysWhichSplitChoseWhatAndMarksTheTestSplit) {
   // `old` has no record: evaluated before metrics.json carried it.
   const std::vector<std::string> runs = {testing::write_run(dir, "fair", fair), testing::write_run(dir, "peek", peek),
                                          testing::write_run(dir, "same", same), testing::write_run(dir, "old", old)};
+  // The trainer's selection.json gives the chosen epoch's validation error;
+  // one that is not a number is a problem of that run, not a crash.
+  std::ofstream(runs[0] + "/selection.json") << R"({"chosen_on": "val", "best_val_error_mm": 11.25})";
+  std::ofstream(runs[1] + "/selection.json") << R"({"best_val_error_mm": "low"})";
 
   const RunResults loaded = load_run(runs[0]);
   ASSERT_TRUE(loaded.eval);
@@ -67,7 +72,13 @@ TEST(Selection, ReportSaysWhichSplitChoseWhatAndMarksTheTestSplit) {
   EXPECT_EQ(loaded.eval->selection.chosen_on, "val");
   EXPECT_EQ(loaded.eval->selection.evaluated_on, "test");
   EXPECT_EQ(loaded.eval->selection.chosen_epoch, 2);
+  EXPECT_DOUBLE_EQ(loaded.eval->selection.val_error_mm, 11.25);
   EXPECT_EQ(selection_flag(loaded), "");
+  const RunResults bad_record = load_run(runs[1]);
+  EXPECT_TRUE(std::isnan(bad_record.eval->selection.val_error_mm));
+  bool named = false;
+  for (const std::string& p : bad_record.problems) named = named || p.find("best_val_error_mm") != std::string::npos;
+  EXPECT_TRUE(named) << "no problem names best_val_error_mm";
   const RunResults unknown = load_run(runs[3]);
   ASSERT_TRUE(unknown.eval);
   EXPECT_EQ(unknown.eval->selection.chosen_on, "unknown");
@@ -88,19 +99,24 @@ TEST(Selection, ReportSaysWhichSplitChoseWhatAndMarksTheTestSplit) {
   EXPECT_NE(md.find("| same **⚠ chosen on val, the split evaluated** | mymodel |"), std::string::npos) << md;
   EXPECT_NE(md.find("| fair | mymodel |"), std::string::npos) << md;
   EXPECT_NE(md.find("### Selection"), std::string::npos);
-  EXPECT_NE(md.find("| fair | best | val | 2 / 3 | mean rollout error (mm) | test |  |"), std::string::npos) << md;
-  EXPECT_NE(md.find("| old | unknown | unknown | - / - | - | test |  |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| fair | best | val | 2 / 3 | mean rollout error (mm) | 11.25 | test |  |"), std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| old | unknown | unknown | - / - | - | - | test |  |"), std::string::npos) << md;
 
   const auto rows = csv_rows(read_text_file(dir.file("out/summary.csv")));
   ASSERT_EQ(rows.size(), 4u);
   EXPECT_EQ(rows[0].at("chosen_on"), "val");
   EXPECT_EQ(rows[0].at("evaluated_on"), "test");
   EXPECT_EQ(rows[0].at("selection_flag"), "");
+  EXPECT_EQ(rows[0].at("val_error_mm"), "11.25");
+  EXPECT_EQ(rows[2].at("val_error_mm"), "");
   EXPECT_EQ(rows[1].at("chosen_on"), "test");
   EXPECT_NE(rows[1].at("selection_flag"), "");
   EXPECT_EQ(rows[3].at("checkpoint"), "unknown");
   const nlohmann::json summary = nlohmann::json::parse(read_text_file(dir.file("out/summary.json")));
   EXPECT_EQ(summary["runs"][1]["selection"]["chosen_on"], "test");
+  EXPECT_DOUBLE_EQ(summary["runs"][0]["selection"]["val_error_mm"].get<double>(), 11.25);
+  EXPECT_TRUE(summary["runs"][2]["selection"]["val_error_mm"].is_null());
   EXPECT_NE(summary["runs"][1]["selection"]["flag"].get<std::string>(), "");
 }
 

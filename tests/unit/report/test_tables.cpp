@@ -115,7 +115,7 @@ TEST(RunResults, MetricsWithoutCrossingsStillLoad) {
   ASSERT_TRUE(runs[0].eval.has_value()) << ::testing::PrintToString(runs[0].problems);
   EXPECT_EQ(
       lines(summary_csv(runs))[1],
-      "old,mymodel,test,2,54,1234,2,10,1.5,0.02,0.01,0.05,0,0,0.0645,0,,yes,,,,,,,,,,unknown,unknown,test,,,,old,");
+      "old,mymodel,test,2,54,1234,2,10,1.5,0.02,0.01,0.05,0,0,0.0645,0,,yes,,,,,,,,,,unknown,unknown,test,,,,,old,");
   EXPECT_EQ(lines(per_type_csv(runs))[1], "old,mymodel,jacket,2,11,0.5,0.01,0,0.05,0,,,,,,");
   EXPECT_EQ(lines(by_step_csv(runs))[2], "old,mymodel,2,2,0.02,0.05,2,,,");
   ReportInputs inputs;
@@ -138,7 +138,7 @@ TEST(RunResults, MetricsWithoutThePapersLCollisionStillLoad) {
   EXPECT_DOUBLE_EQ(runs[0].eval->overall.l_collision.mean, 0.05);
   EXPECT_EQ(lines(summary_csv(runs))[1],
             "before,mymodel,test,2,54,1234,2,10,1.5,0.02,0.01,0.05,0,0,0.0645,0,,yes,0.004,"
-            "0.001,0.006,0.002,0,0.0025,,,,unknown,unknown,test,,,,before,");
+            "0.001,0.006,0.002,0,0.0025,,,,unknown,unknown,test,,,,,before,");
   const auto doc = nlohmann::json::parse(summary_json("T", runs, {}, {}));
   EXPECT_TRUE(doc["runs"][0]["overall"]["l_collision_plain"]["mean"].is_null());
   EXPECT_TRUE(doc["runs"][0]["truth"]["l_collision_plain"].is_null());
@@ -201,13 +201,13 @@ TEST(Tables, SummaryPerTypeByStepAndBench) {
             "h_collision_std,l_collision,l_collision_std,truth_h_collision,truth_l_collision,diverged,"
             "first_divergence_step,pareto,h_crossing,h_crossing_std,l_crossing,l_crossing_std,truth_h_crossing,"
             "truth_l_crossing,l_collision_plain,l_collision_plain_std,truth_l_collision_plain,checkpoint,chosen_on,"
-            "evaluated_on,chosen_epoch,epochs,selection_flag,experiment,seed");
+            "evaluated_on,chosen_epoch,epochs,val_error_mm,selection_flag,experiment,seed");
   EXPECT_EQ(summary[1],
             "a_fast,fastnet,test,2,54,1234,1,20,1.5,0.02,0.01,0.05,0,0,0.0645,0,,yes,0.004,0.001,0.006,0.002,0,0.0025,"
-            "0.08,0.01,0.0845,unknown,unknown,test,,,,a_fast,");
+            "0.08,0.01,0.0845,unknown,unknown,test,,,,,a_fast,");
   EXPECT_EQ(summary[2],
             "b_slow,slownet,test,2,54,1234,10,5,1.5,0.02,0.01,0.05,0,0,0.0645,1,19,yes,0.004,0.001,0.006,0.002,0,"
-            "0.0025,0.08,0.01,0.0845,unknown,unknown,test,,,,b_slow,");
+            "0.0025,0.08,0.01,0.0845,unknown,unknown,test,,,,,b_slow,");
   EXPECT_NE(summary[3].find(",no,"), std::string::npos);
 
   const auto types = lines(per_type_csv(runs));

@@ -68,6 +68,10 @@ struct SelectionRecord {
   std::int64_t chosen_epoch = 0;       // 1-based; 0 = none or unknown
   std::int64_t epochs = 0;             // train.epochs; 0 = unknown
   std::string metric;                  // what compared the epochs ("" = none or unknown)
+  // The validation error (mm) of the chosen epoch: the run folder's
+  // selection.json best_val_error_mm when the evaluated checkpoint is the
+  // best one; kAbsent otherwise. What a variant is picked by.
+  double val_error_mm = kAbsent;
 };
 
 struct EvalResults {
