@@ -172,15 +172,24 @@ EvalResults parse_metrics_json(const Reader& r, const json& doc, const std::stri
 // experiment.yaml ("" when absent).
 struct ExperimentFacts {
   std::string dataset, model, test_split;
+  std::string settings;  // the experiment without run.seed, run.output and data.dataset (YAML)
 };
 ExperimentFacts experiment_facts(const std::string& file) {
   const cfg::Node root = cfg::load_file(file);
+  cfg::Node settings = root;
+  auto drop = [](cfg::Node* map, const char* key) {
+    if (!map) return;
+    map->map.erase(std::remove_if(map->map.begin(), map->map.end(), [&](const auto& kv) { return kv.first == key; }),
+                   map->map.end());
+  };
+  drop(settings.find("run"), "seed"), drop(settings.find("run"), "output");
+  drop(settings.find("data"), "dataset");
   auto scalar = [&](const char* section, const char* key) -> std::string {
     const cfg::Node* s = root.find(section);
     const cfg::Node* v = s ? s->find(key) : nullptr;
     return v && v->kind == cfg::Node::Kind::Scalar ? v->scalar : "";
   };
-  return {scalar("data", "dataset"), scalar("model", "name"), scalar("data", "test_split")};
+  return {scalar("data", "dataset"), scalar("model", "name"), scalar("data", "test_split"), cfg::to_yaml(settings)};
 }
 
 // The seed-<s> folders directly in `dir`, in seed order.
@@ -310,6 +319,7 @@ RunResults load_run(const std::string& dir, const std::string& split) {
       const ExperimentFacts facts = experiment_facts(experiment.string());
       run.dataset = facts.dataset, run.model = facts.model;
       if (!facts.test_split.empty()) run.test_split = facts.test_split;
+      run.settings = facts.settings;
     } catch (const std::exception& e) {
       run.problems.push_back(std::string("cannot read the experiment: ") + e.what());
     }

@@ -78,7 +78,9 @@ std::vector<SeedGroup> seed_groups(const std::vector<RunResults>& runs) {
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const RunResults& r = runs[i];
     if (!r.repeated || !r.eval) continue;
-    const std::string key = experiment_folder(r);
+    // One experiment: the same name and settings (its seeds may sit in the
+    // folders of several kept parts), else the same folder.
+    const std::string key = r.settings.empty() ? experiment_folder(r) : r.experiment + "\n" + r.settings;
     std::size_t k = 0;
     while (k < keys.size() && keys[k] != key) ++k;
     if (k == keys.size()) {

@@ -168,6 +168,23 @@ TEST(Seeds, MeanAndStdOverSeedsBesideTheSpreadOverSequences) {
   EXPECT_NE(md.find("- `net` per seed, error (mm): seed 0 10.0, seed 1 12.0, seed 2 14.0"), std::string::npos) << md;
   EXPECT_NE(md.find("| plain | mymodel |"), std::string::npos) << md;
 
+  // Seeds of one experiment kept in different folders (a study run in
+  // parts) are one experiment when their settings match; an experiment of
+  // the same name with other settings is not.
+  FakeRun part;
+  part.chosen_on = "val";
+  testing::write_run(dir, "part-1/net/seed-0", part);
+  testing::write_run(dir, "part-2/net/seed-1", part);
+  FakeRun other = part;
+  other.model = "othermodel";
+  testing::write_run(dir, "part-3/net/seed-2", other);
+  std::vector<RunResults> parts;
+  for (const char* d : {"part-1/net/seed-0", "part-2/net/seed-1", "part-3/net/seed-2"})
+    parts.push_back(load_run(dir.file(d)));
+  const std::vector<SeedGroup> across = seed_groups(parts);
+  ASSERT_EQ(across.size(), 1u);
+  EXPECT_EQ(across[0].seeds, (std::vector<std::uint64_t>{0, 1}));
+
   const auto seeds = csv_rows(read_text_file(dir.file("out/seeds.csv")));
   ASSERT_EQ(seeds.size(), 1u);
   EXPECT_EQ(seeds[0].at("experiment"), "net");

@@ -119,6 +119,10 @@ struct RunResults {
   std::string experiment;           // the folder's name; for a seed-<s> folder, its parent's name
   bool repeated = false;            // a seed-<s> folder (name "<experiment>/seed-<s>")
   std::uint64_t seed = 0;           // its <s>
+  // experiment.yaml without run.seed, run.output and data.dataset ("" when
+  // unreadable): seed runs of one experiment kept in different folders
+  // (parts of a study run in several sittings) share it.
+  std::string settings;
   std::optional<EvalResults> eval;
   std::optional<BenchResults> bench;
   std::vector<std::string> problems;  // readable messages about missing or bad pieces (without the folder)

@@ -1,0 +1,23 @@
+# Drawn by `layers report`; redraw with: gnuplot by_step_l_collision.gp
+set terminal pngcairo size 900,500 font 'Sans,10' noenhanced
+if (!exists('out')) out = 'by_step_l_collision.png'
+set output out
+set title 'L-collision (ours: open-edge rule) against rollout step'
+set xlabel 'rollout step (predicted frames after the ground-truth start)'
+set ylabel 'outer-garment vertices behind the inner garment (%)'
+set grid
+set key outside right top
+set datafile missing 'NaN'
+set xrange [1:35]
+set yrange [0:*]
+plot 0.781216943 with lines dt 3 lw 1.5 lc rgb '#555555' title 'ground truth', \
+     'by_step.dat' index 0 using 1:4 with lines lw 2 lc rgb '#1f77b4' title 'static', \
+     'by_step.dat' index 1 using 1:4 with lines lw 2 lc rgb '#ff7f0e' title 'skinned', \
+     'by_step.dat' index 2 using 1:4 with lines lw 2 lc rgb '#2ca02c' title 'deepsd/seed-0', \
+     'by_step.dat' index 3 using 1:4 with lines lw 2 lc rgb '#d62728' title 'deepsd/seed-1', \
+     'by_step.dat' index 4 using 1:4 with lines lw 2 lc rgb '#9467bd' title 'deepsd+/seed-0', \
+     'by_step.dat' index 5 using 1:4 with lines lw 2 lc rgb '#8c564b' title 'deepsd+/seed-1', \
+     'by_step.dat' index 6 using 1:4 with lines lw 2 lc rgb '#e377c2' title 'layersnet/seed-0', \
+     'by_step.dat' index 7 using 1:4 with lines lw 2 lc rgb '#7f7f7f' title 'layersnet/seed-1', \
+     'by_step.dat' index 8 using 1:4 with lines lw 2 lc rgb '#bcbd22' title 'layersnet+/seed-0', \
+     'by_step.dat' index 9 using 1:4 with lines lw 2 lc rgb '#17becf' title 'layersnet+/seed-1'
