@@ -31,6 +31,10 @@ Node* Node::find(const std::string& key) {
   return nullptr;
 }
 
+void Node::erase(const std::string& key) {
+  map.erase(std::remove_if(map.begin(), map.end(), [&](const auto& kv) { return kv.first == key; }), map.end());
+}
+
 Node& Node::child(const std::string& key) {
   if (Node* existing = find(key)) return *existing;
   if (kind == Kind::Null) kind = Kind::Map;
@@ -156,8 +160,7 @@ Node load_recursive(const fs::path& path, std::vector<std::string>& stack) {
   }
   stack.pop_back();
   Node rest = own;
-  rest.map.erase(std::remove_if(rest.map.begin(), rest.map.end(), [](const auto& kv) { return kv.first == "include"; }),
-                 rest.map.end());
+  rest.erase("include");
   merge(result, rest);
   return result;
 }

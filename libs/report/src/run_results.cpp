@@ -177,13 +177,8 @@ struct ExperimentFacts {
 ExperimentFacts experiment_facts(const std::string& file) {
   const cfg::Node root = cfg::load_file(file);
   cfg::Node settings = root;
-  auto drop = [](cfg::Node* map, const char* key) {
-    if (!map) return;
-    map->map.erase(std::remove_if(map->map.begin(), map->map.end(), [&](const auto& kv) { return kv.first == key; }),
-                   map->map.end());
-  };
-  drop(settings.find("run"), "seed"), drop(settings.find("run"), "output");
-  drop(settings.find("data"), "dataset");
+  if (cfg::Node* run = settings.find("run")) run->erase("seed"), run->erase("output");
+  if (cfg::Node* data = settings.find("data")) data->erase("dataset");
   auto scalar = [&](const char* section, const char* key) -> std::string {
     const cfg::Node* s = root.find(section);
     const cfg::Node* v = s ? s->find(key) : nullptr;

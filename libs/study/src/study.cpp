@@ -39,13 +39,9 @@ void save_experiment(const StudyRun& run) {
 // what they compute) and, for training, without the eval section.
 std::string fingerprinted_text(const StudyRun& run, bool training) {
   cfg::Node tree = cfg::to_node(run.config);
-  auto drop = [](cfg::Node& map, const char* key) {
-    map.map.erase(std::remove_if(map.map.begin(), map.map.end(), [&](const auto& kv) { return kv.first == key; }),
-                  map.map.end());
-  };
-  if (cfg::Node* r = tree.find("run")) drop(*r, "output"), drop(*r, "dist_timeout_s");
-  if (cfg::Node* d = tree.find("data")) drop(*d, "dataset");
-  if (training) drop(tree, "eval");
+  if (cfg::Node* r = tree.find("run")) r->erase("output"), r->erase("dist_timeout_s");
+  if (cfg::Node* d = tree.find("data")) d->erase("dataset");
+  if (training) tree.erase("eval");
   return cfg::to_yaml(tree);
 }
 

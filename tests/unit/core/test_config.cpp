@@ -249,3 +249,15 @@ TEST(Config, OptionalSectionIsAbsentUnlessGivenAndLeftOutOfTheTree) {
   EXPECT_EQ(again.extra->width, 8);
   expect_error([] { cfg::read<WithOptional>(cfg::parse("extra: {width: 0}\n", "d.yaml")); }, {"d.yaml", "extra.width"});
 }
+
+// erase removes one map entry, keeps the order of the rest, and ignores a
+// key that is not there.
+TEST(Config, EraseRemovesOneEntry) {
+  cfg::Node root = cfg::parse("a: 1\nb: 2\nc: 3\n", "erase.yaml");
+  root.erase("b");
+  root.erase("missing");
+  ASSERT_EQ(root.map.size(), 2u);
+  EXPECT_EQ(root.map[0].first, "a");
+  EXPECT_EQ(root.map[1].first, "c");
+  EXPECT_EQ(root.find("b"), nullptr);
+}

@@ -28,6 +28,8 @@ struct Node {
   Node* find(const std::string& key);
   // Finds a map entry, creating it (as Null) if missing.
   Node& child(const std::string& key);
+  // Removes the map entry `key` if there is one.
+  void erase(const std::string& key);
   // "file:line" (or "file" when the line is unknown).
   std::string where() const;
   std::string kind_name() const;
