@@ -109,7 +109,7 @@ int garment_layer(const std::string& type) {
 }
 
 GarmentMesh build_garment(const std::string& type, const TPoseBody& body, const GarmentParams& params,
-                          std::uint64_t seed, const std::vector<const GarmentMesh*>& under, const EaseProfile* room) {
+                          std::uint64_t seed, const std::vector<const GarmentMesh*>& under, const MotionRoom* room) {
   const int layer = garment_layer(type);
   validate(params);
   const garment::Landmarks marks = garment::measure(body);
@@ -146,7 +146,7 @@ GarmentMesh build_garment(const std::string& type, const body::Body& body, const
 
 std::vector<GarmentMesh> build_outfit(const std::vector<std::string>& inner, const std::string& outer,
                                       const TPoseBody& body, const GarmentParams& params, std::uint64_t seed,
-                                      const EaseProfile* room) {
+                                      const MotionRoom* room) {
   for (const auto& t : inner)
     if (garment_layer(t) != 0) throw InputError(kConfig, "inner", "inner garment types", "'" + t + "'");
   if (!outer.empty() && garment_layer(outer) != 1)

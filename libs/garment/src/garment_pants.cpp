@@ -4,7 +4,8 @@
 // at its innermost point (inseam) and at angle 0 (outseam); above it the
 // loop crosses the midline and the panels end there (centre seams), and
 // towards the waist the rows blend into the whole-body section. The right
-// leg is the left one built on the mirrored envelope.
+// leg is the left one built on the mirrored envelope. The motion's hip room
+// (garment_leg_room.h) loosens the sections, not the crotch.
 #include <algorithm>
 #include <cmath>
 
@@ -87,6 +88,26 @@ double crotch_point(const Envelope& env, const PantsSpec& spec, double hem, doub
   return std::min(lo, top);
 }
 
+constexpr double kMidlineGap = 0.005;  // m a leg section below the crotch keeps from the midline
+constexpr double kWaistTaper = 0.05;   // m over which hip room fades out towards the waistband
+
+// Ease of the pants' section at height y: the garment's own, or the
+// motion's hip room where that is larger. Below the crotch the room stops
+// where the leg section would reach within kMidlineGap of the midline; it
+// fades to none at the waistband, which is sewn to a top or left open at
+// the garment's own size.
+double section_ease(const FitContext& ctx, const Envelope& env, const PantsSpec& spec, double y, bool below_crotch) {
+  const double own = spec.ease(y);
+  if (!ctx.room || ctx.room->hips.empty()) return own;
+  double room = ctx.room->hips(y) * smooth01((spec.waist - y) / kWaistTaper);
+  if (room <= own) return own;
+  if (below_crotch) {
+    const Radial leg = horizontal_section(env, y, leg_spec(own));
+    room = std::min(room, own + std::max(0.0, leg.point(inseam_angle(leg)).x() - kMidlineGap));
+  }
+  return std::max(own, room);
+}
+
 struct LegPanels {
   int front, back, crotch_row, top_row, front_cols, back_cols;
 };
@@ -101,7 +122,7 @@ LegPanels build_leg(Pattern& pattern, const FitContext& ctx, const Envelope& env
   ys.insert(ys.end(), upper.begin() + 1, upper.end());
   std::vector<std::vector<body::Vec3>> front, back;
   for (std::size_t i = 0; i < ys.size(); ++i) {
-    const double y = ys[i], e = spec.ease(y);
+    const double y = ys[i], e = section_ease(ctx, env, spec, y, static_cast<int>(i) <= crotch_row);
     const double w = static_cast<int>(i) <= crotch_row ? 0.0 : smooth01((y - crotch) / (blend_top - crotch));
     std::vector<body::Vec3> f, b;
     if (w < 1) {

@@ -98,7 +98,7 @@ std::vector<double> column_fractions(const std::vector<body::Vec3>& arc, int n, 
 SectionSpec torso_section(const FitContext& ctx, double y, const EaseProfile& ease, const EaseProfile& hang) {
   SectionSpec spec;
   spec.parts = kTorsoParts;
-  spec.ease = ctx.room ? std::max(ease(y), (*ctx.room)(y)) : ease(y);
+  spec.ease = ctx.room && !ctx.room->legs.empty() ? std::max(ease(y), ctx.room->legs(y)) : ease(y);
   spec.hang = hang(y);
   return spec;
 }

@@ -48,7 +48,7 @@ sim::GarmentAttributes garment_attributes(const std::map<std::string, double>& v
 }
 
 std::vector<data::GarmentData> fit_outfit(const garment::TPoseBody& body, const SceneSpec& spec,
-                                          const garment::GarmentParams& params, const garment::EaseProfile* room) {
+                                          const garment::GarmentParams& params, const garment::MotionRoom* room) {
   std::vector<std::string> inner;
   std::string outer;
   for (const auto& g : spec.garments) (g.layer == 0 ? inner.push_back(g.type) : void(outer = g.type));

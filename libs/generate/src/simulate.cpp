@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <cmath>
 #include <ctime>
-#include <optional>
 
 #include "layers/body/body_arrays.h"
 #include "layers/core/error.h"
@@ -91,9 +90,8 @@ SceneSimulation::SceneSimulation(const GeneratorConfig& config, const SceneSpec&
 
 void SceneSimulation::add_garments() {
   const garment::TPoseBody t_pose = garment::t_pose_body(generated_.body);
-  std::optional<garment::EaseProfile> room;
-  if (config_.garments.leg_room) room = leg_room(t_pose);
-  garments_ = fit_outfit(t_pose, spec_, config_.garments.fit, room ? &*room : nullptr);
+  const garment::MotionRoom room = motion_room(t_pose);
+  garments_ = fit_outfit(t_pose, spec_, config_.garments.fit, &room);
   place_ = rigid_fit(t_pose.mesh.vertices, body_frame(0));
   for (auto& g : garments_) {
     geometry::TriMesh rest;
@@ -112,7 +110,9 @@ void SceneSimulation::add_garments() {
   }
 }
 
-garment::EaseProfile SceneSimulation::leg_room(const garment::TPoseBody& t_pose) const {
+garment::MotionRoom SceneSimulation::motion_room(const garment::TPoseBody& t_pose) const {
+  garment::MotionRoom room;
+  if (!config_.garments.leg_room && !config_.garments.hip_room) return room;
   // Every frame of the motion in the T-pose's pelvis frame (the root joint,
   // whose rotation is its own local one).
   const motion::BodySequence& motion = generated_.sequence;
@@ -128,7 +128,9 @@ garment::EaseProfile SceneSimulation::leg_room(const garment::TPoseBody& t_pose)
                                   Eigen::Translation3d(-Eigen::Vector3d(r[0], r[1], r[2]));
     frames.push_back((to_pelvis * body_frame(f).cast<double>().transpose()).transpose().cast<float>());
   }
-  return garment::leg_room(t_pose, frames);
+  if (config_.garments.leg_room) room.legs = garment::leg_room(t_pose, frames);
+  if (config_.garments.hip_room) room.hips = garment::hip_room(t_pose, frames, config_.sim.max_strain);
+  return room;
 }
 
 geometry::Points SceneSimulation::body_frame(int frame) const {

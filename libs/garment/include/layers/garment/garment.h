@@ -106,11 +106,12 @@ int garment_layer(const std::string& type);
 
 // Builds one garment around `body`, over the garments in `under` (their
 // vertices are enclosed with the layer clearance). With `room`, its torso
-// sections are at least that loose per height (garment_leg_room.h).
+// sections (skirts, dresses) and pants sections (pants, jumpsuits) are at
+// least that loose per height (garment_leg_room.h).
 // Deterministic for a seed.
 GarmentMesh build_garment(const std::string& type, const TPoseBody& body, const GarmentParams& params,
                           std::uint64_t seed, const std::vector<const GarmentMesh*>& under = {},
-                          const EaseProfile* room = nullptr);
+                          const MotionRoom* room = nullptr);
 GarmentMesh build_garment(const std::string& type, const body::Body& body, const GarmentParams& params,
                           std::uint64_t seed);
 
@@ -120,7 +121,7 @@ GarmentMesh build_garment(const std::string& type, const body::Body& body, const
 // `room` as for build_garment, for every garment of the outfit.
 std::vector<GarmentMesh> build_outfit(const std::vector<std::string>& inner, const std::string& outer,
                                       const TPoseBody& body, const GarmentParams& params, std::uint64_t seed,
-                                      const EaseProfile* room = nullptr);
+                                      const MotionRoom* room = nullptr);
 
 // Rest-pose contact of a garment: vertices behind (< 0) or closer than
 // `clearance` to a surface, by the nearest-vertex test, among the vertices

@@ -39,13 +39,21 @@ struct EaseProfile {
   explicit EaseProfile(double constant) : knots{{0.0, constant}} {}
   EaseProfile& at(double y, double ease);  // adds a knot
   double operator()(double y) const;       // throws layers::Error without knots
+  bool empty() const { return knots.empty(); }
+};
+
+// The room a scene's motion asks of the garments (garment_leg_room.h); an
+// empty profile asks for none.
+struct MotionRoom {
+  EaseProfile legs;  // least ease of torso sections per height (skirts, dresses: the legs' spread)
+  EaseProfile hips;  // least ease of pants sections per height (pants, jumpsuits: the skin's growth at the seat)
 };
 
 struct FitContext {
   const Envelope& env;
   const Landmarks& marks;
-  double step;                        // spacing of grid rows and columns (m)
-  const EaseProfile* room = nullptr;  // least ease of torso sections per height (garment_leg_room.h)
+  double step;                       // spacing of grid rows and columns (m)
+  const MotionRoom* room = nullptr;  // what the scene's motion asks for (garment_leg_room.h)
 };
 
 // Parts that torso sections enclose (no arms, hands, head, neck or feet).

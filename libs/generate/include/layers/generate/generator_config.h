@@ -98,6 +98,9 @@ struct GarmentSampling {
   // Skirts and dresses (torso sections below the hips) at least as loose as
   // the scene's motion spreads the legs (garment_leg_room.h).
   bool leg_room = true;
+  // Pants and jumpsuits (their sections from the waist to mid-thigh) at
+  // least as loose as the skin's growth there in the scene's motion asks.
+  bool hip_room = true;
 
   template <class V>
   void visit(V& v) {
@@ -106,6 +109,9 @@ struct GarmentSampling {
     v("attributes", attributes);
     v("leg_room", leg_room,
       cfg::opt().help("make skirts and dresses loose enough for the legs' widest spread in the scene's motion"));
+    v("hip_room", hip_room,
+      cfg::opt().help(
+          "make pants and jumpsuits loose enough at the seat and thighs for the skin's growth in the scene's motion"));
   }
 };
 

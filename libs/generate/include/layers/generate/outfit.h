@@ -20,10 +20,10 @@ namespace layers::generate {
 // rest shape, faces, UVs, panels, type, layer and attributes filled in
 // and no positions yet. The outer garment is fitted over the inner ones.
 // `body`: the scene's body in its T-pose (garment::t_pose_body). `room`:
-// the least ease of torso sections per height (garment_leg_room.h).
+// what the scene's motion asks of the garments (garment_leg_room.h).
 std::vector<data::GarmentData> fit_outfit(const garment::TPoseBody& body, const SceneSpec& spec,
                                           const garment::GarmentParams& params,
-                                          const garment::EaseProfile* room = nullptr);
+                                          const garment::MotionRoom* room = nullptr);
 
 // A garment's attributes as stored in LAYERS-H5 (name -> value) and back;
 // InputError naming `what` for a missing attribute.

@@ -78,8 +78,8 @@ class SceneSimulation {
 
  private:
   geometry::Points body_frame(int frame) const;
-  // The room the motion needs between the legs (garment_leg_room.h).
-  garment::EaseProfile leg_room(const garment::TPoseBody& t_pose) const;
+  // The room the motion asks of the garments, as configured (garment_leg_room.h).
+  garment::MotionRoom motion_room(const garment::TPoseBody& t_pose) const;
   void add_garments();
 
   GeneratorConfig config_;
