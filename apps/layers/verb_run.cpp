@@ -42,7 +42,7 @@ bool make_dataset(const study::StudyDataset& d) {
   const std::string resolved = cfg::to_yaml(cfg::to_node(config));
   if (generate::dataset_complete(d.folder, config)) {
     const fs::path saved = fs::path(d.folder) / "generator.yaml";
-    if (!fs::exists(saved) || read_text_file(saved.string()) != resolved)
+    if (!fs::exists(saved) || !generate::same_saved_config(saved.string(), resolved))
       throw InputError::message(saved.string(), "",
                                 "the dataset folder was made with another generator config than " + d.config +
                                     " (with the study's dataset.set); point dataset.folder elsewhere or remove it");

@@ -52,7 +52,7 @@ struct Layout {
 bool check_saved_config(const Layout& layout, const std::string& config_yaml) {
   const fs::path saved = layout.out / "generator.yaml";
   if (!fs::exists(saved)) return false;
-  if (read_text_file(saved.string()) != config_yaml)
+  if (!same_saved_config(saved.string(), config_yaml))
     throw InputError::message(saved.string(), "",
                               "this dataset folder was started with a different generator config; use the same "
                               "config (and --set values) to resume or finalize, or another --out");

@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "layers/core/error.h"
+#include "layers/core/text_file.h"
 #include "layers/data/format.h"
 
 namespace layers::generate {
@@ -49,6 +50,15 @@ std::string outfit_label(const OutfitConfig& outfit) {
   std::string label;
   for (const auto& t : outfit.inner) label += (label.empty() ? "" : "+") + t;
   return label + "/" + outfit.outer;
+}
+
+bool same_saved_config(const std::string& path, const std::string& resolved) {
+  if (read_text_file(path) == resolved) return true;
+  try {
+    return cfg::to_yaml(cfg::to_node(cfg::read<GeneratorConfig>(cfg::load_file(path)))) == resolved;
+  } catch (const Error&) {
+    return false;
+  }
 }
 
 void check(const GeneratorConfig& c, const std::string& file) {

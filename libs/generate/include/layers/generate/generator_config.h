@@ -100,7 +100,10 @@ struct GarmentSampling {
   bool leg_room = true;
   // Pants and jumpsuits (their sections from the waist to mid-thigh) at
   // least as loose as the skin's growth there in the scene's motion asks.
-  bool hip_room = true;
+  // Off unless a config asks for it, so that datasets made before it
+  // existed keep their config (same_saved_config); the shipped configs
+  // other than `small` turn it on.
+  bool hip_room = false;
 
   template <class V>
   void visit(V& v) {
@@ -167,6 +170,13 @@ struct GeneratorConfig {
     v("sim", sim);
   }
 };
+
+// Whether the generator config saved at `path` (a dataset folder's
+// generator.yaml) is `resolved` (cfg::to_yaml of a resolved config). The
+// saved file is read through the schema first, so a setting added later
+// whose default keeps the old behaviour does not set apart the folders
+// made before it existed; a file the schema rejects is not the same.
+bool same_saved_config(const std::string& path, const std::string& resolved);
 
 // Cross-field checks the per-field ranges cannot express (ranges are
 // [lo, hi] pairs, weights not all zero, known garment types, outfits with
