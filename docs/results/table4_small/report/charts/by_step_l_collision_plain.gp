@@ -15,9 +15,13 @@ plot 4.33581308 with lines dt 3 lw 1.5 lc rgb '#555555' title 'ground truth', \
      'by_step.dat' index 1 using 1:5 with lines lw 2 lc rgb '#ff7f0e' title 'skinned', \
      'by_step.dat' index 2 using 1:5 with lines lw 2 lc rgb '#2ca02c' title 'deepsd/seed-0', \
      'by_step.dat' index 3 using 1:5 with lines lw 2 lc rgb '#d62728' title 'deepsd/seed-1', \
-     'by_step.dat' index 4 using 1:5 with lines lw 2 lc rgb '#9467bd' title 'deepsd+/seed-0', \
-     'by_step.dat' index 5 using 1:5 with lines lw 2 lc rgb '#8c564b' title 'deepsd+/seed-1', \
-     'by_step.dat' index 6 using 1:5 with lines lw 2 lc rgb '#e377c2' title 'layersnet/seed-0', \
-     'by_step.dat' index 7 using 1:5 with lines lw 2 lc rgb '#7f7f7f' title 'layersnet/seed-1', \
-     'by_step.dat' index 8 using 1:5 with lines lw 2 lc rgb '#bcbd22' title 'layersnet+/seed-0', \
-     'by_step.dat' index 9 using 1:5 with lines lw 2 lc rgb '#17becf' title 'layersnet+/seed-1'
+     'by_step.dat' index 4 using 1:5 with lines lw 2 lc rgb '#9467bd' title 'deepsd/seed-2', \
+     'by_step.dat' index 5 using 1:5 with lines lw 2 lc rgb '#8c564b' title 'deepsd+/seed-0', \
+     'by_step.dat' index 6 using 1:5 with lines lw 2 lc rgb '#e377c2' title 'deepsd+/seed-1', \
+     'by_step.dat' index 7 using 1:5 with lines lw 2 lc rgb '#7f7f7f' title 'deepsd+/seed-2', \
+     'by_step.dat' index 8 using 1:5 with lines lw 2 lc rgb '#bcbd22' title 'layersnet/seed-0', \
+     'by_step.dat' index 9 using 1:5 with lines lw 2 lc rgb '#17becf' title 'layersnet/seed-1', \
+     'by_step.dat' index 10 using 1:5 with lines lw 2 lc rgb '#1f77b4' title 'layersnet/seed-2', \
+     'by_step.dat' index 11 using 1:5 with lines lw 2 lc rgb '#ff7f0e' title 'layersnet+/seed-0', \
+     'by_step.dat' index 12 using 1:5 with lines lw 2 lc rgb '#2ca02c' title 'layersnet+/seed-1', \
+     'by_step.dat' index 13 using 1:5 with lines lw 2 lc rgb '#d62728' title 'layersnet+/seed-2'

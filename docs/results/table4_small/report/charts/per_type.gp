@@ -17,9 +17,13 @@ plot 'per_type.dat' using 2:3:xtic(1) lc rgb '#1f77b4' title 'static', \
      'per_type.dat' using 4:5 lc rgb '#ff7f0e' title 'skinned', \
      'per_type.dat' using 6:7 lc rgb '#2ca02c' title 'deepsd/seed-0', \
      'per_type.dat' using 8:9 lc rgb '#d62728' title 'deepsd/seed-1', \
-     'per_type.dat' using 10:11 lc rgb '#9467bd' title 'deepsd+/seed-0', \
-     'per_type.dat' using 12:13 lc rgb '#8c564b' title 'deepsd+/seed-1', \
-     'per_type.dat' using 14:15 lc rgb '#e377c2' title 'layersnet/seed-0', \
-     'per_type.dat' using 16:17 lc rgb '#7f7f7f' title 'layersnet/seed-1', \
-     'per_type.dat' using 18:19 lc rgb '#bcbd22' title 'layersnet+/seed-0', \
-     'per_type.dat' using 20:21 lc rgb '#17becf' title 'layersnet+/seed-1'
+     'per_type.dat' using 10:11 lc rgb '#9467bd' title 'deepsd/seed-2', \
+     'per_type.dat' using 12:13 lc rgb '#8c564b' title 'deepsd+/seed-0', \
+     'per_type.dat' using 14:15 lc rgb '#e377c2' title 'deepsd+/seed-1', \
+     'per_type.dat' using 16:17 lc rgb '#7f7f7f' title 'deepsd+/seed-2', \
+     'per_type.dat' using 18:19 lc rgb '#bcbd22' title 'layersnet/seed-0', \
+     'per_type.dat' using 20:21 lc rgb '#17becf' title 'layersnet/seed-1', \
+     'per_type.dat' using 22:23 lc rgb '#1f77b4' title 'layersnet/seed-2', \
+     'per_type.dat' using 24:25 lc rgb '#ff7f0e' title 'layersnet+/seed-0', \
+     'per_type.dat' using 26:27 lc rgb '#2ca02c' title 'layersnet+/seed-1', \
+     'per_type.dat' using 28:29 lc rgb '#d62728' title 'layersnet+/seed-2'
