@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "layers/garment/garment_section.h"
+#include "layers/geometry/normals.h"
 
 namespace layers::garment {
 namespace {
@@ -21,16 +22,12 @@ double hull_perimeter(std::vector<Vec2> points) {
   return length(hull) + (hull.front() - hull.back()).norm();
 }
 
-// Area of every face of `faces` over the points `p`.
-std::vector<double> face_areas(const geometry::Points& p, const geometry::Faces& faces) {
-  std::vector<double> out(static_cast<std::size_t>(faces.rows()));
-  for (int f = 0; f < faces.rows(); ++f) {
-    const Eigen::Vector3d a = p.row(faces(f, 0)).cast<double>().transpose();
-    const Eigen::Vector3d b = p.row(faces(f, 1)).cast<double>().transpose();
-    const Eigen::Vector3d c = p.row(faces(f, 2)).cast<double>().transpose();
-    out[static_cast<std::size_t>(f)] = 0.5 * (b - a).cross(c - a).norm();
-  }
-  return out;
+// Skin vertices of the T-pose within kBandHalf of height y.
+std::vector<int> band_vertices(const geometry::Points& rest, double y) {
+  std::vector<int> band;
+  for (int v = 0; v < rest.rows(); ++v)
+    if (std::abs(rest(v, 1) - y) <= kBandHalf) band.push_back(v);
+  return band;
 }
 
 }  // namespace
@@ -40,9 +37,7 @@ EaseProfile leg_room(const TPoseBody& body, const std::vector<geometry::Points>&
   const auto& rest = body.mesh.vertices;
   EaseProfile room;
   for (double y = m.hip; y > m.ankle + kBandHalf; y -= kBandStep) {
-    std::vector<int> band;
-    for (int v = 0; v < rest.rows(); ++v)
-      if (std::abs(rest(v, 1) - y) <= kBandHalf) band.push_back(v);
+    const std::vector<int> band = band_vertices(rest, y);
     if (band.size() < kBandPoints) continue;
     std::vector<Vec2> points(band.size());
     const auto outline = [&](const geometry::Points& p) {
@@ -63,42 +58,51 @@ EaseProfile hip_room(const TPoseBody& body, const std::vector<geometry::Points>&
   const Landmarks m = measure(body);
   const auto& rest = body.mesh.vertices;
   const auto& faces = body.mesh.faces;
-  const std::vector<double> rest_area = face_areas(rest, faces);
-  std::vector<std::vector<double>> area;
-  area.reserve(frames.size());
-  for (const geometry::Points& f : frames) area.push_back(face_areas(f, faces));
-  const double covered = (1.0 + max_strain) * (1.0 + max_strain);  // area ratio capped cloth can follow
   const double low = 0.5 * (m.crotch + m.knee);
-  std::vector<double> heights;
-  double most = 0.0;
+  // The bands: their faces (by the centre's T-pose height), T-pose area
+  // and T-pose outline.
+  struct Band {
+    double y = 0.0, outline = 0.0, rest_area = 0.0, grown = 1.0;
+    std::vector<int> faces;
+  };
+  const Eigen::VectorXf rest_areas = geometry::face_areas(rest, faces);
+  std::vector<Band> bands;
   for (double y = m.waist; y > low; y -= kBandStep) {
-    std::vector<int> band;
+    const std::vector<int> vertices = band_vertices(rest, y);
+    Band band;
+    band.y = y;
     for (int f = 0; f < faces.rows(); ++f) {
       const double centre = (rest(faces(f, 0), 1) + rest(faces(f, 1), 1) + rest(faces(f, 2), 1)) / 3.0;
-      if (std::abs(centre - y) <= kBandHalf) band.push_back(f);
+      if (std::abs(centre - y) > kBandHalf) continue;
+      band.faces.push_back(f);
+      band.rest_area += rest_areas(f);
     }
+    if (vertices.size() < kBandPoints || band.faces.empty()) continue;
     std::vector<Vec2> points;
-    for (int v = 0; v < rest.rows(); ++v)
-      if (std::abs(rest(v, 1) - y) <= kBandHalf) points.emplace_back(rest(v, 0), rest(v, 2));
-    if (points.size() < kBandPoints || band.empty()) continue;
-    double at_rest = 0.0;
-    for (int f : band) at_rest += rest_area[static_cast<std::size_t>(f)];
-    double grown = 1.0;
-    for (const auto& a : area) {
-      double sum = 0.0;
-      for (int f : band) sum += a[static_cast<std::size_t>(f)];
-      grown = std::max(grown, sum / at_rest);
-    }
-    const double outline = hull_perimeter(std::move(points));
-    most = std::max(most, (1.0 + kLegRoomMargin) * outline * std::max(0.0, grown / covered - 1.0) / (2.0 * M_PI));
-    heights.push_back(y);
+    for (int v : vertices) points.emplace_back(rest(v, 0), rest(v, 2));
+    band.outline = hull_perimeter(std::move(points));
+    bands.push_back(std::move(band));
   }
-  // The cloth slides between neighbouring bands, so the whole region gets
-  // what its most grown band asks for.
+  // Each band's largest area over the motion, one frame at a time.
+  for (const geometry::Points& frame : frames) {
+    const Eigen::VectorXf areas = geometry::face_areas(frame, faces);
+    for (Band& band : bands) {
+      double sum = 0.0;
+      for (int f : band.faces) sum += areas(f);
+      band.grown = std::max(band.grown, sum / band.rest_area);
+    }
+  }
+  // What each band asks for; the cloth slides between neighbouring bands,
+  // so the whole region gets what the most grown one asks for.
+  const double covered = (1.0 + max_strain) * (1.0 + max_strain);  // area ratio capped cloth can follow
+  double most = 0.0;
+  for (const Band& band : bands)
+    most = std::max(most,
+                    (1.0 + kLegRoomMargin) * band.outline * std::max(0.0, band.grown / covered - 1.0) / (2.0 * M_PI));
   EaseProfile room;
   room.at(m.waist + kBandStep, 0.0);
   room.at(low - kBandStep, 0.0);
-  for (double y : heights) room.at(y, most);
+  for (const Band& band : bands) room.at(band.y, most);
   return room;
 }
 
