@@ -24,4 +24,7 @@ plot 0.781216943 with lines dt 3 lw 1.5 lc rgb '#555555' title 'ground truth', \
      'by_step.dat' index 10 using 1:4 with lines lw 2 lc rgb '#1f77b4' title 'layersnet/seed-2', \
      'by_step.dat' index 11 using 1:4 with lines lw 2 lc rgb '#ff7f0e' title 'layersnet+/seed-0', \
      'by_step.dat' index 12 using 1:4 with lines lw 2 lc rgb '#2ca02c' title 'layersnet+/seed-1', \
-     'by_step.dat' index 13 using 1:4 with lines lw 2 lc rgb '#d62728' title 'layersnet+/seed-2'
+     'by_step.dat' index 13 using 1:4 with lines lw 2 lc rgb '#d62728' title 'layersnet+/seed-2', \
+     'by_step.dat' index 14 using 1:4 with lines lw 2 lc rgb '#9467bd' title 'mgnet-follow/seed-0', \
+     'by_step.dat' index 15 using 1:4 with lines lw 2 lc rgb '#8c564b' title 'mgnet-follow/seed-1', \
+     'by_step.dat' index 16 using 1:4 with lines lw 2 lc rgb '#e377c2' title 'mgnet-follow/seed-2'

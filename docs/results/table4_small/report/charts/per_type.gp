@@ -26,4 +26,7 @@ plot 'per_type.dat' using 2:3:xtic(1) lc rgb '#1f77b4' title 'static', \
      'per_type.dat' using 22:23 lc rgb '#1f77b4' title 'layersnet/seed-2', \
      'per_type.dat' using 24:25 lc rgb '#ff7f0e' title 'layersnet+/seed-0', \
      'per_type.dat' using 26:27 lc rgb '#2ca02c' title 'layersnet+/seed-1', \
-     'per_type.dat' using 28:29 lc rgb '#d62728' title 'layersnet+/seed-2'
+     'per_type.dat' using 28:29 lc rgb '#d62728' title 'layersnet+/seed-2', \
+     'per_type.dat' using 30:31 lc rgb '#9467bd' title 'mgnet-follow/seed-0', \
+     'per_type.dat' using 32:33 lc rgb '#8c564b' title 'mgnet-follow/seed-1', \
+     'per_type.dat' using 34:35 lc rgb '#e377c2' title 'mgnet-follow/seed-2'
