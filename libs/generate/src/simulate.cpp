@@ -185,7 +185,16 @@ SceneResult simulate_scene(const GeneratorConfig& config, const SceneSpec& spec,
     result.cpu_seconds = thread_cpu_seconds() - cpu_start;
     return result;
   }
-  scene.warm_up(observer);
+  // At trace level, each warm-up frame's crossings (where a tangle is born).
+  const bool trace = spdlog::should_log(spdlog::level::trace);
+  scene.warm_up([&](const char* phase, int frame, const sim::Solver& solver) {
+    if (trace) {
+      const sim::FrameMeasures m = sim::measure_frame(solver);
+      spdlog::trace("{} {} {}: H-crossing {:.3f}%, L-crossing {:.3f}%, stretch {:.3f}", spec.id, phase, frame,
+                    100 * m.h_crossing, 100 * m.l_crossing, m.max_stretch);
+    }
+    if (observer) observer(phase, frame, solver);
+  });
 
   // Recorded frames, measured as they come.
   const int record = config.frames;
@@ -198,7 +207,11 @@ SceneResult simulate_scene(const GeneratorConfig& config, const SceneSpec& spec,
   seq.wind.strength.resize(static_cast<std::size_t>(record));
   for (int r = 0; r < record; ++r) {
     scene.record(r);
-    measures.add(sim::measure_frame(solver));
+    const sim::FrameMeasures m = sim::measure_frame(solver);
+    measures.add(m);
+    if (trace)
+      spdlog::trace("{} record {}: H-crossing {:.3f}%, L-crossing {:.3f}%, stretch {:.3f}", spec.id, r,
+                    100 * m.h_crossing, 100 * m.l_crossing, m.max_stretch);
     if (observer) observer("record", r, solver);
     for (std::size_t k = 0; k < garments.size(); ++k) {
       geometry::Points p = solver.cloth(static_cast<int>(k)).positions();
