@@ -14,7 +14,8 @@ namespace layers::body {
 namespace {
 
 constexpr float kCoreWeight = 0.99f;
-constexpr int kBlendRings = 2;  // rings of core vertices next to a blend zone that are not trusted as surface
+constexpr int kBlendRings = 2;            // rings of core vertices next to a blend zone that are not trusted as surface
+constexpr double kGapFromShoulder = 0.4;  // arm gaps count beyond this share of the upper arm from the shoulder
 
 int part_of_joint(const std::string& name) {
   auto has = [&](const char* s) { return name.find(s) != std::string::npos; };
@@ -113,6 +114,19 @@ SelfIntersection::SelfIntersection(const Body& body, IntersectionOptions options
     mark.swap(next);
   }
   near_blend_ = mark;
+  // Arm vertices whose gap to the torso counts: away from the shoulder,
+  // where the upper arm always lies against the chest and no turn opens it.
+  gap_vertex_.assign(nv, 0);
+  const std::array<int, 2> arm_root{body.skeleton.index("LeftArm"), body.skeleton.index("RightArm")};
+  for (int v = 0; v < nv; ++v) {
+    const int p = part_[v];
+    if (p != 1 && p != 2) continue;
+    const int j = arm_root[p - 1];
+    if (j < 0) continue;
+    const double from_shoulder =
+        (body.rest.vertices.row(v).cast<double>().transpose() - body.skeleton.rest_head[j]).norm();
+    gap_vertex_[v] = from_shoulder > kGapFromShoulder * body.skeleton.bone_length(j);
+  }
   for (int v = 0; v < nv; ++v)
     if (part_[v] >= 0) members_[part_[v]].push_back(v);
 }
@@ -146,6 +160,8 @@ FrameIntersection SelfIntersection::check(const geometry::Points& posed, const s
       const int h = members_[b][n.index];
       if (near_blend_[h]) continue;
       const double offset = static_cast<double>((x - posed.row(h)).dot(normals.row(h)));
+      if (b == 0 && (a == 1 || a == 2) && gap_vertex_[v])
+        out.arm_gap[a - 1] = std::min(out.arm_gap[a - 1], std::max(offset, 0.0));
       if (offset >= 0.0) continue;
       const double depth = -offset;
       if (depth > options_.tolerance) ++out.vertices;

@@ -51,6 +51,7 @@ motion::GeneratedBody make_body(const GeneratorConfig& config, const SceneSpec& 
   body.transition_frames = config.body.transition_frames;
   body.seed = spec.seed;
   body.intersection_tolerance_mm = config.body.intersection_tolerance_mm;
+  body.arm_room_mm = config.body.arm_room_mm;
   body.on_intersection = "longest_run";
   return motion::generate_body(body);
 }
@@ -64,6 +65,9 @@ bool wants_self_contact(const std::string& type) {
 SceneSimulation::SceneSimulation(const GeneratorConfig& config, const SceneSpec& spec)
     : config_(config), spec_(spec), generated_(make_body(config, spec)), wind_(spec.wind), solver_(config.sim) {
   const motion::BodySequence& motion = generated_.sequence;
+  if (motion.intersection.arm_room_frames > 0)
+    spdlog::debug("{}: arms turned for room in {} of {} frames, by up to {:.2f} rad", spec_.id,
+                  motion.intersection.arm_room_frames, motion.intersection.frames, motion.intersection.arm_room_turn);
   const int needed = config_.body.transition_frames + config_.frames;
   if (motion.num_frames < needed || motion.source_frame.front() != 0) {
     problem_ = "the body self-intersects in frames that could not be repaired (" + std::to_string(motion.num_frames) +

@@ -36,6 +36,7 @@ MotionSpec motion_spec(const BodyMotionConfig& config) {
 SequenceOptions sequence_options(const BodyMotionConfig& config) {
   SequenceOptions o;
   o.intersection.tolerance = config.intersection_tolerance_mm / 1000.0;
+  o.arm_room = config.arm_room_mm / 1000.0;
   o.on_intersection = config.on_intersection;
   return o;
 }

@@ -1,4 +1,4 @@
-// Intersection checks and repair over a motion, and the per-frame arrays (see body_sequence.h).
+// Arm room, intersection checks and repair over a motion, and the per-frame arrays (see body_sequence.h).
 #include "layers/motion/body_sequence.h"
 
 #include <algorithm>
@@ -35,8 +35,11 @@ BodySequence generate_body_sequence(const body::Body& body, const MotionSource& 
   IntersectionReport report;
   report.frames = n;
   report.crossing_limbs = options.intersection.exact ? 2 : 0;
+  for (int f = 0; f < n; ++f) poses[f] = motion.pose(f);
+  if (options.arm_room > 0.0)
+    report.arm_room_turn =
+        make_arm_room(body, si, options.arm_room, options.max_arm_room_turn, poses, report.arm_room_frames);
   for (int f = 0; f < n; ++f) {
-    poses[f] = motion.pose(f);
     found[f] = check_pose(body, si, poses[f]);
     report.worst_before = std::max(report.worst_before, found[f].depth);
     if (found[f].intersects(tol)) ++report.intersecting;

@@ -1,4 +1,4 @@
-// Smooth repair of self-intersecting frames (see intersection_repair.h).
+// Arm room and smooth repair of self-intersecting frames (see intersection_repair.h).
 #include "intersection_repair.h"
 
 #include <algorithm>
@@ -155,6 +155,49 @@ std::vector<std::pair<int, int>> runs(const std::vector<char>& affected) {
 }
 
 }  // namespace
+
+double make_arm_room(const body::Body& body, const body::SelfIntersection& checker, double room, double limit,
+                     std::vector<body::Pose>& poses, int& frames) {
+  frames = 0;
+  const int n = static_cast<int>(poses.size());
+  if (room <= 0.0 || limit <= 0.0 || n == 0) return 0.0;
+  const Limbs limbs(body.skeleton);
+  const std::array<bool, 4> no_crossings{false, false, false, false};  // the gaps only
+  const auto gaps = [&](const body::Pose& p) {
+    geometry::Points v;
+    body::skin(body.rest.vertices, body.weights, body.skeleton, body::forward_kinematics(body.skeleton, p), v);
+    return checker.check(v, no_crossings).arm_gap;
+  };
+  std::array<std::vector<double>, 2> need{std::vector<double>(n, 0.0), std::vector<double>(n, 0.0)};
+  for (int f = 0; f < n; ++f) {
+    Corrections c{};
+    std::array<double, 2> gap = gaps(poses[f]);
+    for (;;) {
+      bool moved = false;
+      for (int a = 0; a < 2; ++a) {
+        const int ch = kArmChannel[0][a];
+        if (gap[a] >= room || c[ch] + kStep > limit + 1e-9) continue;
+        c[ch] += kStep;
+        moved = true;
+      }
+      if (!moved) break;
+      gap = gaps(corrected(body.skeleton, limbs, poses[f], c));
+    }
+    for (int a = 0; a < 2; ++a) need[a][f] = c[kArmChannel[0][a]];
+  }
+  std::array<std::vector<double>, 2> applied{upper_envelope(need[0], kSpreadSigma),
+                                             upper_envelope(need[1], kSpreadSigma)};
+  double largest = 0.0;
+  for (int f = 0; f < n; ++f) {
+    Corrections c{};
+    for (int a = 0; a < 2; ++a) c[kArmChannel[0][a]] = std::min(limit, applied[a][f]);
+    if (c[kArmChannel[0][0]] < 1e-6 && c[kArmChannel[0][1]] < 1e-6) continue;
+    ++frames;
+    largest = std::max({largest, c[kArmChannel[0][0]], c[kArmChannel[0][1]]});
+    poses[f] = corrected(body.skeleton, limbs, poses[f], c);
+  }
+  return largest;
+}
 
 void repair_intersections(const body::Body& body, const body::SelfIntersection& checker, const RepairLimits& limits,
                           std::vector<body::Pose>& poses, std::vector<body::FrameIntersection>& found) {

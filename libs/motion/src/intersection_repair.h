@@ -1,5 +1,6 @@
-// intersection_repair.h (private to layers::motion) -- repairs body
-// self-intersections over a pose sequence: the offending arm is abducted
+// intersection_repair.h (private to layers::motion) -- room for the cloth
+// under the arms, and repairs of body self-intersections over a pose
+// sequence: the offending arm is abducted
 // or swung forward / backward (one way per run of affected frames: the
 // way that alone clears most of them), the legs abducted, each by the smallest
 // angle (in 0.05 rad steps) that clears a frame; the per-frame angles are
@@ -22,6 +23,15 @@ struct RepairLimits {
   // crossings are aimed at (else only its depth is).
   std::array<bool, 4> crossings{true, true, true, true};
 };
+
+// Arm room: in the frames where an arm comes closer to the torso than
+// `room` (m; FrameIntersection::arm_gap), abducts it by the smallest angle
+// (0.05 rad steps, at most `limit`) that gives it that room, or by `limit`;
+// the per-frame angles are spread over neighbouring frames with a smooth
+// envelope that stays above them. Returns the largest angle applied (rad)
+// and counts the frames turned in `frames`.
+double make_arm_room(const body::Body& body, const body::SelfIntersection& checker, double room, double limit,
+                     std::vector<body::Pose>& poses, int& frames);
 
 // `found` holds the check of every pose and is updated with the result,
 // counting only the crossings of the limbs `limits.crossings` aims at.

@@ -2,6 +2,10 @@
 // the torso, repair by abduction, and the frame policies.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 #include "body_fixture.h"
 #include "layers/body/pose_body.h"
 #include "layers/body/self_intersection.h"
@@ -96,6 +100,65 @@ TEST(SelfIntersection, SequencesResolveSmallIntersections) {
     EXPECT_LE(r.depth, 0.004) << "frame " << f;
     EXPECT_EQ(r.limb_crossings[0], 0) << "frame " << f;  // the arm's exact crossings cleared too
   }
+}
+
+TEST(SelfIntersection, ArmGapIsTheRoomUnderTheArm) {
+  const body::Body& b = body::test::body();
+  const body::SelfIntersection si(b);
+  // Arms out in the T-pose: nothing of them near the torso.
+  const body::FrameIntersection t = si.check(body::pose_body(b, b.t_pose).vertices);
+  EXPECT_TRUE(std::isinf(t.arm_gap[0]));
+  EXPECT_TRUE(std::isinf(t.arm_gap[1]));
+  // The left arm turned toward the body: its gap shrinks step by step to
+  // contact; the right arm's stays as it was.
+  const double right = si.check(body::pose_body(b, arm_in(b, 0.0)).vertices).arm_gap[1];
+  double last = std::numeric_limits<double>::infinity();
+  for (double angle : {0.5, 0.6, 0.7}) {
+    const body::FrameIntersection r = si.check(body::pose_body(b, arm_in(b, angle)).vertices);
+    EXPECT_LT(r.arm_gap[0], last) << angle;
+    EXPECT_GE(r.arm_gap[0], 0.0);
+    EXPECT_EQ(r.arm_gap[1], right);
+    last = r.arm_gap[0];
+  }
+  EXPECT_LT(last, 0.01);
+}
+
+TEST(SelfIntersection, ArmRoomTurnsOnlyTheFramesThatNeedIt) {
+  const body::Body& b = body::test::body();
+  const body::SelfIntersection si(b);
+  // 60 frames: in frames 20-40 the left arm comes down near the side (2.5
+  // cm from it at the lowest, no intersection) and goes back out; the
+  // right arm stays where it is. 4 cm of room asked for.
+  std::vector<body::Pose> poses;
+  for (int f = 0; f < 60; ++f)
+    poses.push_back(arm_in(b, f < 20 || f > 40 ? 0.0 : 0.6 * std::sin(M_PI * (f - 20) / 20.0)));
+  const PoseTrack motion(poses, "test:arm room");
+  const double room = 0.04;
+  SequenceOptions o;
+  o.on_intersection = "keep";
+  const BodySequence plain = generate_body_sequence(b, motion, o);
+  EXPECT_EQ(plain.intersection.arm_room_frames, 0);
+  o.arm_room = room;
+  const BodySequence roomy = generate_body_sequence(b, motion, o);
+  ASSERT_EQ(roomy.num_frames, 60);
+  EXPECT_GT(roomy.intersection.arm_room_frames, 0);
+  EXPECT_LT(roomy.intersection.arm_room_frames, 40);
+  EXPECT_GT(roomy.intersection.arm_room_turn, 0.0);
+  EXPECT_LE(roomy.intersection.arm_room_turn, o.max_arm_room_turn + 1e-9);
+  geometry::Points v(b.num_vertices(), 3);
+  const auto frame = [&](const BodySequence& s, int f) {
+    std::copy(s.positions.begin() + static_cast<std::ptrdiff_t>(f) * b.num_vertices() * 3,
+              s.positions.begin() + static_cast<std::ptrdiff_t>(f + 1) * b.num_vertices() * 3, v.data());
+    return v;
+  };
+  int unchanged = 0;
+  for (int f = 0; f < 60; ++f) {
+    const body::FrameIntersection r = si.check(frame(roomy, f));
+    // Every frame has the room asked for (the turns stay under the limit here).
+    EXPECT_GE(r.arm_gap[0], room - 1e-6) << "frame " << f;
+    unchanged += frame(roomy, f).isApprox(frame(plain, f), 0.0) ? 1 : 0;
+  }
+  EXPECT_GE(unchanged, 10);  // frames far from the side are left as they were
 }
 
 TEST(SelfIntersection, PoliciesForFramesThatStayIntersecting) {

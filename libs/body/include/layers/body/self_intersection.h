@@ -26,6 +26,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,13 @@ struct FrameIntersection {
   // Exact crossings between regions (face pairs), all and per limb.
   int crossings = 0;
   std::array<int, 4> limb_crossings{};
+  // Per arm (left, right): the smallest offset of its core vertices
+  // beyond 40% of the upper arm from the shoulder in front of the torso's
+  // surface (m; nearest-vertex test, torso vertices next to a blend zone
+  // left out), infinity when none is within
+  // `max_distance`. The room the arm leaves the cloth between it and the
+  // torso (the motion's arm room, body_sequence.h).
+  std::array<double, 2> arm_gap{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
   // The verdict that drops frames: deeper than the tolerance.
   bool intersects(double tolerance) const { return depth > tolerance; }
   // What the repair clears where its limits allow: the verdict above and
@@ -82,6 +90,7 @@ class SelfIntersection {
   std::vector<int> part_;
   std::array<std::vector<int>, kNumBodyParts> members_;  // core vertices per part
   std::vector<char> near_blend_;                         // core vertex next to a blend zone
+  std::vector<char> gap_vertex_;                         // arm vertex whose arm_gap counts
   std::vector<signed char> region_;                      // per face: the part carrying >= 1/2 of its weight
   std::array<std::vector<int>, kNumBodyParts> region_faces_;
 };

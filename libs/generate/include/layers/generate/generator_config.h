@@ -79,6 +79,7 @@ struct BodySampling {
   std::optional<MotionVariation> variation;             // parametric families (motion_variation.h); absent: off
   int transition_frames = 10;                           // T-pose -> motion blend (part of warm-up)
   double intersection_tolerance_mm = 4.0;
+  double arm_room_mm = 0.0;  // room for the cloth under the arms (motion::SequenceOptions::arm_room); 0 = off
 
   template <class V>
   void visit(V& v) {
@@ -88,6 +89,8 @@ struct BodySampling {
     v("transition_frames", transition_frames,
       cfg::opt().range(1, 300).help("frames blending from the T-pose into the motion"));
     v("intersection_tolerance_mm", intersection_tolerance_mm, cfg::opt().range(0.5, 50));
+    v("arm_room_mm", arm_room_mm,
+      cfg::opt().range(0, 100).help("room for the cloth between arms and torso; closer arms are abducted (0 = off)"));
   }
 };
 

@@ -10,6 +10,7 @@
 //     seed: 7
 //     transition_frames: 15        # blend in from the T-pose
 //     intersection_tolerance_mm: 4
+//     arm_room_mm: 0               # > 0: abduct arms closer than this to the torso
 //     on_intersection: longest_run # or drop, keep
 #pragma once
 
@@ -31,6 +32,7 @@ struct BodyMotionConfig {
   std::uint64_t seed = 0;
   int transition_frames = 15;
   double intersection_tolerance_mm = 4.0;
+  double arm_room_mm = 0.0;  // SequenceOptions::arm_room; 0 = off
   std::string on_intersection = "longest_run";
   std::string assets;  // asset root; "" = $LAYERS_ASSETS or the build-time default
 
@@ -43,6 +45,8 @@ struct BodyMotionConfig {
     v("transition_frames", transition_frames, cfg::opt().min(0).help("frames blending in from the T-pose"));
     v("intersection_tolerance_mm", intersection_tolerance_mm,
       cfg::opt().range(0.5, 50).help("allowed self-intersection depth"));
+    v("arm_room_mm", arm_room_mm,
+      cfg::opt().range(0, 100).help("room for the cloth between arms and torso; closer arms are abducted (0 = off)"));
     v("on_intersection", on_intersection, cfg::opt().choices({"longest_run", "drop", "keep"}));
     v("assets", assets,
       cfg::opt().help("asset root (default: $LAYERS_ASSETS, then <prefix>/share/layers/assets, then <source>/assets)"));

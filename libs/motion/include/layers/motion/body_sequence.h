@@ -1,6 +1,7 @@
 // layers/motion/body_sequence.h -- the body part of a LAYERS-H5 sequence:
 // per-frame skinned vertices, root translation and rotation, and joint
-// transforms, with body self-intersections detected, small ones resolved
+// transforms, with room made for the cloth under the arms (optional), body
+// self-intersections detected, small ones resolved
 // (the offending arm abducted or swung forward / backward, the legs
 // abducted, by the smallest angle that clears the frame, the correction
 // spread smoothly over neighbouring frames) and frames that stay
@@ -21,6 +22,13 @@ struct SequenceOptions {
   bool resolve = true;               // try to resolve intersecting frames
   double max_arm_correction = 0.9;   // rad an arm may be turned at most
   double max_leg_correction = 0.35;  // rad of extra leg abduction at most
+  // Room for the cloth under the arms (m; 0 = off): frames where an arm
+  // comes closer to the torso than this have it abducted, by at most
+  // `max_arm_room_turn` rad, before the checks and repairs below. Two
+  // layers of cloth on the arm and two on the torso need about 2 cm of
+  // contact margins; a mocap arm resting against the side leaves less.
+  double arm_room = 0.0;
+  double max_arm_room_turn = 0.3;
   // What happens to frames still intersecting after resolution:
   // "longest_run" keeps the longest run of consecutive clean frames,
   // "drop" removes the bad frames (the sequence then skips in time),
@@ -41,6 +49,9 @@ struct IntersectionReport {
   // where aiming at them left frames deep that the depth alone clears).
   long crossing_before = 0, crossing_after = 0;
   int crossing_limbs = 0;
+  // Arm room: frames with an arm turned for it, and the largest turn (rad).
+  int arm_room_frames = 0;
+  double arm_room_turn = 0.0;
   double share_intersecting() const { return frames ? static_cast<double>(intersecting) / frames : 0.0; }
 };
 
