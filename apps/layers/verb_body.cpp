@@ -56,6 +56,7 @@ VerbRun register_body(CLI::App& app, const Global&) {
     std::string on_intersection = "longest_run";
     int frames = 120, transition = 15;
     std::uint64_t seed = 0;
+    double arm_room = 0.0;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--shape", a->shape, "shape parameters in 0..1, e.g. gender=0.3,muscle=0.5,weight=0.6,height=0.45");
@@ -65,6 +66,8 @@ VerbRun register_body(CLI::App& app, const Global&) {
   cmd->add_option("--transition", a->transition, "frames blending in from the T-pose")->capture_default_str();
   cmd->add_option("--seed", a->seed, "randomises procedural speed and amplitude")->capture_default_str();
   cmd->add_option("--on-intersection", a->on_intersection, "longest_run, drop or keep")->capture_default_str();
+  cmd->add_option("--arm-room", a->arm_room, "mm of room for the cloth between arms and torso (0 = off)")
+      ->capture_default_str();
   cmd->add_option("--id", a->id, "sequence id")->capture_default_str();
   cmd->add_option("--out", a->out, "output: a shard file (*.h5) or a dataset folder")->required();
   cmd->add_option("--export", a->export_format, "also export the body as obj or pc2");
@@ -86,6 +89,7 @@ VerbRun register_body(CLI::App& app, const Global&) {
     section.map.emplace_back("transition_frames", scalar(std::to_string(a->transition), "--transition"));
     section.map.emplace_back("seed", scalar(std::to_string(a->seed), "--seed"));
     section.map.emplace_back("on_intersection", scalar(a->on_intersection, "--on-intersection"));
+    section.map.emplace_back("arm_room_mm", scalar(std::to_string(a->arm_room), "--arm-room"));
     auto config = cfg::read<motion::BodyMotionConfig>(section, "body");
     if (!a->export_format.empty()) data::parse_export_format(a->export_format, "--export");
 
@@ -122,6 +126,9 @@ VerbRun register_body(CLI::App& app, const Global&) {
         "aimed at those of %d of 4 limbs)\n",
         report.frames ? static_cast<double>(report.crossing_before) / report.frames : 0.0,
         report.frames ? static_cast<double>(report.crossing_after) / report.frames : 0.0, report.crossing_limbs);
+    if (config.arm_room_mm > 0)
+      std::printf("arm room %.0f mm: arms turned in %d of %d frames, by up to %.2f rad\n", config.arm_room_mm,
+                  report.arm_room_frames, report.frames, report.arm_room_turn);
 
     if (!a->export_format.empty()) {
       std::string dir =
