@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 #include "layers/body/skinning.h"
 #include "smoothing.h"
@@ -10,10 +11,11 @@
 namespace layers::motion {
 namespace {
 
-constexpr double kStep = 0.05;        // rad per search step
-constexpr double kSpreadSigma = 2.0;  // frames: corrections spread over about 3 sigma each side
-constexpr int kRounds = 6;            // search / spread rounds
-constexpr int kRunGap = 12;           // frames: affected frames closer than this share one way
+constexpr double kStep = 0.05;           // rad per search step
+constexpr double kSpreadSigma = 2.0;     // frames: corrections spread over about 3 sigma each side
+constexpr int kRounds = 6;               // search / spread rounds
+constexpr int kRunGap = 12;              // frames: affected frames closer than this share one way
+constexpr double kArmRoomSlack = 0.002;  // m: what an arm room turn may take from a gap before it counts as harm
 
 // Limb roots (left arm, right arm, left leg, right leg) and the joint whose
 // axes the corrections turn about (chest for arms, pelvis for legs).
@@ -160,37 +162,64 @@ double make_arm_room(const body::Body& body, const body::SelfIntersection& check
                      std::vector<body::Pose>& poses, int& frames) {
   frames = 0;
   const int n = static_cast<int>(poses.size());
-  if (room <= 0.0 || limit <= 0.0 || n == 0) return 0.0;
+  const int steps = static_cast<int>(std::floor(limit / kStep + 1e-9));
+  if (room <= 0.0 || steps <= 0 || n == 0) return 0.0;
   const Limbs limbs(body.skeleton);
   const std::array<bool, 4> no_crossings{false, false, false, false};  // the gaps only
-  const auto gaps = [&](const body::Pose& p) {
+  // Each arm's gap depends on its own turn only, so both arms turn by the
+  // same angle in one check.
+  const auto gaps = [&](const body::Pose& p, double turn) {
+    Corrections c{};
+    for (int a = 0; a < 2; ++a) c[kArmChannel[0][a]] = turn;
     geometry::Points v;
-    body::skin(body.rest.vertices, body.weights, body.skeleton, body::forward_kinematics(body.skeleton, p), v);
+    body::skin(body.rest.vertices, body.weights, body.skeleton,
+               body::forward_kinematics(body.skeleton, corrected(body.skeleton, limbs, p, c)), v);
     return checker.check(v, no_crossings).arm_gap;
   };
+  // Per arm and frame: the turn it needs (the smallest that gives the
+  // room, else the one that gives the most when that beats no turn) and
+  // the largest turn that is harmless (no smaller turn takes the arm
+  // closer than min(its gap, room) - kArmRoomSlack; in some poses, an arm
+  // swung back past the hip among them, abduction brings the arm nearer
+  // the torso).
   std::array<std::vector<double>, 2> need{std::vector<double>(n, 0.0), std::vector<double>(n, 0.0)};
+  std::array<std::vector<double>, 2> ceiling{std::vector<double>(n, 0.0), std::vector<double>(n, 0.0)};
+  std::vector<std::array<double, 2>> g(static_cast<std::size_t>(steps) + 1);
   for (int f = 0; f < n; ++f) {
-    Corrections c{};
-    std::array<double, 2> gap = gaps(poses[f]);
-    for (;;) {
-      bool moved = false;
-      for (int a = 0; a < 2; ++a) {
-        const int ch = kArmChannel[0][a];
-        if (gap[a] >= room || c[ch] + kStep > limit + 1e-9) continue;
-        c[ch] += kStep;
-        moved = true;
-      }
-      if (!moved) break;
-      gap = gaps(corrected(body.skeleton, limbs, poses[f], c));
+    g[0] = gaps(poses[f], 0.0);
+    if (g[0][0] >= room && g[0][1] >= room) {
+      for (int a = 0; a < 2; ++a) ceiling[a][f] = limit;  // nothing to do, and no turn will be asked
+      continue;
     }
-    for (int a = 0; a < 2; ++a) need[a][f] = c[kArmChannel[0][a]];
+    for (int k = 1; k <= steps; ++k) g[k] = gaps(poses[f], k * kStep);
+    for (int a = 0; a < 2; ++a) {
+      int reach = -1, best = 0, safe = 0;
+      for (int k = 0; k <= steps; ++k) {
+        if (reach < 0 && g[k][a] >= room) reach = k;
+        if (g[k][a] > g[best][a]) best = k;
+      }
+      const double floor_gap = std::min(g[0][a], room) - kArmRoomSlack;
+      while (safe < steps && g[safe + 1][a] >= floor_gap) ++safe;
+      const int k = reach >= 0 ? reach : (g[best][a] > g[0][a] + kArmRoomSlack ? best : 0);
+      need[a][f] = k * kStep;
+      ceiling[a][f] = safe * kStep;
+    }
   }
-  std::array<std::vector<double>, 2> applied{upper_envelope(need[0], kSpreadSigma),
-                                             upper_envelope(need[1], kSpreadSigma)};
   double largest = 0.0;
+  std::array<std::vector<double>, 2> applied;
+  for (int a = 0; a < 2; ++a) {
+    // Smooth over neighbouring frames: an envelope above the needs, one
+    // below the harmless turns (the lower one wins where they meet).
+    const std::vector<double> up = upper_envelope(need[a], kSpreadSigma);
+    std::vector<double> neg(n);
+    for (int f = 0; f < n; ++f) neg[f] = -ceiling[a][f];
+    const std::vector<double> down = upper_envelope(neg, kSpreadSigma);
+    applied[a].resize(n);
+    for (int f = 0; f < n; ++f) applied[a][f] = std::clamp(std::min(up[f], -down[f]), 0.0, limit);
+  }
   for (int f = 0; f < n; ++f) {
     Corrections c{};
-    for (int a = 0; a < 2; ++a) c[kArmChannel[0][a]] = std::min(limit, applied[a][f]);
+    for (int a = 0; a < 2; ++a) c[kArmChannel[0][a]] = applied[a][f];
     if (c[kArmChannel[0][0]] < 1e-6 && c[kArmChannel[0][1]] < 1e-6) continue;
     ++frames;
     largest = std::max({largest, c[kArmChannel[0][0]], c[kArmChannel[0][1]]});

@@ -26,10 +26,14 @@ struct RepairLimits {
 
 // Arm room: in the frames where an arm comes closer to the torso than
 // `room` (m; FrameIntersection::arm_gap), abducts it by the smallest angle
-// (0.05 rad steps, at most `limit`) that gives it that room, or by `limit`;
-// the per-frame angles are spread over neighbouring frames with a smooth
-// envelope that stays above them. Returns the largest angle applied (rad)
-// and counts the frames turned in `frames`.
+// (0.05 rad steps, at most `limit`) that gives it that room, or by the
+// angle that gives the most room when none does. Never by more than the
+// frame's harmless angle: in some poses abduction brings the arm nearer
+// the torso, and no frame's arm is taken more than 2 mm closer than
+// min(its gap, room). The per-frame angles are spread over neighbouring
+// frames with smooth envelopes (above the needs, below the harmless
+// angles). Returns the largest angle applied (rad) and counts the frames
+// turned in `frames`.
 double make_arm_room(const body::Body& body, const body::SelfIntersection& checker, double room, double limit,
                      std::vector<body::Pose>& poses, int& frames);
 

@@ -161,6 +161,39 @@ TEST(SelfIntersection, ArmRoomTurnsOnlyTheFramesThatNeedIt) {
   EXPECT_GE(unchanged, 10);  // frames far from the side are left as they were
 }
 
+TEST(SelfIntersection, ArmRoomNeverTakesAnArmCloserToTheTorso) {
+  const body::Body& b = body::test::body();
+  const body::SelfIntersection si(b);
+  // Frames 0-19: the left arm near the side, where abduction opens the
+  // room. Frames 20-39: the arm swung far forward and in, 2.3 cm from the
+  // torso, where abduction about the chest's forward axis brings it
+  // closer (1.6 cm at 0.3 rad).
+  body::Pose swung = body::rest_pose(b.skeleton);
+  swung.local[b.skeleton.require("LeftArm")] = body::rot_x(-1.2) * body::rot_z(-1.1);
+  std::vector<body::Pose> poses;
+  for (int f = 0; f < 40; ++f) poses.push_back(f < 20 ? arm_in(b, 0.6) : swung);
+  const PoseTrack motion(poses, "test:arm room harm");
+  SequenceOptions o;
+  o.on_intersection = "keep";
+  o.resolve = false;
+  const BodySequence plain = generate_body_sequence(b, motion, o);
+  o.arm_room = 0.04;
+  const BodySequence roomy = generate_body_sequence(b, motion, o);
+  ASSERT_EQ(roomy.num_frames, 40);
+  const std::array<bool, 4> gaps_only{false, false, false, false};
+  geometry::Points v(b.num_vertices(), 3);
+  const auto gap = [&](const BodySequence& s, int f) {
+    std::copy(s.positions.begin() + static_cast<std::ptrdiff_t>(f) * b.num_vertices() * 3,
+              s.positions.begin() + static_cast<std::ptrdiff_t>(f + 1) * b.num_vertices() * 3, v.data());
+    return si.check(v, gaps_only).arm_gap[0];
+  };
+  ASSERT_LT(gap(plain, 30), 0.03);
+  ASSERT_GT(gap(plain, 30), 0.015);
+  for (int f = 0; f < 40; ++f) EXPECT_GE(gap(roomy, f), std::min(gap(plain, f), o.arm_room) - 0.003) << "frame " << f;
+  EXPECT_GE(gap(roomy, 5), o.arm_room - 1e-6);  // where abduction helps, it is used
+  EXPECT_GT(roomy.intersection.arm_room_frames, 0);
+}
+
 TEST(SelfIntersection, PoliciesForFramesThatStayIntersecting) {
   const body::Body& b = body::test::body();
   // Frames 10..14 push the arm deep into the torso (beyond any repair).
