@@ -180,17 +180,17 @@ double make_arm_room(const body::Body& body, const body::SelfIntersection& check
   // room, else the one that gives the most when that beats no turn) and
   // the largest turn that is harmless (no smaller turn takes the arm
   // closer than min(its gap, room) - kArmRoomSlack; in some poses, an arm
-  // swung back past the hip among them, abduction brings the arm nearer
-  // the torso).
+  // swung forward and in among them, abduction brings the arm nearer the
+  // torso). Frames with the room already need nothing; they are scanned
+  // for their harmless turn only where a neighbour's turn spreads to them.
   std::array<std::vector<double>, 2> need{std::vector<double>(n, 0.0), std::vector<double>(n, 0.0)};
-  std::array<std::vector<double>, 2> ceiling{std::vector<double>(n, 0.0), std::vector<double>(n, 0.0)};
+  std::array<std::vector<double>, 2> ceiling{std::vector<double>(n, limit), std::vector<double>(n, limit)};
+  std::vector<char> scanned(n, 0);
   std::vector<std::array<double, 2>> g(static_cast<std::size_t>(steps) + 1);
-  for (int f = 0; f < n; ++f) {
-    g[0] = gaps(poses[f], 0.0);
-    if (g[0][0] >= room && g[0][1] >= room) {
-      for (int a = 0; a < 2; ++a) ceiling[a][f] = limit;  // nothing to do, and no turn will be asked
-      continue;
-    }
+  // `unturned`: the frame's gaps without a turn.
+  const auto scan = [&](int f, const std::array<double, 2>& unturned) {
+    scanned[f] = 1;
+    g[0] = unturned;
     for (int k = 1; k <= steps; ++k) g[k] = gaps(poses[f], k * kStep);
     for (int a = 0; a < 2; ++a) {
       int reach = -1, best = 0, safe = 0;
@@ -204,18 +204,23 @@ double make_arm_room(const body::Body& body, const body::SelfIntersection& check
       need[a][f] = k * kStep;
       ceiling[a][f] = safe * kStep;
     }
+  };
+  std::vector<std::array<double, 2>> g0(n);
+  for (int f = 0; f < n; ++f) {
+    g0[f] = gaps(poses[f], 0.0);
+    if (g0[f][0] < room || g0[f][1] < room) scan(f, g0[f]);
   }
+  // Smooth over neighbouring frames: an envelope above the needs, one
+  // below the harmless turns (the lower one wins where they meet).
+  std::array<std::vector<double>, 2> up{upper_envelope(need[0], kSpreadSigma), upper_envelope(need[1], kSpreadSigma)};
+  for (int f = 0; f < n; ++f)
+    if (!scanned[f] && (up[0][f] >= 1e-6 || up[1][f] >= 1e-6)) scan(f, g0[f]);
   double largest = 0.0;
   std::array<std::vector<double>, 2> applied;
   for (int a = 0; a < 2; ++a) {
-    // Smooth over neighbouring frames: an envelope above the needs, one
-    // below the harmless turns (the lower one wins where they meet).
-    const std::vector<double> up = upper_envelope(need[a], kSpreadSigma);
-    std::vector<double> neg(n);
-    for (int f = 0; f < n; ++f) neg[f] = -ceiling[a][f];
-    const std::vector<double> down = upper_envelope(neg, kSpreadSigma);
+    const std::vector<double> down = lower_envelope(ceiling[a], kSpreadSigma);
     applied[a].resize(n);
-    for (int f = 0; f < n; ++f) applied[a][f] = std::clamp(std::min(up[f], -down[f]), 0.0, limit);
+    for (int f = 0; f < n; ++f) applied[a][f] = std::clamp(std::min(up[a][f], down[f]), 0.0, limit);
   }
   for (int f = 0; f < n; ++f) {
     Corrections c{};

@@ -29,10 +29,10 @@ struct RepairLimits {
 // (0.05 rad steps, at most `limit`) that gives it that room, or by the
 // angle that gives the most room when none does. Never by more than the
 // frame's harmless angle: in some poses abduction brings the arm nearer
-// the torso, and no frame's arm is taken more than 2 mm closer than
-// min(its gap, room). The per-frame angles are spread over neighbouring
-// frames with smooth envelopes (above the needs, below the harmless
-// angles). Returns the largest angle applied (rad) and counts the frames
+// the torso, and no frame's arm (those the spread reaches included) is
+// taken more than 2 mm closer than min(its gap, room). The per-frame
+// angles are spread over neighbouring frames with smooth envelopes (above
+// the needs, below the harmless angles). Returns the largest angle applied (rad) and counts the frames
 // turned in `frames`.
 double make_arm_room(const body::Body& body, const body::SelfIntersection& checker, double room, double limit,
                      std::vector<body::Pose>& poses, int& frames);

@@ -31,6 +31,14 @@ std::vector<double> upper_envelope(const std::vector<double>& v, double sigma) {
   return gaussian_smooth(wide, sigma);
 }
 
+std::vector<double> lower_envelope(const std::vector<double>& v, double sigma) {
+  std::vector<double> neg(v.size());
+  std::transform(v.begin(), v.end(), neg.begin(), [](double x) { return -x; });
+  std::vector<double> out = upper_envelope(neg, sigma);
+  for (double& x : out) x = -x;
+  return out;
+}
+
 void fill_gaps(std::vector<double>& v, double fallback) {
   const int n = static_cast<int>(v.size());
   int prev = -1;

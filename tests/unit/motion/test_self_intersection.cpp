@@ -26,6 +26,13 @@ body::Pose arm_in(const body::Body& b, double angle) {
   return p;
 }
 
+// Frame f of a generated sequence's skin, into `v` (num_vertices x 3).
+const geometry::Points& frame_of(const BodySequence& s, int f, geometry::Points& v) {
+  const std::ptrdiff_t size = static_cast<std::ptrdiff_t>(v.rows()) * 3;
+  std::copy(s.positions.begin() + f * size, s.positions.begin() + (f + 1) * size, v.data());
+  return v;
+}
+
 TEST(SelfIntersection, RestPosesAreClean) {
   for (const body::ShapeParams& s :
        {shape(0.5, 0.5, 0.5, 0.5), shape(0, 0, 0, 0), shape(1, 1, 1, 1), shape(0, 1, 1, 0.5)}) {
@@ -94,9 +101,7 @@ TEST(SelfIntersection, SequencesResolveSmallIntersections) {
   const body::SelfIntersection si(b);
   geometry::Points v(b.num_vertices(), 3);
   for (int f = 0; f < seq.num_frames; ++f) {
-    std::copy(seq.positions.begin() + static_cast<std::ptrdiff_t>(f) * b.num_vertices() * 3,
-              seq.positions.begin() + static_cast<std::ptrdiff_t>(f + 1) * b.num_vertices() * 3, v.data());
-    const body::FrameIntersection r = si.check(v);
+    const body::FrameIntersection r = si.check(frame_of(seq, f, v));
     EXPECT_LE(r.depth, 0.004) << "frame " << f;
     EXPECT_EQ(r.limb_crossings[0], 0) << "frame " << f;  // the arm's exact crossings cleared too
   }
@@ -146,11 +151,7 @@ TEST(SelfIntersection, ArmRoomTurnsOnlyTheFramesThatNeedIt) {
   EXPECT_GT(roomy.intersection.arm_room_turn, 0.0);
   EXPECT_LE(roomy.intersection.arm_room_turn, o.max_arm_room_turn + 1e-9);
   geometry::Points v(b.num_vertices(), 3);
-  const auto frame = [&](const BodySequence& s, int f) {
-    std::copy(s.positions.begin() + static_cast<std::ptrdiff_t>(f) * b.num_vertices() * 3,
-              s.positions.begin() + static_cast<std::ptrdiff_t>(f + 1) * b.num_vertices() * 3, v.data());
-    return v;
-  };
+  const auto frame = [&](const BodySequence& s, int f) { return frame_of(s, f, v); };
   int unchanged = 0;
   for (int f = 0; f < 60; ++f) {
     const body::FrameIntersection r = si.check(frame(roomy, f));
@@ -182,16 +183,39 @@ TEST(SelfIntersection, ArmRoomNeverTakesAnArmCloserToTheTorso) {
   ASSERT_EQ(roomy.num_frames, 40);
   const std::array<bool, 4> gaps_only{false, false, false, false};
   geometry::Points v(b.num_vertices(), 3);
-  const auto gap = [&](const BodySequence& s, int f) {
-    std::copy(s.positions.begin() + static_cast<std::ptrdiff_t>(f) * b.num_vertices() * 3,
-              s.positions.begin() + static_cast<std::ptrdiff_t>(f + 1) * b.num_vertices() * 3, v.data());
-    return si.check(v, gaps_only).arm_gap[0];
-  };
+  const auto gap = [&](const BodySequence& s, int f) { return si.check(frame_of(s, f, v), gaps_only).arm_gap[0]; };
   ASSERT_LT(gap(plain, 30), 0.03);
   ASSERT_GT(gap(plain, 30), 0.015);
   for (int f = 0; f < 40; ++f) EXPECT_GE(gap(roomy, f), std::min(gap(plain, f), o.arm_room) - 0.003) << "frame " << f;
   EXPECT_GE(gap(roomy, 5), o.arm_room - 1e-6);  // where abduction helps, it is used
   EXPECT_GT(roomy.intersection.arm_room_frames, 0);
+}
+
+TEST(SelfIntersection, ArmRoomSpreadSparesFramesThatHaveTheRoom) {
+  const body::Body& b = body::test::body();
+  const body::SelfIntersection si(b);
+  // Frames 0-19 need a turn for 2 cm of room; frames 20-39 have it (the
+  // arm swung forward and in, 2.3 cm from the torso) but abduction would
+  // take it away. The spread of frame 19's turn must stop short of them.
+  body::Pose swung = body::rest_pose(b.skeleton);
+  swung.local[b.skeleton.require("LeftArm")] = body::rot_x(-1.2) * body::rot_z(-1.1);
+  std::vector<body::Pose> poses;
+  for (int f = 0; f < 40; ++f) poses.push_back(f < 20 ? arm_in(b, 0.8) : swung);
+  const PoseTrack motion(poses, "test:arm room spread");
+  SequenceOptions o;
+  o.on_intersection = "keep";
+  o.resolve = false;
+  const BodySequence plain = generate_body_sequence(b, motion, o);
+  o.arm_room = 0.02;
+  const BodySequence roomy = generate_body_sequence(b, motion, o);
+  ASSERT_EQ(roomy.num_frames, 40);
+  const std::array<bool, 4> gaps_only{false, false, false, false};
+  geometry::Points v(b.num_vertices(), 3);
+  const auto gap = [&](const BodySequence& s, int f) { return si.check(frame_of(s, f, v), gaps_only).arm_gap[0]; };
+  ASSERT_LT(gap(plain, 5), o.arm_room);   // the first frames need room ...
+  ASSERT_GE(gap(plain, 25), o.arm_room);  // ... the last have it
+  EXPECT_GT(roomy.intersection.arm_room_frames, 0);
+  for (int f = 0; f < 40; ++f) EXPECT_GE(gap(roomy, f), std::min(gap(plain, f), o.arm_room) - 0.003) << "frame " << f;
 }
 
 TEST(SelfIntersection, PoliciesForFramesThatStayIntersecting) {
