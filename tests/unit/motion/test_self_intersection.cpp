@@ -162,60 +162,58 @@ TEST(SelfIntersection, ArmRoomTurnsOnlyTheFramesThatNeedIt) {
   EXPECT_GE(unchanged, 10);  // frames far from the side are left as they were
 }
 
-TEST(SelfIntersection, ArmRoomNeverTakesAnArmCloserToTheTorso) {
+// 40 frames: the left arm at `side` (arm_in) in frames 0-19, then swung
+// far forward and in, 2.3 cm from the torso, where abduction about the
+// chest's forward axis brings it closer (1.6 cm at 0.3 rad). Made without
+// and with `room` of arm room (no repair, every frame kept); gap(s, f) is
+// the left arm's gap in frame f of s.
+struct ArmRoomPair {
   const body::Body& b = body::test::body();
-  const body::SelfIntersection si(b);
-  // Frames 0-19: the left arm near the side, where abduction opens the
-  // room. Frames 20-39: the arm swung far forward and in, 2.3 cm from the
-  // torso, where abduction about the chest's forward axis brings it
-  // closer (1.6 cm at 0.3 rad).
-  body::Pose swung = body::rest_pose(b.skeleton);
-  swung.local[b.skeleton.require("LeftArm")] = body::rot_x(-1.2) * body::rot_z(-1.1);
-  std::vector<body::Pose> poses;
-  for (int f = 0; f < 40; ++f) poses.push_back(f < 20 ? arm_in(b, 0.6) : swung);
-  const PoseTrack motion(poses, "test:arm room harm");
-  SequenceOptions o;
-  o.on_intersection = "keep";
-  o.resolve = false;
-  const BodySequence plain = generate_body_sequence(b, motion, o);
-  o.arm_room = 0.04;
-  const BodySequence roomy = generate_body_sequence(b, motion, o);
-  ASSERT_EQ(roomy.num_frames, 40);
-  const std::array<bool, 4> gaps_only{false, false, false, false};
-  geometry::Points v(b.num_vertices(), 3);
-  const auto gap = [&](const BodySequence& s, int f) { return si.check(frame_of(s, f, v), gaps_only).arm_gap[0]; };
-  ASSERT_LT(gap(plain, 30), 0.03);
-  ASSERT_GT(gap(plain, 30), 0.015);
-  for (int f = 0; f < 40; ++f) EXPECT_GE(gap(roomy, f), std::min(gap(plain, f), o.arm_room) - 0.003) << "frame " << f;
-  EXPECT_GE(gap(roomy, 5), o.arm_room - 1e-6);  // where abduction helps, it is used
-  EXPECT_GT(roomy.intersection.arm_room_frames, 0);
+  const body::SelfIntersection si{b};
+  BodySequence plain, roomy;
+  geometry::Points v{b.num_vertices(), 3};
+  ArmRoomPair(double side, double room) {
+    body::Pose swung = body::rest_pose(b.skeleton);
+    swung.local[b.skeleton.require("LeftArm")] = body::rot_x(-1.2) * body::rot_z(-1.1);
+    std::vector<body::Pose> poses;
+    for (int f = 0; f < 40; ++f) poses.push_back(f < 20 ? arm_in(b, side) : swung);
+    const PoseTrack motion(poses, "test:arm room, swung forward");
+    SequenceOptions o;
+    o.on_intersection = "keep";
+    o.resolve = false;
+    plain = generate_body_sequence(b, motion, o);
+    o.arm_room = room;
+    roomy = generate_body_sequence(b, motion, o);
+  }
+  double gap(const BodySequence& s, int f) {
+    return si.check(frame_of(s, f, v), {false, false, false, false}).arm_gap[0];
+  }
+};
+
+TEST(SelfIntersection, ArmRoomNeverTakesAnArmCloserToTheTorso) {
+  // Frames 0-19: near the side, where abduction opens the room; frames
+  // 20-39 need it too, but abduction would take the arm closer.
+  const double room = 0.04;
+  ArmRoomPair r(0.6, room);
+  ASSERT_EQ(r.roomy.num_frames, 40);
+  ASSERT_LT(r.gap(r.plain, 30), 0.03);
+  ASSERT_GT(r.gap(r.plain, 30), 0.015);
+  for (int f = 0; f < 40; ++f) EXPECT_GE(r.gap(r.roomy, f), std::min(r.gap(r.plain, f), room) - 0.003) << "frame " << f;
+  EXPECT_GE(r.gap(r.roomy, 5), room - 1e-6);  // where abduction helps, it is used
+  EXPECT_GT(r.roomy.intersection.arm_room_frames, 0);
 }
 
 TEST(SelfIntersection, ArmRoomSpreadSparesFramesThatHaveTheRoom) {
-  const body::Body& b = body::test::body();
-  const body::SelfIntersection si(b);
-  // Frames 0-19 need a turn for 2 cm of room; frames 20-39 have it (the
-  // arm swung forward and in, 2.3 cm from the torso) but abduction would
-  // take it away. The spread of frame 19's turn must stop short of them.
-  body::Pose swung = body::rest_pose(b.skeleton);
-  swung.local[b.skeleton.require("LeftArm")] = body::rot_x(-1.2) * body::rot_z(-1.1);
-  std::vector<body::Pose> poses;
-  for (int f = 0; f < 40; ++f) poses.push_back(f < 20 ? arm_in(b, 0.8) : swung);
-  const PoseTrack motion(poses, "test:arm room spread");
-  SequenceOptions o;
-  o.on_intersection = "keep";
-  o.resolve = false;
-  const BodySequence plain = generate_body_sequence(b, motion, o);
-  o.arm_room = 0.02;
-  const BodySequence roomy = generate_body_sequence(b, motion, o);
-  ASSERT_EQ(roomy.num_frames, 40);
-  const std::array<bool, 4> gaps_only{false, false, false, false};
-  geometry::Points v(b.num_vertices(), 3);
-  const auto gap = [&](const BodySequence& s, int f) { return si.check(frame_of(s, f, v), gaps_only).arm_gap[0]; };
-  ASSERT_LT(gap(plain, 5), o.arm_room);   // the first frames need room ...
-  ASSERT_GE(gap(plain, 25), o.arm_room);  // ... the last have it
-  EXPECT_GT(roomy.intersection.arm_room_frames, 0);
-  for (int f = 0; f < 40; ++f) EXPECT_GE(gap(roomy, f), std::min(gap(plain, f), o.arm_room) - 0.003) << "frame " << f;
+  // Frames 0-19 need a turn for 2 cm of room; frames 20-39 have it but
+  // abduction would take it away. The spread of frame 19's turn must stop
+  // short of them.
+  const double room = 0.02;
+  ArmRoomPair r(0.8, room);
+  ASSERT_EQ(r.roomy.num_frames, 40);
+  ASSERT_LT(r.gap(r.plain, 5), room);   // the first frames need room ...
+  ASSERT_GE(r.gap(r.plain, 25), room);  // ... the last have it
+  EXPECT_GT(r.roomy.intersection.arm_room_frames, 0);
+  for (int f = 0; f < 40; ++f) EXPECT_GE(r.gap(r.roomy, f), std::min(r.gap(r.plain, f), room) - 0.003) << "frame " << f;
 }
 
 TEST(SelfIntersection, PoliciesForFramesThatStayIntersecting) {
