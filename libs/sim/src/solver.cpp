@@ -273,6 +273,7 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
         }
         timings_.cap_sweeps +=
             m.limiters[ci].apply(cloths_[ci], cloths_[ci].state_, c.max_strain, c.strain_sweeps, &m.held);
+        if (!m.limiters[ci].converged()) ++timings_.cap_unfinished;
       }
     }
     timings_.strain_cap += seconds_since(t);

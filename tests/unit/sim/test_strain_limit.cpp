@@ -1,7 +1,8 @@
 // The strain cap (internal StrainLimiter): it converges where Gauss-Seidel
 // needs many sweeps (the stretch has to travel along the cloth against the
-// sweep order; later sweeps visit only the edges around what moved), and
-// held vertices (in contact) give way less than free ones.
+// sweep order; later sweeps visit only the edges around what moved) and
+// says when its sweeps ran out first, and held vertices (in contact) give
+// way less than free ones.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -40,9 +41,14 @@ double max_stretch(const Cloth& c) {
 
 TEST(StrainLimit, ConvergesWhereManySweepsAreNeeded) {
   Cloth cloth = stretched_strip();
-  Cloth::State state = cloth.state();
   detail::StrainLimiter limiter;
+  // Too few sweeps: it stops with edges still over and says so.
+  Cloth::State cut_short = cloth.state();
+  EXPECT_EQ(limiter.apply(cloth, cut_short, 0.08, 3), 3);
+  EXPECT_FALSE(limiter.converged());
+  Cloth::State state = cloth.state();
   const int sweeps = limiter.apply(cloth, state, 0.08, 1000);
+  EXPECT_TRUE(limiter.converged());
   std::printf("[sim] strip pinned at the far end: capped in %d sweeps\n", sweeps);
   EXPECT_GT(sweeps, 5);    // the correction travels edge by edge...
   EXPECT_LT(sweeps, 200);  // ...and converges within the solver's default

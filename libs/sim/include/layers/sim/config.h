@@ -52,7 +52,7 @@ struct SolverConfig {
   double body_edge_thickness = 0.002;               // m kept between garment and body edges (0: off)
   double self_thickness = 0.004;                    // m kept between two parts of one garment
   double max_strain = 0.08;      // strain limiting: edges are capped at (1 + max_strain) x rest (0: off)
-  int strain_sweeps = 200;       // most Gauss-Seidel sweeps of the cap after the contacts (stops when none moves)
+  int strain_sweeps = 1000;      // most Gauss-Seidel sweeps of the cap after the contacts (stops when none moves)
   double support_stiffness = 1;  // body-contact support weight / the vertex's own stiffness (docs/sim.md)
   bool self_contact = true;      // master switch; each cloth also opts in (ClothOptions)
   double wind_pressure = 0.004;  // Pa per unit of Blender wind strength (docs/sim.md)
@@ -75,7 +75,7 @@ struct SolverConfig {
     v("self_thickness", self_thickness, cfg::opt().range(0, 0.1).help("distance within one garment (m)"));
     v("max_strain", max_strain, cfg::opt().range(0, 10).help("edge strain cap after the elastic solve (0: off)"));
     v("strain_sweeps", strain_sweeps,
-      cfg::opt().range(1, 1000).help(
+      cfg::opt().range(1, 100000).help(
           "most sweeps of the strain cap after the contacts (it stops early once no edge is over)"));
     v("support_stiffness", support_stiffness,
       cfg::opt().range(0, 100).help("weight of body-contact supports in the elastic solve, relative to each vertex's "

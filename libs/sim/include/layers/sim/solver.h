@@ -42,6 +42,7 @@ struct StepTimings {
   double body_contact = 0;  // including the per-substep body interpolation and grid
   double strain_cap = 0;    // the strain cap after the contacts
   long cap_sweeps = 0;      // sweeps it ran (all cloths and substeps)
+  long cap_unfinished = 0;  // cap calls that used all strain_sweeps while still correcting edges
   double total = 0;
   long frames = 0;
 };
