@@ -78,11 +78,16 @@ TEST(CliGenerate, ShardsThenCompleteDatasetThatValidates) {
     EXPECT_NE(splits.find(key), std::string::npos) << key << " in " << splits;
 
   // The validation measures recomputed from the stored frames: one line per
-  // sequence and the totals; the exit code follows the count over the
-  // (default) thresholds.
+  // sequence, their spread and the totals; the exit code follows the count
+  // over the (default) thresholds.
   auto physics = run_command(test::layers_bin() + " validate --physics " + out);
   EXPECT_NE(physics.output.find("3 sequences, 18 frames: mean H-penetration"), std::string::npos) << physics.output;
   EXPECT_NE(physics.output.find("0 non-finite values"), std::string::npos) << physics.output;
+  // Below the table: the spread over the sequences and the crossing target.
+  EXPECT_NE(physics.output.find("spread over 3 sequences:"), std::string::npos) << physics.output;
+  EXPECT_NE(physics.output.find("crossing target 0.10%: frames with H-crossing within it"), std::string::npos)
+      << physics.output;
+  EXPECT_NE(physics.output.find(" of 18 ("), std::string::npos) << physics.output;
   for (const char* id : {"seq-000000", "seq-000001", "seq-000002"})
     EXPECT_NE(physics.output.find(id), std::string::npos) << id;
   const bool clean = physics.output.find("; 0 over the thresholds") != std::string::npos;

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "layers/data/sequence.h"
+#include "layers/generate/quantile.h"
 #include "layers/sim/measures.h"
 
 namespace layers::generate {
@@ -59,9 +60,6 @@ struct CrosscheckColumn {
 // ignored). InputError when a run's garments do not match the sequence's
 // or hold fewer than n_frames frames.
 CrosscheckColumn measure_crosscheck(const data::SequenceData& seq, const CrosscheckRun& run);
-
-// The p-quantile (0..1, nearest rank) of `values` (reordered); 0 when empty.
-double quantile(std::vector<float>& values, double p);
 
 // The generator's measures (with the exact crossings) of the stored frame
 // 0, where every run starts.
