@@ -60,11 +60,13 @@ int check_physics(const std::string& path, const sim::ValidationConfig& limits, 
     const data::SequenceData seq = dataset.read_sequence(id);
     sim::SequenceMeasures m;
     MeanOfFinite ours, plain;
+    int measurable = 0;  // frames with finite positions
     generate::for_each_stored_frame(seq, [&](std::int64_t, const generate::StoredFrame& f) {
       const sim::FrameMeasures frame = sim::measure_frame(f.body, f.garments, limits.l_reach);
       m.add(frame);
       all.add(frame);
       summary.add_frame(frame);
+      measurable += !std::isnan(frame.h_penetration);
       const EvalLCollision l = eval_l_collision(f);
       ours.add(l.ours);
       all_ours.add(l.ours);
@@ -81,17 +83,20 @@ int check_physics(const std::string& path, const sim::ValidationConfig& limits, 
         100 * ours.mean(), 100 * m.mean_h_crossing(), 100 * m.max_h_crossing(), 100 * m.mean_l_crossing(),
         100 * m.max_l_crossing(), 100 * m.mean_body_self_crossing(), 100 * m.mean_h_crossing_clear(),
         100 * m.max_stretch(), verdict.c_str());
-    summary.end_sequence({{"H-pen", m.mean_h_penetration()},
-                          {"L-pen", m.mean_l_penetration()},
+    // A sequence without a measurable frame is left out of the spread
+    // (SequenceMeasures reads 0 there).
+    const auto measured = [measurable](double v) { return measurable > 0 ? v : std::nan(""); };
+    summary.end_sequence({{"H-pen", measured(m.mean_h_penetration())},
+                          {"L-pen", measured(m.mean_l_penetration())},
                           {"L-coll(paper)", plain.mean()},
                           {"L-coll(ours)", ours.mean()},
-                          {"H-x mean", m.mean_h_crossing()},
-                          {"H-x max", m.max_h_crossing()},
-                          {"L-x mean", m.mean_l_crossing()},
-                          {"L-x max", m.max_l_crossing()},
+                          {"H-x mean", measured(m.mean_h_crossing())},
+                          {"H-x max", measured(m.max_h_crossing())},
+                          {"L-x mean", measured(m.mean_l_crossing())},
+                          {"L-x max", measured(m.max_l_crossing())},
                           {"body-self", m.mean_body_self_crossing()},
                           {"H-x clear", m.mean_h_crossing_clear()},
-                          {"stretch", m.max_stretch()}});
+                          {"stretch", measured(m.max_stretch())}});
   }
   std::printf("%s", summary.text().c_str());
   std::printf(

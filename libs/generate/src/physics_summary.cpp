@@ -11,9 +11,9 @@
 namespace layers::generate {
 
 Spread spread_of(const std::vector<double>& values) {
-  std::vector<float> kept;
+  std::vector<double> kept;
   for (const double v : values)
-    if (!std::isnan(v)) kept.push_back(static_cast<float>(v));
+    if (!std::isnan(v)) kept.push_back(v);
   Spread s;
   s.count = static_cast<int>(kept.size());
   if (kept.empty()) return s;
@@ -47,8 +47,8 @@ void PhysicsSummary::end_sequence(const std::vector<std::pair<std::string, doubl
     if (columns[i].first != names_[i])
       throw Error("PhysicsSummary: column " + std::to_string(i) + " is '" + columns[i].first + "', expected '" +
                   names_[i] + "'");
-    values_[i].push_back(columns[i].second);
   }
+  for (std::size_t i = 0; i < columns.size(); ++i) values_[i].push_back(columns[i].second);
   ++sequences_;
   sequences_within_ += current_within_;
   current_within_ = true;

@@ -239,7 +239,7 @@ SceneResult simulate_scene(const GeneratorConfig& config, const SceneSpec& spec,
   result.cpu_seconds = thread_cpu_seconds() - cpu_start;
   spdlog::debug(
       "{}: {} frames in {:.1f} s ({:.1f} s CPU), H-pen {:.3f}%, L-pen {:.3f}%, worst H-crossing {:.3f}%, worst "
-      "L-crossing {:.3f}%, stretch {:.3f} (strain cap out of sweeps in {} substeps)",
+      "L-crossing {:.3f}%, stretch {:.3f} (strain cap out of sweeps in {} calls, one per garment and substep)",
       spec.id, result.simulated_frames, result.seconds, result.cpu_seconds, 100 * result.mean_h_penetration,
       100 * result.mean_l_penetration, 100 * result.max_h_crossing, 100 * result.max_l_crossing, result.max_stretch,
       solver.timings().cap_unfinished);

@@ -29,8 +29,8 @@ class StrainLimiter {
   // many sweeps it ran.
   int apply(const Cloth& cloth, Cloth::State& state, double max_strain, int sweeps,
             const std::vector<std::uint8_t>* held = nullptr);
-  // Whether the last apply() ended because no edge was over the cap (not
-  // because it ran out of sweeps with edges still being corrected).
+  // Whether the last apply() ended because its last sweep moved nothing
+  // (not because it ran out of sweeps while still correcting edges).
   bool converged() const { return active_.empty(); }
 
  private:

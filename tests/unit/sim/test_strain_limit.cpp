@@ -1,14 +1,15 @@
 // The strain cap (internal StrainLimiter): it converges where Gauss-Seidel
 // needs many sweeps (the stretch has to travel along the cloth against the
 // sweep order; later sweeps visit only the edges around what moved) and
-// says when its sweeps ran out first, and held vertices (in contact) give
-// way less than free ones.
+// says when its sweeps ran out first (the solver counts those calls), and
+// held vertices (in contact) give way less than free ones.
 #include <gtest/gtest.h>
 
 #include <cstdio>
 
 #include "fixtures.h"
 #include "layers/sim/cloth.h"
+#include "layers/sim/solver.h"
 #include "strain_limit.h"
 
 namespace layers::sim {
@@ -51,7 +52,7 @@ TEST(StrainLimit, ConvergesWhereManySweepsAreNeeded) {
   EXPECT_TRUE(limiter.converged());
   std::printf("[sim] strip pinned at the far end: capped in %d sweeps\n", sweeps);
   EXPECT_GT(sweeps, 5);    // the correction travels edge by edge...
-  EXPECT_LT(sweeps, 200);  // ...and converges within the solver's default
+  EXPECT_LT(sweeps, 200);  // ...and converges within the old default budget
   Cloth capped = cloth;
   capped.set_velocities(geometry::Points::Zero(cloth.num_vertices(), 3));
   geometry::Points x(cloth.num_vertices(), 3);
@@ -83,6 +84,26 @@ TEST(StrainLimit, HeldVerticesGiveWayLess) {
   const double moved0 = state.x[0].x(), moved1 = 0.0115 - state.x[1].x();
   EXPECT_GT(moved0, 0);
   EXPECT_NEAR(moved1 / moved0, 5.0, 0.3);  // equal masses
+}
+
+TEST(StrainLimit, TheSolverCountsCapsThatRanOutOfSweeps) {
+  // A cap of 0.1% on the stretched strip: one sweep cannot meet it, a large
+  // budget can; StepTimings::cap_unfinished counts the calls cut short.
+  for (const int sweeps : {1, 100000}) {
+    SolverConfig config;
+    config.max_strain = 0.001;
+    config.substeps = 2;
+    config.strain_sweeps = sweeps;
+    Solver solver(config);
+    solver.add_cloth(stretched_strip());
+    solver.step();
+    const long unfinished = solver.timings().cap_unfinished;
+    std::printf("[sim] strain_sweeps %d: %ld of 2 cap calls ran out\n", sweeps, unfinished);
+    if (sweeps == 1)
+      EXPECT_EQ(unfinished, 2);
+    else
+      EXPECT_EQ(unfinished, 0);
+  }
 }
 
 }  // namespace

@@ -31,7 +31,9 @@ class PhysicsSummary {
   // measurable (NaN) does not meet the target.
   void add_frame(const sim::FrameMeasures& frame);
   // Ends the current sequence with its per-sequence values, as (column
-  // name, share 0..1) in the same order for every sequence.
+  // name, share 0..1; NaN: not measurable) in the same order for every
+  // sequence. Error, with nothing recorded, when the columns differ from
+  // the first sequence's.
   void end_sequence(const std::vector<std::pair<std::string, double>>& columns);
 
   std::int64_t frames() const { return frames_; }
