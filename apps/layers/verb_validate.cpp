@@ -60,13 +60,11 @@ int check_physics(const std::string& path, const sim::ValidationConfig& limits, 
     const data::SequenceData seq = dataset.read_sequence(id);
     sim::SequenceMeasures m;
     MeanOfFinite ours, plain;
-    int measurable = 0;  // frames with finite positions
     generate::for_each_stored_frame(seq, [&](std::int64_t, const generate::StoredFrame& f) {
       const sim::FrameMeasures frame = sim::measure_frame(f.body, f.garments, limits.l_reach);
       m.add(frame);
       all.add(frame);
       summary.add_frame(frame);
-      measurable += !std::isnan(frame.h_penetration);
       const EvalLCollision l = eval_l_collision(f);
       ours.add(l.ours);
       all_ours.add(l.ours);
@@ -85,7 +83,7 @@ int check_physics(const std::string& path, const sim::ValidationConfig& limits, 
         100 * m.max_stretch(), verdict.c_str());
     // A sequence without a measurable frame is left out of the spread
     // (SequenceMeasures reads 0 there).
-    const auto measured = [measurable](double v) { return measurable > 0 ? v : std::nan(""); };
+    const auto measured = [&m](double v) { return m.measured() > 0 ? v : std::nan(""); };
     summary.end_sequence({{"H-pen", measured(m.mean_h_penetration())},
                           {"L-pen", measured(m.mean_l_penetration())},
                           {"L-coll(paper)", plain.mean()},

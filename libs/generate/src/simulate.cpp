@@ -138,12 +138,7 @@ garment::MotionRoom SceneSimulation::motion_room(const garment::TPoseBody& t_pos
 }
 
 geometry::Points SceneSimulation::body_frame(int frame) const {
-  const motion::BodySequence& motion = generated_.sequence;
-  const int n = motion.num_vertices;
-  geometry::Points p(n, 3);
-  std::copy(motion.positions.begin() + static_cast<std::ptrdiff_t>(frame) * n * 3,
-            motion.positions.begin() + static_cast<std::ptrdiff_t>(frame + 1) * n * 3, p.data());
-  return p;
+  return motion::frame_vertices(generated_.sequence, frame);
 }
 
 int SceneSimulation::warm_up_frames() const { return config_.drape_frames + config_.body.transition_frames - 1; }

@@ -153,4 +153,11 @@ BodySequence generate_body_sequence(const body::Body& body, const MotionSource& 
   return seq;
 }
 
+geometry::Points frame_vertices(const BodySequence& sequence, int frame) {
+  const std::ptrdiff_t size = static_cast<std::ptrdiff_t>(sequence.num_vertices) * 3;
+  geometry::Points p(sequence.num_vertices, 3);
+  std::copy(sequence.positions.begin() + frame * size, sequence.positions.begin() + (frame + 1) * size, p.data());
+  return p;
+}
+
 }  // namespace layers::motion

@@ -26,13 +26,6 @@ body::Pose arm_in(const body::Body& b, double angle) {
   return p;
 }
 
-// Frame f of a generated sequence's skin, into `v` (num_vertices x 3).
-const geometry::Points& frame_of(const BodySequence& s, int f, geometry::Points& v) {
-  const std::ptrdiff_t size = static_cast<std::ptrdiff_t>(v.rows()) * 3;
-  std::copy(s.positions.begin() + f * size, s.positions.begin() + (f + 1) * size, v.data());
-  return v;
-}
-
 TEST(SelfIntersection, RestPosesAreClean) {
   for (const body::ShapeParams& s :
        {shape(0.5, 0.5, 0.5, 0.5), shape(0, 0, 0, 0), shape(1, 1, 1, 1), shape(0, 1, 1, 0.5)}) {
@@ -99,9 +92,8 @@ TEST(SelfIntersection, SequencesResolveSmallIntersections) {
   EXPECT_EQ(seq.intersection.crossing_limbs, 2);  // the arms
   // Every written frame is clean.
   const body::SelfIntersection si(b);
-  geometry::Points v(b.num_vertices(), 3);
   for (int f = 0; f < seq.num_frames; ++f) {
-    const body::FrameIntersection r = si.check(frame_of(seq, f, v));
+    const body::FrameIntersection r = si.check(frame_vertices(seq, f));
     EXPECT_LE(r.depth, 0.004) << "frame " << f;
     EXPECT_EQ(r.limb_crossings[0], 0) << "frame " << f;  // the arm's exact crossings cleared too
   }
@@ -150,14 +142,12 @@ TEST(SelfIntersection, ArmRoomTurnsOnlyTheFramesThatNeedIt) {
   EXPECT_LT(roomy.intersection.arm_room_frames, 40);
   EXPECT_GT(roomy.intersection.arm_room_turn, 0.0);
   EXPECT_LE(roomy.intersection.arm_room_turn, o.max_arm_room_turn + 1e-9);
-  geometry::Points v(b.num_vertices(), 3);
-  const auto frame = [&](const BodySequence& s, int f) { return frame_of(s, f, v); };
   int unchanged = 0;
   for (int f = 0; f < 60; ++f) {
-    const body::FrameIntersection r = si.check(frame(roomy, f));
+    const body::FrameIntersection r = si.check(frame_vertices(roomy, f));
     // Every frame has the room asked for (the turns stay under the limit here).
     EXPECT_GE(r.arm_gap[0], room - 1e-6) << "frame " << f;
-    unchanged += frame(roomy, f).isApprox(frame(plain, f), 0.0) ? 1 : 0;
+    unchanged += frame_vertices(roomy, f).isApprox(frame_vertices(plain, f), 0.0) ? 1 : 0;
   }
   EXPECT_GE(unchanged, 10);  // frames far from the side are left as they were
 }
@@ -171,7 +161,6 @@ struct ArmRoomPair {
   const body::Body& b = body::test::body();
   const body::SelfIntersection si{b};
   BodySequence plain, roomy;
-  geometry::Points v{b.num_vertices(), 3};
   ArmRoomPair(double side, double room) {
     body::Pose swung = body::rest_pose(b.skeleton);
     swung.local[b.skeleton.require("LeftArm")] = body::rot_x(-1.2) * body::rot_z(-1.1);
@@ -185,8 +174,8 @@ struct ArmRoomPair {
     o.arm_room = room;
     roomy = generate_body_sequence(b, motion, o);
   }
-  double gap(const BodySequence& s, int f) {
-    return si.check(frame_of(s, f, v), {false, false, false, false}).arm_gap[0];
+  double gap(const BodySequence& s, int f) const {
+    return si.check(frame_vertices(s, f), {false, false, false, false}).arm_gap[0];
   }
 };
 

@@ -71,4 +71,7 @@ struct BodySequence {
 BodySequence generate_body_sequence(const body::Body& body, const MotionSource& motion,
                                     const SequenceOptions& options = {});
 
+// The skin vertices of frame `frame` (num_vertices x 3).
+geometry::Points frame_vertices(const BodySequence& sequence, int frame);
+
 }  // namespace layers::motion

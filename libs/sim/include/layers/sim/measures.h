@@ -103,7 +103,8 @@ class SequenceMeasures {
  public:
   void add(const FrameMeasures& frame);
   int frames() const { return frames_; }
-  double mean_h_penetration() const;  // over measurable frames
+  int measured() const { return measured_; }  // frames whose measures are all finite
+  double mean_h_penetration() const;          // over measured frames (0 when none)
   double mean_l_penetration() const;
   double mean_h_crossing() const;
   double mean_l_crossing() const;
