@@ -56,7 +56,7 @@ VerbRun register_body(CLI::App& app, const Global&) {
     std::string on_intersection = "longest_run";
     int frames = 120, transition = 15;
     std::uint64_t seed = 0;
-    double arm_room = 0.0;
+    double arm_room = 0.0, thigh_room = 0.0;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--shape", a->shape, "shape parameters in 0..1, e.g. gender=0.3,muscle=0.5,weight=0.6,height=0.45");
@@ -67,6 +67,8 @@ VerbRun register_body(CLI::App& app, const Global&) {
   cmd->add_option("--seed", a->seed, "randomises procedural speed and amplitude")->capture_default_str();
   cmd->add_option("--on-intersection", a->on_intersection, "longest_run, drop or keep")->capture_default_str();
   cmd->add_option("--arm-room", a->arm_room, "mm of room for the cloth between arms and torso (0 = off)")
+      ->capture_default_str();
+  cmd->add_option("--thigh-room", a->thigh_room, "mm of room for the cloth between the thighs (0 = off)")
       ->capture_default_str();
   cmd->add_option("--id", a->id, "sequence id")->capture_default_str();
   cmd->add_option("--out", a->out, "output: a shard file (*.h5) or a dataset folder")->required();
@@ -90,6 +92,7 @@ VerbRun register_body(CLI::App& app, const Global&) {
     section.map.emplace_back("seed", scalar(std::to_string(a->seed), "--seed"));
     section.map.emplace_back("on_intersection", scalar(a->on_intersection, "--on-intersection"));
     section.map.emplace_back("arm_room_mm", scalar(std::to_string(a->arm_room), "--arm-room"));
+    section.map.emplace_back("thigh_room_mm", scalar(std::to_string(a->thigh_room), "--thigh-room"));
     auto config = cfg::read<motion::BodyMotionConfig>(section, "body");
     if (!a->export_format.empty()) data::parse_export_format(a->export_format, "--export");
 
@@ -129,6 +132,9 @@ VerbRun register_body(CLI::App& app, const Global&) {
     if (config.arm_room_mm > 0)
       std::printf("arm room %.0f mm: arms turned in %d of %d frames, by up to %.2f rad\n", config.arm_room_mm,
                   report.arm_room_frames, report.frames, report.arm_room_turn);
+    if (config.thigh_room_mm > 0)
+      std::printf("thigh room %.0f mm: legs turned in %d of %d frames, by up to %.2f rad\n", config.thigh_room_mm,
+                  report.thigh_room_frames, report.frames, report.thigh_room_turn);
 
     if (!a->export_format.empty()) {
       std::string dir =

@@ -35,6 +35,13 @@ TEST(CliBody, BvhClipToDatasetFolder) {
   auto info = run_command(test::layers_bin() + " info " + dir.file("ds"));
   EXPECT_EQ(info.exit_code, 0) << info.output;
   EXPECT_NE(info.output.find("train=1"), std::string::npos) << info.output;
+  // The clip starts with the subject standing, thighs close together: room
+  // between them turns the legs, and says how far.
+  auto roomy = run_command(test::layers_bin() + " body --motion cmu/131_02_start_walk_stop.bvh --frames 20 " +
+                           "--thigh-room 30 --out " + dir.file("roomy.h5"));
+  ASSERT_EQ(roomy.exit_code, 0) << roomy.output;
+  EXPECT_NE(roomy.output.find("thigh room 30 mm: legs turned in 20 of 20 frames, by up to 0.15 rad"), std::string::npos)
+      << roomy.output;
 }
 
 TEST(CliBody, BadInputNamesTheProblem) {
@@ -56,6 +63,10 @@ TEST(CliBody, BadInputNamesTheProblem) {
   EXPECT_EQ(transition.exit_code, 2) << transition.output;
   EXPECT_NE(transition.output.find("--transition: expected fewer frames than --frames (3), got 15"), std::string::npos)
       << transition.output;
+  auto room = run_command(test::layers_bin() + " body --thigh-room 150 --out " + dir.file("x.h5"));
+  EXPECT_EQ(room.exit_code, 1) << room.output;
+  EXPECT_NE(room.output.find("--thigh-room: body.thigh_room_mm: expected a number in [0, 100]"), std::string::npos)
+      << room.output;
   auto missing = run_command(test::layers_bin() + " info " + dir.file("no-such-dataset"));
   EXPECT_EQ(missing.exit_code, 1) << missing.output;
   EXPECT_NE(missing.output.find(dir.file("no-such-dataset") +

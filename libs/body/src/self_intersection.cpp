@@ -16,6 +16,7 @@ namespace {
 constexpr float kCoreWeight = 0.99f;
 constexpr int kBlendRings = 2;            // rings of core vertices next to a blend zone that are not trusted as surface
 constexpr double kGapFromShoulder = 0.4;  // arm gaps count beyond this share of the upper arm from the shoulder
+constexpr double kGapFromHip = 0.3;       // the thigh gap counts beyond this share of the thigh from the hip
 
 int part_of_joint(const std::string& name) {
   auto has = [&](const char* s) { return name.find(s) != std::string::npos; };
@@ -114,18 +115,19 @@ SelfIntersection::SelfIntersection(const Body& body, IntersectionOptions options
     mark.swap(next);
   }
   near_blend_ = mark;
-  // Arm vertices whose gap to the torso counts: away from the shoulder,
-  // where the upper arm always lies against the chest and no turn opens it.
+  // Limb vertices whose gap counts (arm to torso, left leg to right leg):
+  // away from the shoulder and the hip, where the limb always lies against
+  // its neighbour and no turn about the joint opens it.
   gap_vertex_.assign(nv, 0);
-  const std::array<int, 2> arm_root{body.skeleton.index("LeftArm"), body.skeleton.index("RightArm")};
+  const std::array<int, kNumBodyParts> limb_root{-1, body.skeleton.index("LeftArm"), body.skeleton.index("RightArm"),
+                                                 body.skeleton.index("LeftUpLeg"), body.skeleton.index("RightUpLeg")};
   for (int v = 0; v < nv; ++v) {
     const int p = part_[v];
-    if (p != 1 && p != 2) continue;
-    const int j = arm_root[p - 1];
+    if (p <= 0) continue;
+    const int j = limb_root[p];
     if (j < 0) continue;
-    const double from_shoulder =
-        (body.rest.vertices.row(v).cast<double>().transpose() - body.skeleton.rest_head[j]).norm();
-    gap_vertex_[v] = from_shoulder > kGapFromShoulder * body.skeleton.bone_length(j);
+    const double from_root = (body.rest.vertices.row(v).cast<double>().transpose() - body.skeleton.rest_head[j]).norm();
+    gap_vertex_[v] = from_root > (p <= 2 ? kGapFromShoulder : kGapFromHip) * body.skeleton.bone_length(j);
   }
   for (int v = 0; v < nv; ++v)
     if (part_[v] >= 0) members_[part_[v]].push_back(v);
@@ -162,6 +164,7 @@ FrameIntersection SelfIntersection::check(const geometry::Points& posed, const s
       const double offset = static_cast<double>((x - posed.row(h)).dot(normals.row(h)));
       if (b == 0 && (a == 1 || a == 2) && gap_vertex_[v])
         out.arm_gap[a - 1] = std::min(out.arm_gap[a - 1], std::max(offset, 0.0));
+      if (a == 3 && b == 4 && gap_vertex_[v]) out.thigh_gap = std::min(out.thigh_gap, std::max(offset, 0.0));
       if (offset >= 0.0) continue;
       const double depth = -offset;
       if (depth > options_.tolerance) ++out.vertices;

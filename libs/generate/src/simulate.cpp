@@ -52,6 +52,7 @@ motion::GeneratedBody make_body(const GeneratorConfig& config, const SceneSpec& 
   body.seed = spec.seed;
   body.intersection_tolerance_mm = config.body.intersection_tolerance_mm;
   body.arm_room_mm = config.body.arm_room_mm;
+  body.thigh_room_mm = config.body.thigh_room_mm;
   body.on_intersection = "longest_run";
   return motion::generate_body(body);
 }
@@ -68,6 +69,10 @@ SceneSimulation::SceneSimulation(const GeneratorConfig& config, const SceneSpec&
   if (motion.intersection.arm_room_frames > 0)
     spdlog::debug("{}: arms turned for room in {} of {} frames, by up to {:.2f} rad", spec_.id,
                   motion.intersection.arm_room_frames, motion.intersection.frames, motion.intersection.arm_room_turn);
+  if (motion.intersection.thigh_room_frames > 0)
+    spdlog::debug("{}: legs turned for room between the thighs in {} of {} frames, by up to {:.2f} rad", spec_.id,
+                  motion.intersection.thigh_room_frames, motion.intersection.frames,
+                  motion.intersection.thigh_room_turn);
   const int needed = config_.body.transition_frames + config_.frames;
   if (motion.num_frames < needed || motion.source_frame.front() != 0) {
     problem_ = "the body self-intersects in frames that could not be repaired (" + std::to_string(motion.num_frames) +

@@ -1,4 +1,4 @@
-// Arm room, intersection checks and repair over a motion, and the per-frame arrays (see body_sequence.h).
+// Arm and thigh room, intersection checks and repair over a motion, and the per-frame arrays (see body_sequence.h).
 #include "layers/motion/body_sequence.h"
 
 #include <algorithm>
@@ -38,7 +38,10 @@ BodySequence generate_body_sequence(const body::Body& body, const MotionSource& 
   for (int f = 0; f < n; ++f) poses[f] = motion.pose(f);
   if (options.arm_room > 0.0)
     report.arm_room_turn =
-        make_arm_room(body, si, options.arm_room, options.max_arm_room_turn, poses, report.arm_room_frames);
+        make_room(body, si, Room::arms, options.arm_room, options.max_arm_room_turn, poses, report.arm_room_frames);
+  if (options.thigh_room > 0.0)
+    report.thigh_room_turn = make_room(body, si, Room::legs, options.thigh_room, options.max_thigh_room_turn, poses,
+                                       report.thigh_room_frames);
   for (int f = 0; f < n; ++f) {
     found[f] = check_pose(body, si, poses[f]);
     report.worst_before = std::max(report.worst_before, found[f].depth);

@@ -1,4 +1,5 @@
-// Arm room and smooth repair of self-intersecting frames (see intersection_repair.h).
+// Room for the cloth under the arms and between the thighs, and smooth repair of
+// self-intersecting frames (see intersection_repair.h).
 #include "intersection_repair.h"
 
 #include <algorithm>
@@ -11,11 +12,11 @@
 namespace layers::motion {
 namespace {
 
-constexpr double kStep = 0.05;           // rad per search step
-constexpr double kSpreadSigma = 2.0;     // frames: corrections spread over about 3 sigma each side
-constexpr int kRounds = 6;               // search / spread rounds
-constexpr int kRunGap = 12;              // frames: affected frames closer than this share one way
-constexpr double kArmRoomSlack = 0.002;  // m: what an arm room turn may take from a gap before it counts as harm
+constexpr double kStep = 0.05;        // rad per search step
+constexpr double kSpreadSigma = 2.0;  // frames: corrections spread over about 3 sigma each side
+constexpr int kRounds = 6;            // search / spread rounds
+constexpr int kRunGap = 12;           // frames: affected frames closer than this share one way
+constexpr double kRoomSlack = 0.002;  // m: what a room turn may take from a gap before it counts as harm
 
 // Limb roots (left arm, right arm, left leg, right leg) and the joint whose
 // axes the corrections turn about (chest for arms, pelvis for legs).
@@ -158,30 +159,35 @@ std::vector<std::pair<int, int>> runs(const std::vector<char>& affected) {
 
 }  // namespace
 
-double make_arm_room(const body::Body& body, const body::SelfIntersection& checker, double room, double limit,
-                     std::vector<body::Pose>& poses, int& frames) {
+double make_room(const body::Body& body, const body::SelfIntersection& checker, Room where, double room, double limit,
+                 std::vector<body::Pose>& poses, int& frames) {
   frames = 0;
   const int n = static_cast<int>(poses.size());
   const int steps = static_cast<int>(std::floor(limit / kStep + 1e-9));
   if (room <= 0.0 || steps <= 0 || n == 0) return 0.0;
   const Limbs limbs(body.skeleton);
   const std::array<bool, 4> no_crossings{false, false, false, false};  // the gaps only
+  // The abduction channels of the two limbs (kChannel): arms 0 and 1, legs 2 and 3.
+  const std::array<int, 2> channel =
+      where == Room::arms ? std::array<int, 2>{kArmChannel[0][0], kArmChannel[0][1]} : std::array<int, 2>{2, 3};
   // Each arm's gap depends on its own turn only, so both arms turn by the
-  // same angle in one check.
+  // same angle in one check. The thighs share one gap: both legs turn by
+  // the same angle, and both "limbs" below see that gap.
   const auto gaps = [&](const body::Pose& p, double turn) {
     Corrections c{};
-    for (int a = 0; a < 2; ++a) c[kArmChannel[0][a]] = turn;
+    for (int a = 0; a < 2; ++a) c[channel[a]] = turn;
     geometry::Points v;
     body::skin(body.rest.vertices, body.weights, body.skeleton,
                body::forward_kinematics(body.skeleton, corrected(body.skeleton, limbs, p, c)), v);
-    return checker.check(v, no_crossings).arm_gap;
+    const body::FrameIntersection r = checker.check(v, no_crossings);
+    return where == Room::arms ? r.arm_gap : std::array<double, 2>{r.thigh_gap, r.thigh_gap};
   };
-  // Per arm and frame: the turn it needs (the smallest that gives the
+  // Per limb and frame: the turn it needs (the smallest that gives the
   // room, else the one that gives the most when that beats no turn) and
-  // the largest turn that is harmless (no smaller turn takes the arm
-  // closer than min(its gap, room) - kArmRoomSlack; in some poses, an arm
-  // swung forward and in among them, abduction brings the arm nearer the
-  // torso). Frames with the room already need nothing; they are scanned
+  // the largest turn that is harmless (no smaller turn takes the limb
+  // closer than min(its gap, room) - kRoomSlack; in some poses, an arm
+  // swung forward and in among them, abduction brings the limb nearer its
+  // neighbour). Frames with the room already need nothing; they are scanned
   // for their harmless turn only where a neighbour's turn spreads to them.
   std::array<std::vector<double>, 2> need{std::vector<double>(n, 0.0), std::vector<double>(n, 0.0)};
   std::array<std::vector<double>, 2> ceiling{std::vector<double>(n, limit), std::vector<double>(n, limit)};
@@ -198,9 +204,9 @@ double make_arm_room(const body::Body& body, const body::SelfIntersection& check
         if (reach < 0 && g[k][a] >= room) reach = k;
         if (g[k][a] > g[best][a]) best = k;
       }
-      const double floor_gap = std::min(g[0][a], room) - kArmRoomSlack;
+      const double floor_gap = std::min(g[0][a], room) - kRoomSlack;
       while (safe < steps && g[safe + 1][a] >= floor_gap) ++safe;
-      const int k = reach >= 0 ? reach : (g[best][a] > g[0][a] + kArmRoomSlack ? best : 0);
+      const int k = reach >= 0 ? reach : (g[best][a] > g[0][a] + kRoomSlack ? best : 0);
       need[a][f] = k * kStep;
       ceiling[a][f] = safe * kStep;
     }
@@ -224,10 +230,10 @@ double make_arm_room(const body::Body& body, const body::SelfIntersection& check
   }
   for (int f = 0; f < n; ++f) {
     Corrections c{};
-    for (int a = 0; a < 2; ++a) c[kArmChannel[0][a]] = applied[a][f];
-    if (c[kArmChannel[0][0]] < 1e-6 && c[kArmChannel[0][1]] < 1e-6) continue;
+    for (int a = 0; a < 2; ++a) c[channel[a]] = applied[a][f];
+    if (c[channel[0]] < 1e-6 && c[channel[1]] < 1e-6) continue;
     ++frames;
-    largest = std::max({largest, c[kArmChannel[0][0]], c[kArmChannel[0][1]]});
+    largest = std::max({largest, c[channel[0]], c[channel[1]]});
     poses[f] = corrected(body.skeleton, limbs, poses[f], c);
   }
   return largest;

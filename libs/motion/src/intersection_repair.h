@@ -1,5 +1,5 @@
 // intersection_repair.h (private to layers::motion) -- room for the cloth
-// under the arms, and repairs of body self-intersections over a pose
+// under the arms and between the thighs, and repairs of body self-intersections over a pose
 // sequence: the offending arm is abducted
 // or swung forward / backward (one way per run of affected frames: the
 // way that alone clears most of them), the legs abducted, each by the smallest
@@ -24,18 +24,24 @@ struct RepairLimits {
   std::array<bool, 4> crossings{true, true, true, true};
 };
 
-// Arm room: in the frames where an arm comes closer to the torso than
-// `room` (m; FrameIntersection::arm_gap), abducts it by the smallest angle
-// (0.05 rad steps, at most `limit`) that gives it that room, or by the
-// angle that gives the most room when none does. Never by more than the
-// frame's harmless angle: in some poses abduction brings the arm nearer
-// the torso, and no frame's arm (those the spread reaches included) is
-// taken more than 2 mm closer than min(its gap, room). The per-frame
-// angles are spread over neighbouring frames with smooth envelopes (above
-// the needs, below the harmless angles). Returns the largest angle applied (rad) and counts the frames
-// turned in `frames`.
-double make_arm_room(const body::Body& body, const body::SelfIntersection& checker, double room, double limit,
-                     std::vector<body::Pose>& poses, int& frames);
+// Where make_room() makes room: under the arms (FrameIntersection::arm_gap,
+// each arm abducted about the chest) or between the thighs (thigh_gap, both
+// legs abducted about the pelvis by the same angle).
+enum class Room { arms, legs };
+
+// In the frames where a limb comes closer to its neighbour than `room` (m;
+// the gap named above), abducts it by the smallest angle (0.05 rad steps,
+// at most `limit`) that gives that room, or by the angle that gives the
+// most room when none does. Never by more than the frame's harmless
+// angle: in some poses abduction brings the limb nearer (an arm swung
+// forward and in, a leg crossed in front of the other), and no frame's
+// limb (those the spread reaches included) is taken more than 2 mm closer
+// than min(its gap, room). The per-frame angles are spread over
+// neighbouring frames with smooth envelopes (above the needs, below the
+// harmless angles). Returns the largest angle applied (rad) and counts the
+// frames turned in `frames`.
+double make_room(const body::Body& body, const body::SelfIntersection& checker, Room where, double room, double limit,
+                 std::vector<body::Pose>& poses, int& frames);
 
 // `found` holds the check of every pose and is updated with the result,
 // counting only the crossings of the limbs `limits.crossings` aims at.

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 #include "body_fixture.h"
@@ -23,6 +24,15 @@ using body::test::shape;
 body::Pose arm_in(const body::Body& b, double angle) {
   body::Pose p = body::rest_pose(b.skeleton);
   p.local[b.skeleton.require("LeftArm")] = body::rot_z(-angle);
+  return p;
+}
+
+// The rest pose with both legs turned `angle` rad toward each other (about
+// the forward axis).
+body::Pose legs_in(const body::Body& b, double angle) {
+  body::Pose p = body::rest_pose(b.skeleton);
+  p.local[b.skeleton.require("LeftUpLeg")] = body::rot_z(-angle);
+  p.local[b.skeleton.require("RightUpLeg")] = body::rot_z(angle);
   return p;
 }
 
@@ -120,36 +130,51 @@ TEST(SelfIntersection, ArmGapIsTheRoomUnderTheArm) {
   EXPECT_LT(last, 0.01);
 }
 
+// 60 frames: the rest pose, with `pose(s)` in frames 20-40 (s rising from
+// 0 to 1 at frame 30 and back), made without and with the room `ask` sets
+// (every frame kept).
+struct RoomPair {
+  BodySequence plain, roomy;
+  RoomPair(const body::Body& b, const std::function<body::Pose(double)>& pose,
+           const std::function<void(SequenceOptions&)>& ask) {
+    std::vector<body::Pose> poses;
+    for (int f = 0; f < 60; ++f) poses.push_back(pose(f < 20 || f > 40 ? 0.0 : std::sin(M_PI * (f - 20) / 20.0)));
+    const PoseTrack motion(poses, "test:room");
+    SequenceOptions o;
+    o.on_intersection = "keep";
+    plain = generate_body_sequence(b, motion, o);
+    ask(o);
+    roomy = generate_body_sequence(b, motion, o);
+  }
+  // Frames of `roomy` that are those of `plain`.
+  int unchanged() const {
+    int n = 0;
+    for (int f = 0; f < plain.num_frames; ++f)
+      n += frame_vertices(roomy, f).isApprox(frame_vertices(plain, f), 0.0) ? 1 : 0;
+    return n;
+  }
+};
+
 TEST(SelfIntersection, ArmRoomTurnsOnlyTheFramesThatNeedIt) {
   const body::Body& b = body::test::body();
   const body::SelfIntersection si(b);
-  // 60 frames: in frames 20-40 the left arm comes down near the side (2.5
-  // cm from it at the lowest, no intersection) and goes back out; the
-  // right arm stays where it is. 4 cm of room asked for.
-  std::vector<body::Pose> poses;
-  for (int f = 0; f < 60; ++f)
-    poses.push_back(arm_in(b, f < 20 || f > 40 ? 0.0 : 0.6 * std::sin(M_PI * (f - 20) / 20.0)));
-  const PoseTrack motion(poses, "test:arm room");
+  // The left arm comes down near the side (2.5 cm from it at the lowest,
+  // no intersection) and goes back out; the right arm stays where it is.
+  // 4 cm of room asked for.
   const double room = 0.04;
-  SequenceOptions o;
-  o.on_intersection = "keep";
-  const BodySequence plain = generate_body_sequence(b, motion, o);
-  EXPECT_EQ(plain.intersection.arm_room_frames, 0);
-  o.arm_room = room;
-  const BodySequence roomy = generate_body_sequence(b, motion, o);
-  ASSERT_EQ(roomy.num_frames, 60);
-  EXPECT_GT(roomy.intersection.arm_room_frames, 0);
-  EXPECT_LT(roomy.intersection.arm_room_frames, 40);
-  EXPECT_GT(roomy.intersection.arm_room_turn, 0.0);
-  EXPECT_LE(roomy.intersection.arm_room_turn, o.max_arm_room_turn + 1e-9);
-  int unchanged = 0;
+  const RoomPair r(
+      b, [&](double s) { return arm_in(b, 0.6 * s); }, [&](SequenceOptions& o) { o.arm_room = room; });
+  EXPECT_EQ(r.plain.intersection.arm_room_frames, 0);
+  ASSERT_EQ(r.roomy.num_frames, 60);
+  EXPECT_GT(r.roomy.intersection.arm_room_frames, 0);
+  EXPECT_LT(r.roomy.intersection.arm_room_frames, 40);
+  EXPECT_GT(r.roomy.intersection.arm_room_turn, 0.0);
+  EXPECT_LE(r.roomy.intersection.arm_room_turn, SequenceOptions{}.max_arm_room_turn + 1e-9);
   for (int f = 0; f < 60; ++f) {
-    const body::FrameIntersection r = si.check(frame_vertices(roomy, f));
     // Every frame has the room asked for (the turns stay under the limit here).
-    EXPECT_GE(r.arm_gap[0], room - 1e-6) << "frame " << f;
-    unchanged += frame_vertices(roomy, f).isApprox(frame_vertices(plain, f), 0.0) ? 1 : 0;
+    EXPECT_GE(si.check(frame_vertices(r.roomy, f)).arm_gap[0], room - 1e-6) << "frame " << f;
   }
-  EXPECT_GE(unchanged, 10);  // frames far from the side are left as they were
+  EXPECT_GE(r.unchanged(), 10);  // frames far from the side are left as they were
 }
 
 // 40 frames: the left arm at `side` (arm_in) in frames 0-19, then swung
@@ -203,6 +228,53 @@ TEST(SelfIntersection, ArmRoomSpreadSparesFramesThatHaveTheRoom) {
   ASSERT_GE(r.gap(r.plain, 25), room);  // ... the last have it
   EXPECT_GT(r.roomy.intersection.arm_room_frames, 0);
   for (int f = 0; f < 40; ++f) EXPECT_GE(r.gap(r.roomy, f), std::min(r.gap(r.plain, f), room) - 0.003) << "frame " << f;
+}
+
+TEST(SelfIntersection, ThighGapIsTheRoomBetweenTheLegs) {
+  const body::Body& b = body::test::body();
+  const body::SelfIntersection si(b);
+  // The rest pose's legs stand apart: nothing of one near the other.
+  EXPECT_TRUE(std::isinf(si.check(body::pose_body(b, legs_in(b, 0.0)).vertices).thigh_gap));
+  // The legs turned toward each other: the gap shrinks step by step to
+  // contact (5 cm, 3.7, 2.0, 0.4 on this body).
+  double last = std::numeric_limits<double>::infinity();
+  for (double angle : {0.15, 0.17, 0.18, 0.19}) {
+    const body::FrameIntersection r = si.check(body::pose_body(b, legs_in(b, angle)).vertices);
+    EXPECT_LT(r.thigh_gap, last) << angle;
+    EXPECT_GE(r.thigh_gap, 0.0);
+    EXPECT_LT(r.depth, si.options().tolerance) << angle;  // close, not inside
+    last = r.thigh_gap;
+  }
+  EXPECT_LT(last, 0.006);
+  // The arms' gaps do not see the legs.
+  const body::FrameIntersection apart = si.check(body::pose_body(b, legs_in(b, 0.0)).vertices);
+  const body::FrameIntersection close = si.check(body::pose_body(b, legs_in(b, 0.19)).vertices);
+  EXPECT_EQ(apart.arm_gap, close.arm_gap);
+}
+
+TEST(SelfIntersection, ThighRoomTurnsOnlyTheFramesThatNeedIt) {
+  const body::Body& b = body::test::body();
+  const body::SelfIntersection si(b);
+  // The legs come together (1.2 cm apart at the closest, no intersection)
+  // and go back; 3 cm of room asked for.
+  const double room = 0.03;
+  const RoomPair r(
+      b, [&](double s) { return legs_in(b, 0.185 * s); }, [&](SequenceOptions& o) { o.thigh_room = room; });
+  const auto gap = [&](const BodySequence& q, int f) {
+    return si.check(frame_vertices(q, f), {false, false, false, false}).thigh_gap;
+  };
+  EXPECT_EQ(r.plain.intersection.thigh_room_frames, 0);
+  ASSERT_LT(gap(r.plain, 30), 0.015);
+  ASSERT_GE(gap(r.plain, 0), room);
+  ASSERT_EQ(r.roomy.num_frames, 60);
+  EXPECT_GT(r.roomy.intersection.thigh_room_frames, 0);
+  EXPECT_LT(r.roomy.intersection.thigh_room_frames, 40);
+  EXPECT_GT(r.roomy.intersection.thigh_room_turn, 0.0);
+  EXPECT_LE(r.roomy.intersection.thigh_room_turn, SequenceOptions{}.max_thigh_room_turn + 1e-9);
+  EXPECT_EQ(r.roomy.intersection.arm_room_frames, 0);  // the arms are not asked for room
+  // Every frame has the room asked for (the turns stay under the limit here).
+  for (int f = 0; f < 60; ++f) EXPECT_GE(gap(r.roomy, f), room - 1e-6) << "frame " << f;
+  EXPECT_GE(r.unchanged(), 10);  // frames far from the other leg are left as they were
 }
 
 TEST(SelfIntersection, PoliciesForFramesThatStayIntersecting) {

@@ -23,6 +23,9 @@
 // crossing between two regions is attributed as above. Crossings inside
 // one region (fingers, toes, elbow and knee pits, the groin's own folds)
 // are not counted: no limb turn clears them.
+//
+// Per frame it also measures the room a limb leaves the cloth (arm to
+// torso, thigh to thigh; the motion's arm and thigh room).
 #pragma once
 
 #include <array>
@@ -59,6 +62,12 @@ struct FrameIntersection {
   // `max_distance`. The room the arm leaves the cloth between it and the
   // torso (the motion's arm room, body_sequence.h).
   std::array<double, 2> arm_gap{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  // Between the legs: the smallest offset of the left leg's core vertices
+  // beyond 30% of the thigh from the hip in front of the right leg's
+  // surface (m; same test, the groin's blend zone left out), infinity when
+  // none is within `max_distance`. The room the thighs leave the cloth of
+  // two trouser legs between them (the motion's thigh room).
+  double thigh_gap = std::numeric_limits<double>::infinity();
   // The verdict that drops frames: deeper than the tolerance.
   bool intersects(double tolerance) const { return depth > tolerance; }
   // What the repair clears where its limits allow: the verdict above and
@@ -90,7 +99,7 @@ class SelfIntersection {
   std::vector<int> part_;
   std::array<std::vector<int>, kNumBodyParts> members_;  // core vertices per part
   std::vector<char> near_blend_;                         // core vertex next to a blend zone
-  std::vector<char> gap_vertex_;                         // arm vertex whose arm_gap counts
+  std::vector<char> gap_vertex_;                         // limb vertex whose arm_gap / thigh_gap counts
   std::vector<signed char> region_;                      // per face: the part carrying >= 1/2 of its weight
   std::array<std::vector<int>, kNumBodyParts> region_faces_;
 };

@@ -79,7 +79,8 @@ struct BodySampling {
   std::optional<MotionVariation> variation;             // parametric families (motion_variation.h); absent: off
   int transition_frames = 10;                           // T-pose -> motion blend (part of warm-up)
   double intersection_tolerance_mm = 4.0;
-  double arm_room_mm = 0.0;  // room for the cloth under the arms (motion::SequenceOptions::arm_room); 0 = off
+  double arm_room_mm = 0.0;    // room for the cloth under the arms (motion::SequenceOptions::arm_room); 0 = off
+  double thigh_room_mm = 0.0;  // room for the cloth between the thighs (SequenceOptions::thigh_room); 0 = off
 
   template <class V>
   void visit(V& v) {
@@ -91,6 +92,8 @@ struct BodySampling {
     v("intersection_tolerance_mm", intersection_tolerance_mm, cfg::opt().range(0.5, 50));
     v("arm_room_mm", arm_room_mm,
       cfg::opt().range(0, 100).help("room for the cloth between arms and torso; closer arms are abducted (0 = off)"));
+    v("thigh_room_mm", thigh_room_mm,
+      cfg::opt().range(0, 100).help("room for the cloth between the thighs; closer legs are abducted (0 = off)"));
   }
 };
 

@@ -11,6 +11,7 @@
 //     transition_frames: 15        # blend in from the T-pose
 //     intersection_tolerance_mm: 4
 //     arm_room_mm: 0               # > 0: abduct arms closer than this to the torso
+//     thigh_room_mm: 0             # > 0: abduct legs whose thighs come closer than this
 //     on_intersection: longest_run # or drop, keep
 #pragma once
 
@@ -32,7 +33,8 @@ struct BodyMotionConfig {
   std::uint64_t seed = 0;
   int transition_frames = 15;
   double intersection_tolerance_mm = 4.0;
-  double arm_room_mm = 0.0;  // SequenceOptions::arm_room; 0 = off
+  double arm_room_mm = 0.0;    // SequenceOptions::arm_room; 0 = off
+  double thigh_room_mm = 0.0;  // SequenceOptions::thigh_room; 0 = off
   std::string on_intersection = "longest_run";
   std::string assets;  // asset root; "" = $LAYERS_ASSETS or the build-time default
 
@@ -47,6 +49,8 @@ struct BodyMotionConfig {
       cfg::opt().range(0.5, 50).help("allowed self-intersection depth"));
     v("arm_room_mm", arm_room_mm,
       cfg::opt().range(0, 100).help("room for the cloth between arms and torso; closer arms are abducted (0 = off)"));
+    v("thigh_room_mm", thigh_room_mm,
+      cfg::opt().range(0, 100).help("room for the cloth between the thighs; closer legs are abducted (0 = off)"));
     v("on_intersection", on_intersection, cfg::opt().choices({"longest_run", "drop", "keep"}));
     v("assets", assets,
       cfg::opt().help("asset root (default: $LAYERS_ASSETS, then <prefix>/share/layers/assets, then <source>/assets)"));

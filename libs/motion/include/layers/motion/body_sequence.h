@@ -1,6 +1,7 @@
 // layers/motion/body_sequence.h -- the body part of a LAYERS-H5 sequence:
 // per-frame skinned vertices, root translation and rotation, and joint
-// transforms, with room made for the cloth under the arms (optional), body
+// transforms, with room made for the cloth under the arms and between the
+// thighs (optional), body
 // self-intersections detected, small ones resolved
 // (the offending arm abducted or swung forward / backward, the legs
 // abducted, by the smallest angle that clears the frame, the correction
@@ -29,6 +30,14 @@ struct SequenceOptions {
   // contact margins; a mocap arm resting against the side leaves less.
   double arm_room = 0.0;
   double max_arm_room_turn = 0.3;
+  // Room for the cloth between the thighs (m; 0 = off), made after the
+  // arms': frames where the legs come closer to each other than this
+  // (beyond the top 30% of the thigh) have both legs abducted by the same
+  // angle, at most `max_thigh_room_turn` rad each. A trouser leg on each
+  // thigh puts two layers of cloth and their contact margins there; a
+  // mocap subject standing with the thighs together leaves less.
+  double thigh_room = 0.0;
+  double max_thigh_room_turn = 0.15;
   // What happens to frames still intersecting after resolution:
   // "longest_run" keeps the longest run of consecutive clean frames,
   // "drop" removes the bad frames (the sequence then skips in time),
@@ -52,6 +61,9 @@ struct IntersectionReport {
   // Arm room: frames with an arm turned for it, and the largest turn (rad).
   int arm_room_frames = 0;
   double arm_room_turn = 0.0;
+  // Thigh room: frames with the legs turned for it, and the largest turn (rad, per leg).
+  int thigh_room_frames = 0;
+  double thigh_room_turn = 0.0;
   double share_intersecting() const { return frames ? static_cast<double>(intersecting) / frames : 0.0; }
 };
 
