@@ -68,7 +68,7 @@ VerbRun register_body(CLI::App& app, const Global&) {
   cmd->add_option("--on-intersection", a->on_intersection, "longest_run, drop or keep")->capture_default_str();
   cmd->add_option("--arm-room", a->arm_room, "mm of room for the cloth between arms and torso (0 = off)")
       ->capture_default_str();
-  cmd->add_option("--thigh-room", a->thigh_room, "mm of room for the cloth between the thighs (0 = off)")
+  cmd->add_option("--thigh-room", a->thigh_room, "mm of room for the cloth between the legs, thighs to feet (0 = off)")
       ->capture_default_str();
   cmd->add_option("--id", a->id, "sequence id")->capture_default_str();
   cmd->add_option("--out", a->out, "output: a shard file (*.h5) or a dataset folder")->required();

@@ -44,6 +44,8 @@ using Corrections = std::array<double, kChannels>;
 constexpr int kWays = 3;
 // Channel of arm a (0 left, 1 right) for each way: abduct, forward, backward.
 constexpr int kArmChannel[kWays][2] = {{0, 1}, {4, 5}, {6, 7}};
+// Channel of leg l (0 left, 1 right): abduct.
+constexpr int kLegChannel[2] = {2, 3};
 
 body::Pose corrected(const body::Skeleton& sk, const Limbs& limbs, const body::Pose& pose, const Corrections& c) {
   if (std::all_of(c.begin(), c.end(), [](double x) { return x == 0.0; })) return pose;
@@ -168,8 +170,8 @@ double make_room(const body::Body& body, const body::SelfIntersection& checker, 
   const Limbs limbs(body.skeleton);
   const std::array<bool, 4> no_crossings{false, false, false, false};  // the gaps only
   // The abduction channels of the two limbs (kChannel): arms 0 and 1, legs 2 and 3.
-  const std::array<int, 2> channel =
-      where == Room::arms ? std::array<int, 2>{kArmChannel[0][0], kArmChannel[0][1]} : std::array<int, 2>{2, 3};
+  const std::array<int, 2> channel = where == Room::arms ? std::array<int, 2>{kArmChannel[0][0], kArmChannel[0][1]}
+                                                         : std::array<int, 2>{kLegChannel[0], kLegChannel[1]};
   // Each arm's gap depends on its own turn only, so both arms turn by the
   // same angle in one check. The thighs share one gap: both legs turn by
   // the same angle, and both "limbs" below see that gap.

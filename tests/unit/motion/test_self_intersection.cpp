@@ -246,10 +246,17 @@ TEST(SelfIntersection, ThighGapIsTheRoomBetweenTheLegs) {
     last = r.thigh_gap;
   }
   EXPECT_LT(last, 0.006);
-  // The arms' gaps do not see the legs.
-  const body::FrameIntersection apart = si.check(body::pose_body(b, legs_in(b, 0.0)).vertices);
-  const body::FrameIntersection close = si.check(body::pose_body(b, legs_in(b, 0.19)).vertices);
+  // The arms' gaps do not see the legs (the left arm near the side, so
+  // that its gap is measured).
+  const auto pose = [&](double legs) {
+    body::Pose p = legs_in(b, legs);
+    p.local[b.skeleton.require("LeftArm")] = arm_in(b, 0.6).local[b.skeleton.require("LeftArm")];
+    return si.check(body::pose_body(b, p).vertices);
+  };
+  const body::FrameIntersection apart = pose(0.0), close = pose(0.19);
+  ASSERT_TRUE(std::isfinite(apart.arm_gap[0]));
   EXPECT_EQ(apart.arm_gap, close.arm_gap);
+  EXPECT_LT(close.thigh_gap, apart.thigh_gap);
 }
 
 TEST(SelfIntersection, ThighRoomTurnsOnlyTheFramesThatNeedIt) {

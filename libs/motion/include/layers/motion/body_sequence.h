@@ -22,7 +22,7 @@ struct SequenceOptions {
   body::IntersectionOptions intersection;
   bool resolve = true;               // try to resolve intersecting frames
   double max_arm_correction = 0.9;   // rad an arm may be turned at most
-  double max_leg_correction = 0.35;  // rad of extra leg abduction at most
+  double max_leg_correction = 0.35;  // rad of extra leg abduction at most (on top of thigh room's)
   // Room for the cloth under the arms (m; 0 = off): frames where an arm
   // comes closer to the torso than this have it abducted, by at most
   // `max_arm_room_turn` rad, before the checks and repairs below. Two
