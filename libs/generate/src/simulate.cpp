@@ -66,13 +66,12 @@ bool wants_self_contact(const std::string& type) {
 SceneSimulation::SceneSimulation(const GeneratorConfig& config, const SceneSpec& spec)
     : config_(config), spec_(spec), generated_(make_body(config, spec)), wind_(spec.wind), solver_(config.sim) {
   const motion::BodySequence& motion = generated_.sequence;
-  if (motion.intersection.arm_room_frames > 0)
-    spdlog::debug("{}: arms turned for room in {} of {} frames, by up to {:.2f} rad", spec_.id,
-                  motion.intersection.arm_room_frames, motion.intersection.frames, motion.intersection.arm_room_turn);
-  if (motion.intersection.thigh_room_frames > 0)
-    spdlog::debug("{}: legs turned for room between the thighs in {} of {} frames, by up to {:.2f} rad", spec_.id,
-                  motion.intersection.thigh_room_frames, motion.intersection.frames,
-                  motion.intersection.thigh_room_turn);
+  for (const auto& [what, room] :
+       {std::pair{"arms turned for room", motion.intersection.arm_room},
+        std::pair{"legs turned for room between the thighs", motion.intersection.thigh_room}})
+    if (room.frames > 0)
+      spdlog::debug("{}: {} in {} of {} frames, by up to {:.2f} rad", spec_.id, what, room.frames,
+                    motion.intersection.frames, room.turn);
   const int needed = config_.body.transition_frames + config_.frames;
   if (motion.num_frames < needed || motion.source_frame.front() != 0) {
     problem_ = "the body self-intersects in frames that could not be repaired (" + std::to_string(motion.num_frames) +

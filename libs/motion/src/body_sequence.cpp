@@ -36,12 +36,8 @@ BodySequence generate_body_sequence(const body::Body& body, const MotionSource& 
   report.frames = n;
   report.crossing_limbs = options.intersection.exact ? 2 : 0;
   for (int f = 0; f < n; ++f) poses[f] = motion.pose(f);
-  if (options.arm_room > 0.0)
-    report.arm_room_turn =
-        make_room(body, si, Room::arms, options.arm_room, options.max_arm_room_turn, poses, report.arm_room_frames);
-  if (options.thigh_room > 0.0)
-    report.thigh_room_turn = make_room(body, si, Room::legs, options.thigh_room, options.max_thigh_room_turn, poses,
-                                       report.thigh_room_frames);
+  report.arm_room = make_room(body, si, Room::arms, options.arm_room, options.max_arm_room_turn, poses);
+  report.thigh_room = make_room(body, si, Room::legs, options.thigh_room, options.max_thigh_room_turn, poses);
   for (int f = 0; f < n; ++f) {
     found[f] = check_pose(body, si, poses[f]);
     report.worst_before = std::max(report.worst_before, found[f].depth);

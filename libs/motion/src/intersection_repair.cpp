@@ -161,12 +161,12 @@ std::vector<std::pair<int, int>> runs(const std::vector<char>& affected) {
 
 }  // namespace
 
-double make_room(const body::Body& body, const body::SelfIntersection& checker, Room where, double room, double limit,
-                 std::vector<body::Pose>& poses, int& frames) {
-  frames = 0;
+RoomReport make_room(const body::Body& body, const body::SelfIntersection& checker, Room where, double room,
+                     double limit, std::vector<body::Pose>& poses) {
+  RoomReport report;
   const int n = static_cast<int>(poses.size());
   const int steps = static_cast<int>(std::floor(limit / kStep + 1e-9));
-  if (room <= 0.0 || steps <= 0 || n == 0) return 0.0;
+  if (room <= 0.0 || steps <= 0 || n == 0) return report;
   const Limbs limbs(body.skeleton);
   const std::array<bool, 4> no_crossings{false, false, false, false};  // the gaps only
   // The abduction channels of the two limbs (kChannel): arms 0 and 1, legs 2 and 3.
@@ -223,7 +223,6 @@ double make_room(const body::Body& body, const body::SelfIntersection& checker, 
   std::array<std::vector<double>, 2> up{upper_envelope(need[0], kSpreadSigma), upper_envelope(need[1], kSpreadSigma)};
   for (int f = 0; f < n; ++f)
     if (!scanned[f] && (up[0][f] >= 1e-6 || up[1][f] >= 1e-6)) scan(f, g0[f]);
-  double largest = 0.0;
   std::array<std::vector<double>, 2> applied;
   for (int a = 0; a < 2; ++a) {
     const std::vector<double> down = lower_envelope(ceiling[a], kSpreadSigma);
@@ -234,11 +233,11 @@ double make_room(const body::Body& body, const body::SelfIntersection& checker, 
     Corrections c{};
     for (int a = 0; a < 2; ++a) c[channel[a]] = applied[a][f];
     if (c[channel[0]] < 1e-6 && c[channel[1]] < 1e-6) continue;
-    ++frames;
-    largest = std::max({largest, c[channel[0]], c[channel[1]]});
+    ++report.frames;
+    report.turn = std::max({report.turn, c[channel[0]], c[channel[1]]});
     poses[f] = corrected(body.skeleton, limbs, poses[f], c);
   }
-  return largest;
+  return report;
 }
 
 void repair_intersections(const body::Body& body, const body::SelfIntersection& checker, const RepairLimits& limits,

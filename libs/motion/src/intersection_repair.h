@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "layers/body/self_intersection.h"
+#include "layers/motion/body_sequence.h"
 
 namespace layers::motion {
 
@@ -38,10 +39,10 @@ enum class Room { arms, legs };
 // limb (those the spread reaches included) is taken more than 2 mm closer
 // than min(its gap, room). The per-frame angles are spread over
 // neighbouring frames with smooth envelopes (above the needs, below the
-// harmless angles). Returns the largest angle applied (rad) and counts the
-// frames turned in `frames`.
-double make_room(const body::Body& body, const body::SelfIntersection& checker, Room where, double room, double limit,
-                 std::vector<body::Pose>& poses, int& frames);
+// harmless angles). Returns the frames turned and the largest angle
+// applied; nothing is turned when `room` is 0.
+RoomReport make_room(const body::Body& body, const body::SelfIntersection& checker, Room where, double room,
+                     double limit, std::vector<body::Pose>& poses);
 
 // `found` holds the check of every pose and is updated with the result,
 // counting only the crossings of the limbs `limits.crossings` aims at.

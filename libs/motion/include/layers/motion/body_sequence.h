@@ -45,6 +45,13 @@ struct SequenceOptions {
   std::string on_intersection = "longest_run";
 };
 
+// What arm or thigh room did: the frames whose limbs it turned, and the
+// largest turn (rad, per limb).
+struct RoomReport {
+  int frames = 0;
+  double turn = 0.0;
+};
+
 struct IntersectionReport {
   int frames = 0;                                // frames of the motion checked
   int intersecting = 0;                          // frames deeper than the tolerance before resolution
@@ -58,12 +65,7 @@ struct IntersectionReport {
   // where aiming at them left frames deep that the depth alone clears).
   long crossing_before = 0, crossing_after = 0;
   int crossing_limbs = 0;
-  // Arm room: frames with an arm turned for it, and the largest turn (rad).
-  int arm_room_frames = 0;
-  double arm_room_turn = 0.0;
-  // Thigh room: frames with the legs turned for it, and the largest turn (rad, per leg).
-  int thigh_room_frames = 0;
-  double thigh_room_turn = 0.0;
+  RoomReport arm_room, thigh_room;
   double share_intersecting() const { return frames ? static_cast<double>(intersecting) / frames : 0.0; }
 };
 
