@@ -26,4 +26,7 @@ plot 'by_step.dat' index 0 using 1:2 with lines lw 2 lc rgb '#1f77b4' title 'sta
      'by_step.dat' index 13 using 1:2 with lines lw 2 lc rgb '#d62728' title 'layersnet+/seed-2', \
      'by_step.dat' index 14 using 1:2 with lines lw 2 lc rgb '#9467bd' title 'mgnet-follow/seed-0', \
      'by_step.dat' index 15 using 1:2 with lines lw 2 lc rgb '#8c564b' title 'mgnet-follow/seed-1', \
-     'by_step.dat' index 16 using 1:2 with lines lw 2 lc rgb '#e377c2' title 'mgnet-follow/seed-2'
+     'by_step.dat' index 16 using 1:2 with lines lw 2 lc rgb '#e377c2' title 'mgnet-follow/seed-2', \
+     'by_step.dat' index 17 using 1:2 with lines lw 2 lc rgb '#7f7f7f' title 'layersnet-body-gate/seed-0', \
+     'by_step.dat' index 18 using 1:2 with lines lw 2 lc rgb '#bcbd22' title 'layersnet-body-gate/seed-1', \
+     'by_step.dat' index 19 using 1:2 with lines lw 2 lc rgb '#17becf' title 'layersnet-body-gate/seed-2'

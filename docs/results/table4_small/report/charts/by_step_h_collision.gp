@@ -27,4 +27,7 @@ plot 0.0727427307 with lines dt 3 lw 1.5 lc rgb '#555555' title 'ground truth', 
      'by_step.dat' index 13 using 1:3 with lines lw 2 lc rgb '#d62728' title 'layersnet+/seed-2', \
      'by_step.dat' index 14 using 1:3 with lines lw 2 lc rgb '#9467bd' title 'mgnet-follow/seed-0', \
      'by_step.dat' index 15 using 1:3 with lines lw 2 lc rgb '#8c564b' title 'mgnet-follow/seed-1', \
-     'by_step.dat' index 16 using 1:3 with lines lw 2 lc rgb '#e377c2' title 'mgnet-follow/seed-2'
+     'by_step.dat' index 16 using 1:3 with lines lw 2 lc rgb '#e377c2' title 'mgnet-follow/seed-2', \
+     'by_step.dat' index 17 using 1:3 with lines lw 2 lc rgb '#7f7f7f' title 'layersnet-body-gate/seed-0', \
+     'by_step.dat' index 18 using 1:3 with lines lw 2 lc rgb '#bcbd22' title 'layersnet-body-gate/seed-1', \
+     'by_step.dat' index 19 using 1:3 with lines lw 2 lc rgb '#17becf' title 'layersnet-body-gate/seed-2'

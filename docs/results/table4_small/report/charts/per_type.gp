@@ -29,4 +29,7 @@ plot 'per_type.dat' using 2:3:xtic(1) lc rgb '#1f77b4' title 'static', \
      'per_type.dat' using 28:29 lc rgb '#d62728' title 'layersnet+/seed-2', \
      'per_type.dat' using 30:31 lc rgb '#9467bd' title 'mgnet-follow/seed-0', \
      'per_type.dat' using 32:33 lc rgb '#8c564b' title 'mgnet-follow/seed-1', \
-     'per_type.dat' using 34:35 lc rgb '#e377c2' title 'mgnet-follow/seed-2'
+     'per_type.dat' using 34:35 lc rgb '#e377c2' title 'mgnet-follow/seed-2', \
+     'per_type.dat' using 36:37 lc rgb '#7f7f7f' title 'layersnet-body-gate/seed-0', \
+     'per_type.dat' using 38:39 lc rgb '#bcbd22' title 'layersnet-body-gate/seed-1', \
+     'per_type.dat' using 40:41 lc rgb '#17becf' title 'layersnet-body-gate/seed-2'

@@ -30,6 +30,9 @@ plot 'speed_accuracy_front.dat' using 1:2 with steps dt 2 lw 1.5 lc rgb '#999999
      'speed_accuracy_runs.dat' index 14 using 1:2 with points pt 7 ps 1.8 lc rgb '#9467bd' title 'mgnet-follow/seed-0', \
      'speed_accuracy_runs.dat' index 15 using 1:2 with points pt 7 ps 1.8 lc rgb '#8c564b' title 'mgnet-follow/seed-1', \
      'speed_accuracy_runs.dat' index 16 using 1:2 with points pt 7 ps 1.8 lc rgb '#e377c2' title 'mgnet-follow/seed-2', \
+     'speed_accuracy_runs.dat' index 17 using 1:2 with points pt 7 ps 1.8 lc rgb '#7f7f7f' title 'layersnet-body-gate/seed-0', \
+     'speed_accuracy_runs.dat' index 18 using 1:2 with points pt 7 ps 1.8 lc rgb '#bcbd22' title 'layersnet-body-gate/seed-1', \
+     'speed_accuracy_runs.dat' index 19 using 1:2 with points pt 7 ps 1.8 lc rgb '#17becf' title 'layersnet-body-gate/seed-2', \
      'speed_accuracy_runs.dat' using 1:2:3 with labels offset char 1.5,0.9 left notitle, \
      'speed_accuracy_bench.dat' index 0 using 1:2 with linespoints pt 4 ps 1.2 dt 3 lc rgb '#1f77b4' title 'static: benchmarked sizes', \
      'speed_accuracy_bench.dat' index 0 using 1:2:3 with labels rotate by -35 left offset char 0.2,-0.8 font ',8' tc rgb '#1f77b4' notitle, \
@@ -64,4 +67,10 @@ plot 'speed_accuracy_front.dat' using 1:2 with steps dt 2 lw 1.5 lc rgb '#999999
      'speed_accuracy_bench.dat' index 15 using 1:2 with linespoints pt 4 ps 1.2 dt 3 lc rgb '#8c564b' title 'mgnet-follow/seed-1: benchmarked sizes', \
      'speed_accuracy_bench.dat' index 15 using 1:2:3 with labels rotate by -35 left offset char 0.2,-0.8 font ',8' tc rgb '#8c564b' notitle, \
      'speed_accuracy_bench.dat' index 16 using 1:2 with linespoints pt 4 ps 1.2 dt 3 lc rgb '#e377c2' title 'mgnet-follow/seed-2: benchmarked sizes', \
-     'speed_accuracy_bench.dat' index 16 using 1:2:3 with labels rotate by -35 left offset char 0.2,-0.8 font ',8' tc rgb '#e377c2' notitle
+     'speed_accuracy_bench.dat' index 16 using 1:2:3 with labels rotate by -35 left offset char 0.2,-0.8 font ',8' tc rgb '#e377c2' notitle, \
+     'speed_accuracy_bench.dat' index 17 using 1:2 with linespoints pt 4 ps 1.2 dt 3 lc rgb '#7f7f7f' title 'layersnet-body-gate/seed-0: benchmarked sizes', \
+     'speed_accuracy_bench.dat' index 17 using 1:2:3 with labels rotate by -35 left offset char 0.2,-0.8 font ',8' tc rgb '#7f7f7f' notitle, \
+     'speed_accuracy_bench.dat' index 18 using 1:2 with linespoints pt 4 ps 1.2 dt 3 lc rgb '#bcbd22' title 'layersnet-body-gate/seed-1: benchmarked sizes', \
+     'speed_accuracy_bench.dat' index 18 using 1:2:3 with labels rotate by -35 left offset char 0.2,-0.8 font ',8' tc rgb '#bcbd22' notitle, \
+     'speed_accuracy_bench.dat' index 19 using 1:2 with linespoints pt 4 ps 1.2 dt 3 lc rgb '#17becf' title 'layersnet-body-gate/seed-2: benchmarked sizes', \
+     'speed_accuracy_bench.dat' index 19 using 1:2:3 with labels rotate by -35 left offset char 0.2,-0.8 font ',8' tc rgb '#17becf' notitle
