@@ -129,13 +129,12 @@ VerbRun register_body(CLI::App& app, const Global&) {
         "aimed at those of %d of 4 limbs)\n",
         report.frames ? static_cast<double>(report.crossing_before) / report.frames : 0.0,
         report.frames ? static_cast<double>(report.crossing_after) / report.frames : 0.0, report.crossing_limbs);
-    const auto print_room = [&](const char* what, double mm, const char* limbs, const motion::RoomReport& room) {
-      if (mm > 0)
-        std::printf("%s room %.0f mm: %s turned in %d of %d frames, by up to %.2f rad\n", what, mm, limbs, room.frames,
-                    report.frames, room.turn);
-    };
-    print_room("arm", config.arm_room_mm, "arms", report.arm_room);
-    print_room("thigh", config.thigh_room_mm, "legs", report.thigh_room);
+    if (config.arm_room_mm > 0)
+      std::printf("arm room %.0f mm: %s\n", config.arm_room_mm,
+                  report.arm_room.describe("arms", report.frames).c_str());
+    if (config.thigh_room_mm > 0)
+      std::printf("thigh room %.0f mm: %s\n", config.thigh_room_mm,
+                  report.thigh_room.describe("legs", report.frames).c_str());
 
     if (!a->export_format.empty()) {
       std::string dir =

@@ -124,8 +124,9 @@ struct Regression {
         }
       }
       if (r.built.empty()) throw Error("no model of the regression study is built");
+      const std::string kernels = pinned_kernels();
       std::printf("regression kernels: %s\n",
-                  pinned_kernels().empty() ? "OpenBLAS's and LibTorch's own choice" : pinned_kernels().c_str());
+                  kernels.empty() ? "OpenBLAS's and LibTorch's own choice" : kernels.c_str());
       Timer timer;
       r.result = test::run_command(layers_command("run " + study_file() + " --set output=" + r.runs() +
                                                   " --set dataset.folder=" + r.data + only));

@@ -66,12 +66,10 @@ bool wants_self_contact(const std::string& type) {
 SceneSimulation::SceneSimulation(const GeneratorConfig& config, const SceneSpec& spec)
     : config_(config), spec_(spec), generated_(make_body(config, spec)), wind_(spec.wind), solver_(config.sim) {
   const motion::BodySequence& motion = generated_.sequence;
-  for (const auto& [what, room] :
-       {std::pair{"arms turned for room", motion.intersection.arm_room},
-        std::pair{"legs turned for room between the thighs", motion.intersection.thigh_room}})
-    if (room.frames > 0)
-      spdlog::debug("{}: {} in {} of {} frames, by up to {:.2f} rad", spec_.id, what, room.frames,
-                    motion.intersection.frames, room.turn);
+  const motion::IntersectionReport& ir = motion.intersection;
+  if (ir.arm_room.frames > 0) spdlog::debug("{}: arm room: {}", spec_.id, ir.arm_room.describe("arms", ir.frames));
+  if (ir.thigh_room.frames > 0)
+    spdlog::debug("{}: thigh room: {}", spec_.id, ir.thigh_room.describe("legs", ir.frames));
   const int needed = config_.body.transition_frames + config_.frames;
   if (motion.num_frames < needed || motion.source_frame.front() != 0) {
     problem_ = "the body self-intersects in frames that could not be repaired (" + std::to_string(motion.num_frames) +

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "intersection_repair.h"
 #include "layers/body/pose_body.h"
@@ -19,6 +20,12 @@ body::FrameIntersection check_pose(const body::Body& body, const body::SelfInter
 }
 
 }  // namespace
+
+std::string RoomReport::describe(const std::string& limbs, int of) const {
+  char line[160];
+  std::snprintf(line, sizeof line, "%s turned in %d of %d frames, by up to %.2f rad", limbs.c_str(), frames, of, turn);
+  return line;
+}
 
 BodySequence generate_body_sequence(const body::Body& body, const MotionSource& motion,
                                     const SequenceOptions& options) {

@@ -50,6 +50,9 @@ struct SequenceOptions {
 struct RoomReport {
   int frames = 0;
   double turn = 0.0;
+  // "<limbs> turned in <frames> of <of> frames, by up to <turn> rad": the
+  // line `layers body` and the generator's debug log print.
+  std::string describe(const std::string& limbs, int of) const;
 };
 
 struct IntersectionReport {
