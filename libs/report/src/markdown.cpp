@@ -75,7 +75,7 @@ void selection_table(std::ostringstream& md, const std::vector<RunResults>& runs
         "error; `last`: nothing chosen) and which split its figures are on. A run whose checkpoint was chosen on "
         "the test split, or on the split it is evaluated on, is marked ⚠: its figures are not a held-out "
         "result. \"unknown\": evaluated before evaluations recorded the choice. Validation error: the chosen "
-        "epoch's (the run's selection.json), what variants are compared by; the test figures above are not.\n\n"
+        "epoch's (the run's selection.json), what variants are compared by; the evaluation figures above are not.\n\n"
      << "| run | checkpoint | chosen on | epoch chosen / epochs | by | validation error (mm) | evaluated on | |\n"
      << "|---|---|---|---:|---|---:|---|---|\n";
   for (const RunResults& r : runs) {
@@ -167,7 +167,8 @@ void bench_table(std::ostringstream& md, const std::vector<RunResults>& runs) {
   for (const RunResults& r : runs) any = any || (r.bench && !r.bench->rows.empty());
   if (!any) return;
   md << "### Speed by scene size (`layers bench`)\n\n"
-     << "Inference at batch 1 on one scene of each run's test split, the garments subdivided (about 4x vertices "
+     << "Inference at batch 1 on one scene of the split each run is evaluated on (`eval.split`, else its test split), "
+        "the garments subdivided (about 4x vertices "
         "per level); \"far body\" adds a copy of the body 100 m away, which should cost nothing when the model "
         "only attends to particles that matter.\n\n"
      << "| run | level | garment vertices | body vertices | far body | ms / frame | train ms / frame | counters |\n"

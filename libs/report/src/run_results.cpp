@@ -222,6 +222,18 @@ std::int64_t EvalResults::first_divergence_step() const {
   return first;
 }
 
+std::string evaluated_splits(const std::vector<RunResults>& runs) {
+  std::vector<std::string> splits;
+  for (const RunResults& r : runs) {
+    if (r.eval && std::find(splits.begin(), splits.end(), r.eval->split) == splits.end())
+      splits.push_back(r.eval->split);
+  }
+  if (splits.empty()) return "evaluated";
+  std::string joined;
+  for (std::size_t i = 0; i < splits.size(); ++i) joined += (i ? " and " : "") + splits[i];
+  return joined;
+}
+
 std::string selection_flag(const RunResults& run) {
   if (!run.eval) return "";
   const SelectionRecord& s = run.eval->selection;

@@ -29,7 +29,7 @@ struct FakeRun {
   // metrics.json's `selection` (what chose the checkpoint); chosen_on "":
   // an evaluation made before the record (no such key).
   std::string chosen_on;
-  std::string evaluated_on = "test";
+  std::string evaluated_on = "test";  // also metrics.json's split and the eval-<split> folder
 };
 
 // `"selection": {...},` of metrics.json ("" without a record).
@@ -74,7 +74,7 @@ inline std::string metrics_json(const FakeRun& r) {
   "checkpoint": "x/checkpoint-best.pt", "trained_epochs": 3, "experiment": "e.yaml", )" +
          selection_field(r) + R"(
   "dataset": ")" +
-         r.dataset + R"(", "split": "test", "subsets": [], "inner_only": false,
+         r.dataset + R"(", "split": ")" + r.evaluated_on + R"(", "subsets": [], "inner_only": false,
   "horizon": 27, "diverge_mm": 1000.0, "sequences": 2, "frames": 54,
   "diverged": )" +
          std::string(r.diverged_at >= 0 ? "1" : "0") + R"(,
@@ -132,11 +132,11 @@ inline std::string bench_json(const std::string& model, double ms0, double ms1) 
 )";
 }
 
-// A run folder <root>/<name> with experiment.yaml and eval-test/metrics.json.
+// A run folder <root>/<name> with experiment.yaml and eval-<evaluated_on>/metrics.json.
 inline std::string write_run(const layers::test::TempDir& root, const std::string& name, const FakeRun& r) {
   root.write(name + "/experiment.yaml", "run: {output: " + root.file(name) + "}\ndata: {dataset: " + r.dataset +
                                             "}\nmodel: {name: " + r.model + ", params: {}}\n");
-  root.write(name + "/eval-test/metrics.json", metrics_json(r));
+  root.write(name + "/eval-" + r.evaluated_on + "/metrics.json", metrics_json(r));
   return root.file(name);
 }
 

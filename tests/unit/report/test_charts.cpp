@@ -106,6 +106,8 @@ TEST(Charts, EveryChartIsANonEmptyPng) {
   EXPECT_NE(md.str().find("first at step 2 (frame 3, s2: non-finite prediction)"), std::string::npos);
   EXPECT_NE(md.str().find("Sequence `seq-0` at frames 2, 5, 7"), std::string::npos) << md.str();
   EXPECT_NE(md.str().find("The top row is the dataset's ground truth"), std::string::npos);
+  EXPECT_NE(md.str().find("mean Euclidean error over the test sequences (mm)"), std::string::npos);
+  EXPECT_NE(md.str().find("Mean over the test sequences of"), std::string::npos);
 }
 
 TEST(Charts, PictureWithoutGroundTruthSaysSo) {
