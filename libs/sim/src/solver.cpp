@@ -13,6 +13,7 @@
 
 #include "body_collider.h"
 #include "cloth_contact.h"
+#include "fold_limit.h"
 #include "layers/core/error.h"
 #include "projective.h"
 #include "strain_limit.h"
@@ -26,6 +27,7 @@ struct Solver::Impl {
   detail::SelfContact self;
   std::vector<std::unique_ptr<detail::ProjectiveSystem>> elastic;
   std::vector<detail::StrainLimiter> limiters;
+  std::vector<detail::FoldLimiter> folds;
   std::vector<detail::BodyCollider::Memory> body_memory;
   std::vector<detail::LayerContact::Memory> layer_memory;
   std::vector<Vec3s> forces;     // wind forces of the substep
@@ -41,6 +43,7 @@ struct Solver::Impl {
   void add(int n) {
     elastic.push_back(std::make_unique<detail::ProjectiveSystem>());
     limiters.emplace_back();
+    folds.emplace_back();
     body_memory.emplace_back();
     body_memory.back().resize(n);
     layer_memory.emplace_back();
@@ -53,6 +56,11 @@ struct Solver::Impl {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+constexpr double kPi = 3.14159265358979323846;
+// Sweeps of the fold cap per substep: each fold is corrected again in the
+// next substep, so a few suffice.
+constexpr int kFoldSweeps = 4;
 
 double seconds_since(Clock::time_point& t) {
   const Clock::time_point now = Clock::now();
@@ -211,6 +219,13 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
         system.iterate(cloths_[ci], s, rhs);
         if (body) m.body.record_supports(s, m.body_memory[ci], weights, claimed);
         detail::LayerContact::record_supports(s, m.layer_memory[ci], weights, cloths_, m.next_reactions);
+      }
+    }
+    // The fold cap before the strain cap, which then takes up the
+    // stretch its pushes leave.
+    if (c.max_fold > 0) {
+      for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
+        m.folds[ci].apply(cloths_[ci], cloths_[ci].state_, c.max_fold * kPi / 180, kFoldSweeps);
       }
     }
     if (c.max_strain > 0) {

@@ -53,6 +53,7 @@ struct SolverConfig {
   double self_thickness = 0.004;                    // m kept between two parts of one garment
   double max_strain = 0.08;      // strain limiting: edges are capped at (1 + max_strain) x rest (0: off)
   int strain_sweeps = 1000;      // most Gauss-Seidel sweeps of the cap after the contacts (stops when none moves)
+  double max_fold = 0;           // degrees between neighbouring faces' normals a hinge may fold to (0: off)
   double support_stiffness = 1;  // body-contact support weight / the vertex's own stiffness (docs/sim.md)
   bool self_contact = true;      // master switch; each cloth also opts in (ClothOptions)
   double wind_pressure = 0.004;  // Pa per unit of Blender wind strength (docs/sim.md)
@@ -77,6 +78,9 @@ struct SolverConfig {
     v("strain_sweeps", strain_sweeps,
       cfg::opt().range(1, 100000).help(
           "most sweeps of the strain cap after the contacts (it stops early once no edge is over)"));
+    v("max_fold", max_fold,
+      cfg::opt().range(0, 179).help(
+          "fold cap: the most degrees between two neighbouring faces' normals after the elastic solve (0: off)"));
     v("support_stiffness", support_stiffness,
       cfg::opt().range(0, 100).help("weight of body-contact supports in the elastic solve, relative to each vertex's "
                                     "stiffness (0: projection only)"));
