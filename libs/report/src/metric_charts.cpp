@@ -99,8 +99,8 @@ Chart speed_accuracy_chart(const Gnuplot& gp, const std::string& dir, const std:
   gp.plot(dir, name, s.str());
 
   std::string caption =
-      "Each point is one run: its mean Euclidean error over the " + evaluated_splits(runs) +
-      " sequences (mm) against the time its model took per predicted frame during evaluation (ms, log scale). Lower "
+      "Each point is one run: its mean Euclidean error over " + evaluated_sequences(runs) +
+      " (mm) against the time its model took per predicted frame during evaluation (ms, log scale). Lower "
       "and further left is better. "
       "Runs circled in red and marked [front] are on the Pareto front: no other run is at least as fast "
       "and as accurate while better in one of the two; the dashed staircase bounds the region they dominate.";
@@ -200,7 +200,7 @@ std::vector<Chart> by_step_charts(const Gnuplot& gp, const std::string& dir, con
     }
     s << "\n";
     gp.plot(dir, metric.name, s.str());
-    std::string caption = "Mean over the " + evaluated_splits(runs) + " sequences of " + metric.what +
+    std::string caption = "Mean over " + evaluated_sequences(runs) + " of " + metric.what +
                           " at each rollout step: the model's own predictions are fed back, the body and wind "
                           "stay ground truth, so growth along the x axis is accumulated drift." +
                           (m > 0 ? " The dotted grey line is the ground truth's own rate (mean over the first "
@@ -255,10 +255,9 @@ Chart per_type_chart(const Gnuplot& gp, const std::string& dir, const std::vecto
   s << "\n";
   gp.plot(dir, name, s.str());
   return {name + ".png", "Error per garment type",
-          "For every garment type, each run's mean Euclidean error over the " + evaluated_splits(runs) +
-              " sequences that hold that type (bar) and its standard deviation over those sequences (whisker). Outer "
-              "garments (e.g. jacket) ride "
-              "on the inner ones, so their error includes the inner layer's drift."};
+          "For every garment type, each run's mean Euclidean error over " + evaluated_sequences(runs) +
+              " that hold that type (bar) and its standard deviation over those sequences (whisker). Outer "
+              "garments (e.g. jacket) ride on the inner ones, so their error includes the inner layer's drift."};
 }
 
 }  // namespace layers::report

@@ -222,16 +222,18 @@ std::int64_t EvalResults::first_divergence_step() const {
   return first;
 }
 
-std::string evaluated_splits(const std::vector<RunResults>& runs) {
+std::string evaluated_sequences(const std::vector<RunResults>& runs) {
   std::vector<std::string> splits;
   for (const RunResults& r : runs) {
-    if (r.eval && std::find(splits.begin(), splits.end(), r.eval->split) == splits.end())
+    if (r.eval && !r.eval->split.empty() && std::find(splits.begin(), splits.end(), r.eval->split) == splits.end())
       splits.push_back(r.eval->split);
   }
-  if (splits.empty()) return "evaluated";
+  if (splits.empty()) return "the evaluated sequences";
+  if (splits.size() == 1) return "the " + splits.front() + " sequences";
   std::string joined;
-  for (std::size_t i = 0; i < splits.size(); ++i) joined += (i ? " and " : "") + splits[i];
-  return joined;
+  for (std::size_t i = 0; i < splits.size(); ++i)
+    joined += (i == 0 ? "" : i + 1 == splits.size() ? " or " : ", ") + splits[i];
+  return "each run's evaluated sequences (" + joined + ")";
 }
 
 std::string selection_flag(const RunResults& run) {

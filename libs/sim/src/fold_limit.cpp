@@ -40,25 +40,32 @@ void FoldLimiter::build(const Cloth& cloth, double max_fold) {
 int FoldLimiter::apply(const Cloth& cloth, Cloth::State& s, double max_fold, int sweeps) {
   if (revision_ != cloth.revision() || max_fold_ != max_fold) build(cloth, max_fold);
   const std::vector<BendingElement>& hinges = cloth.bending();
-  int corrected = 0;
-  for (int sweep = 0; sweep < sweeps; ++sweep) {
-    corrected = 0;
+  int sweep = 0;
+  converged_ = false;
+  while (sweep < sweeps && !converged_) {
+    ++sweep;
+    int corrected = 0;
     for (std::size_t i = 0; i < hinges.size(); ++i) {
       const BendingElement& hinge = hinges[i];
       const int a = hinge.v[2], b = hinge.v[3];
       const double wa = s.inv_mass[a], wb = s.inv_mass[b];
       if (wa + wb == 0.0) continue;
-      // With the wings at heights ha, hb from the hinge line and at
-      // positions sa, sb along it, and the normals an angle f apart, the
-      // wings' distance is d^2 = (sa - sb)^2 + ha^2 + hb^2 + 2 ha hb cos(f):
-      // it shrinks monotonically as the fold sharpens.
+      // Seen along the hinge line, the wings' offsets from it (ha, hb long)
+      // are an angle pi - f apart when the normals are f apart, so the
+      // wings' distance across the line is
+      // |pa - pb|^2 = ha^2 + hb^2 + 2 ha hb cos(f): it shrinks monotonically
+      // as the fold sharpens. Only that component is corrected; their
+      // offset along the line has nothing to do with the fold.
       const Vec3& x0 = s.x[hinge.v[0]];
-      const Vec3 axis = (s.x[hinge.v[1]] - x0).normalized();
+      const Vec3 edge = s.x[hinge.v[1]] - x0;
       const Vec3 ra = s.x[a] - x0, rb = s.x[b] - x0;
-      const double sa = ra.dot(axis), sb = rb.dot(axis);
-      const double ha = (ra - sa * axis).norm(), hb = (rb - sb * axis).norm();
-      const double limit2 = (sa - sb) * (sa - sb) + ha * ha + hb * hb + 2 * ha * hb * cos_limit_[i];
-      const Vec3 d = s.x[b] - s.x[a];
+      const double edge2 = edge.squaredNorm();
+      if (!(edge2 > 1e-12 * (ra.squaredNorm() + rb.squaredNorm()))) continue;  // a collapsed hinge: no line
+      const Vec3 axis = edge / std::sqrt(edge2);
+      const Vec3 pa = ra - ra.dot(axis) * axis, pb = rb - rb.dot(axis) * axis;
+      const double ha = pa.norm(), hb = pb.norm();
+      const double limit2 = ha * ha + hb * hb + 2 * ha * hb * cos_limit_[i];
+      const Vec3 d = pb - pa;
       const double len2 = d.squaredNorm();
       // Wings on top of each other have no direction to part in; the
       // hinge's neighbours move them apart first.
@@ -69,9 +76,9 @@ int FoldLimiter::apply(const Cloth& cloth, Cloth::State& s, double max_fold, int
       s.x[b] += wb * correction;
       ++corrected;
     }
-    if (corrected == 0) break;
+    converged_ = corrected == 0;
   }
-  return corrected;
+  return sweep;
 }
 
 }  // namespace layers::sim::detail

@@ -87,9 +87,10 @@ TEST(Selection, ReportSaysWhichSplitChoseWhatAndMarksTheTestSplit) {
   EXPECT_NE(selection_flag(load_run(runs[1])).find("test split"), std::string::npos);
   EXPECT_NE(selection_flag(load_run(runs[2])).find("evaluated on"), std::string::npos);
   // Captions name the splits the figures are over, not always "test".
-  EXPECT_EQ(evaluated_splits({load_run(runs[2])}), "val");
-  EXPECT_EQ(evaluated_splits({load_run(runs[0]), load_run(runs[2]), load_run(runs[1])}), "test and val");
-  EXPECT_EQ(evaluated_splits({}), "evaluated");
+  EXPECT_EQ(evaluated_sequences({load_run(runs[2])}), "the val sequences");
+  EXPECT_EQ(evaluated_sequences({load_run(runs[0]), load_run(runs[2]), load_run(runs[1])}),
+            "each run's evaluated sequences (test or val)");
+  EXPECT_EQ(evaluated_sequences({}), "the evaluated sequences");
 
   const ReportResult r = write_report(tables_only(runs), dir.file("out"));
   EXPECT_EQ(r.runs_with_metrics, 4u);

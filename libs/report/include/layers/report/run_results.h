@@ -140,10 +140,11 @@ BenchResults parse_bench(const std::string& json_text, const std::string& file);
 // (RunResults::test_split) or on the split it is evaluated on.
 std::string selection_flag(const RunResults& run);
 
-// The splits the runs with an evaluation are evaluated on, in first-seen
-// order, joined with " and " ("test"; "val and test"), for captions that
-// say which sequences a figure is over; "evaluated" when no run has one.
-std::string evaluated_splits(const std::vector<RunResults>& runs);
+// What a caption's figures are over: "the test sequences" when every run
+// with an evaluation is on one split (here test), "each run's evaluated
+// sequences (val or test)" when they differ (splits in first-seen order),
+// "the evaluated sequences" when no run names its split.
+std::string evaluated_sequences(const std::vector<RunResults>& runs);
 
 // The run folders with each folder that holds no run of its own but
 // seed-<s> folders (a study experiment repeated over seeds) replaced by
