@@ -19,7 +19,9 @@ VerbRun register_bench(CLI::App& app, const Global&) {
   };
   auto a = std::make_shared<Args>();
   add_config_options(*cmd, a->config, /*required=*/true);
-  cmd->add_option("--sequence", a->options.sequence, "scene to scale (default: first of the eval split)");
+  cmd->add_option("--sequence", a->options.sequence, "scene to scale (default: the first of --split)");
+  cmd->add_option("--split", a->options.split,
+                  "split the default scene comes from (default: eval.split, else the test split)");
   cmd->add_option("--levels", a->options.levels, "subdivision levels 0..n (x4 garment vertices each)")
       ->capture_default_str()
       ->check(CLI::Range(0, 4));
@@ -32,8 +34,9 @@ VerbRun register_bench(CLI::App& app, const Global&) {
     a->options.far_body = !a->no_far;
     a->options.train = !a->no_train;
     const train::BenchReport r = train::run_bench(loaded.typed, load_plugins().registry, a->options);
+    const std::string scene = r.split.empty() ? r.sequence : r.sequence + " (" + r.split + ")";
     std::printf("%s (%lld parameters, %d threads) on %s\n", r.model.c_str(), static_cast<long long>(r.parameters),
-                r.threads, r.sequence.c_str());
+                r.threads, scene.c_str());
     std::printf("%5s %9s %9s %8s %12s %14s  %s\n", "level", "garment v", "body v", "far body", "infer ms/fr",
                 "train ms/fr", "counters");
     for (const auto& row : r.rows) {

@@ -1,7 +1,8 @@
 // `layers train` never loses a run: a folder that holds one is refused
 // without --resume or --force, --force moves it aside (never deletes it),
 // and a command that fails (unknown model) leaves the folder as it was;
-// neither train nor eval lets a choice read the test split.
+// neither train nor eval lets a choice read the test split; `layers bench`
+// says which split its scene is from.
 // Trains the test plugin's one-parameter model on the regression fixture.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -167,4 +168,14 @@ TEST(CliTrain, SelectionNeverReadsTheTestSplitAndIsRecorded) {
                                      "split other than data.test_split 'val', got one chosen on 'val'"),
             std::string::npos)
       << chosen.output;
+
+  // `layers bench` times a scene of --split, else of the test split, and says which.
+  const std::string bench = "LAYERS_PLUGIN_PATH=" + test::plugin_dir() + " " + test::layers_bin() + " bench " +
+                            experiment + " --levels 0 --min-time 0.01 --no-far-body --no-train --out ";
+  for (const char* split : {"", "val"}) {
+    const std::string out = dir.file(std::string("bench-") + split + ".json");
+    auto timed = run_command(bench + out + (*split ? std::string(" --split ") + split : std::string()));
+    ASSERT_EQ(timed.exit_code, 0) << timed.output;
+    EXPECT_EQ(nlohmann::json::parse(read_bytes(out))["split"], *split ? split : "test");
+  }
 }

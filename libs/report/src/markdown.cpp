@@ -167,8 +167,8 @@ void bench_table(std::ostringstream& md, const std::vector<RunResults>& runs) {
   for (const RunResults& r : runs) any = any || (r.bench && !r.bench->rows.empty());
   if (!any) return;
   md << "### Speed by scene size (`layers bench`)\n\n"
-     << "Inference at batch 1 on one scene of each run's `eval.split`, else its `data.test_split` (not "
-        "necessarily the split of the figures above), the garments subdivided (about 4x vertices per level); "
+     << "Inference at batch 1 on one scene of each run's dataset (bench.json's `sequence`: in a study, the "
+        "first of the split the run is evaluated on), the garments subdivided (about 4x vertices per level); "
         "\"far body\" adds a copy of the body 100 m away, which should cost nothing when the model "
         "only attends to particles that matter.\n\n"
      << "| run | level | garment vertices | body vertices | far body | ms / frame | train ms / frame | counters |\n"

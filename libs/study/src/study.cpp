@@ -112,12 +112,15 @@ std::vector<Step> run_steps(const StudyConfig& study, const StudyRun& run, const
     }
   }
   if (contains(run.steps, "bench")) {
-    const train::BenchOptions& b = study.bench;
+    // Timed on a scene of the split the run is evaluated on (its first),
+    // so that a study evaluated on validation never opens the test split.
+    train::BenchOptions b = study.bench;
+    b.split = run.eval_splits.front();
     const std::string opts = std::to_string(b.levels) + "/" + std::to_string(b.min_time) + "/" +
-                             std::to_string(b.train) + "/" + std::to_string(b.far_body);
+                             std::to_string(b.train) + "/" + std::to_string(b.far_body) + " on " + b.split;
     Step s = uses_checkpoint("bench", "bench " + opts);
     s.outputs = {run_layout::kBench};
-    s.work = [&run, &actions, &b](StepWork&) { actions.bench(run, b); };
+    s.work = [&run, &actions, b](StepWork&) { actions.bench(run, b); };
     steps.push_back(std::move(s));
   }
   return steps;

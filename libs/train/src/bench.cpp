@@ -83,9 +83,12 @@ BenchReport run_bench(const ExperimentConfig& config, const zoo::Registry& regis
   report.threads = at::get_num_threads();
   const std::string best = checkpoint_path(config, "best");
   if (std::filesystem::exists(best)) load_checkpoint(best, *s.model, nullptr);
-  const std::string split = config.eval.split.empty() ? config.data.test_split : config.eval.split;
+  const std::string split = !options.split.empty()       ? options.split
+                            : !config.eval.split.empty() ? config.eval.split
+                                                         : config.data.test_split;
   report.sequence = options.sequence;
   if (report.sequence.empty()) {
+    report.split = split;
     const std::vector<std::string> ids = select_sequences(s.dataset, split, config.data.subsets);
     if (ids.empty())
       throw InputError(config.data.dataset + "/splits.yaml", split, "a sequence to benchmark on", "none");
@@ -192,13 +195,10 @@ BenchReport run_bench(const ExperimentConfig& config, const zoo::Registry& regis
                     {"ms_per_frame", r.ms_per_frame},
                     {"train_ms_per_frame", r.train_ms_per_frame}});
   }
-  nlohmann::ordered_json doc = {{"model", report.model},
-                                {"parameters", report.parameters},
-                                {"threads", report.threads},
-                                {"sequence", report.sequence},
-                                {"dataset", config.data.dataset},
-                                {"experiment", config.source},
-                                {"rows", rows}};
+  nlohmann::ordered_json doc = {{"model", report.model},       {"parameters", report.parameters},
+                                {"threads", report.threads},   {"sequence", report.sequence},
+                                {"split", report.split},       {"dataset", config.data.dataset},
+                                {"experiment", config.source}, {"rows", rows}};
   std::filesystem::create_directories(std::filesystem::path(report.out).parent_path().empty()
                                           ? std::filesystem::path(".")
                                           : std::filesystem::path(report.out).parent_path());

@@ -63,8 +63,9 @@ class StudyTest : public testing::Test {
       touch(fs::path(run.dir) / ("eval-" + split) / "metrics.json", "{}");
       touch(fs::path(run.dir) / ("eval-" + split) / "sequences.csv");
     };
-    a.bench = [this](const study::StudyRun& run, const train::BenchOptions&) {
+    a.bench = [this](const study::StudyRun& run, const train::BenchOptions& options) {
       calls["bench " + run.name]++;
+      bench_split[run.name] = options.split;
       touch(fs::path(run.dir) / "bench.json", "{}");
     };
     a.report = [this](const study::StudyConfig&, const std::vector<std::string>& runs, const std::string& out) {
@@ -90,6 +91,7 @@ class StudyTest : public testing::Test {
   test::TempDir dir{"layers-study"};
   std::string study_file;
   std::map<std::string, int> calls;
+  std::map<std::string, std::string> bench_split;  // per run: BenchOptions::split of its last bench
   std::string fail_train;
   std::size_t report_runs = 0;
 };
@@ -136,6 +138,20 @@ TEST_F(StudyTest, EvaluationSettingsRerunEvaluationNotTraining) {
   const auto t = run({"set=[eval.horizon=5, train.epochs=1]"});
   EXPECT_EQ(status(t, "a train"), StepStatus::Ran);
   EXPECT_EQ(status(t, "a eval-test"), StepStatus::Ran);
+}
+
+// The bench times a scene of the split the run is evaluated on: a study
+// evaluated on validation never opens the test split, and changing the
+// evaluated split benches again.
+TEST_F(StudyTest, BenchTimesASceneOfTheEvaluatedSplit) {
+  run();
+  EXPECT_EQ(bench_split["a"], "test");
+  const auto r = run({"eval.splits=[val]"});
+  EXPECT_EQ(status(r, "a train"), StepStatus::Current);
+  EXPECT_EQ(status(r, "a eval-val"), StepStatus::Ran);
+  EXPECT_EQ(status(r, "a bench"), StepStatus::Ran);
+  EXPECT_EQ(bench_split["a"], "val");
+  EXPECT_EQ(bench_split["b"], "val");
 }
 
 TEST_F(StudyTest, CopiedStudyAndDatasetStayCurrent) {

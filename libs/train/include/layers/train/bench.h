@@ -22,10 +22,12 @@ namespace layers::train {
 
 // The defaults are those of `layers bench`; a study's `bench:` section
 // starts from its own (layers/study/config.h, study_bench()). The keys of
-// visit() are what a study file may set; sequence and out are set by
-// `layers bench` flags only (a study writes <run>/bench.json).
+// visit() are what a study file may set; sequence, split and out are set
+// by `layers bench` flags (a study sets split to the split its run is
+// evaluated on and writes <run>/bench.json).
 struct BenchOptions {
-  std::string sequence;   // default: the first sequence of eval's split
+  std::string sequence;   // default: the first sequence of `split`
+  std::string split;      // default: eval.split, else data.test_split
   int levels = 2;         // subdivision levels 0..levels
   bool far_body = true;   // also measure with the far body copy
   bool train = true;      // also time a training step (forward + losses + backward)
@@ -52,6 +54,7 @@ struct BenchRow {
 
 struct BenchReport {
   std::string model, sequence, out;
+  std::string split;  // the split `sequence` was taken from ("" when given by --sequence)
   std::int64_t parameters = 0;
   int threads = 0;
   std::vector<BenchRow> rows;
