@@ -5,9 +5,15 @@
 // beside the evaluation's two L-collisions, the body's own crossings and the
 // H-crossing clear of them, then their spread over the sequences and how
 // many frames and sequences meet the crossing target; exit 1 if a
-// sequence is over the generator's thresholds.
+// sequence is over the generator's thresholds. --frames-csv also writes
+// every frame's measures, to find where in a sequence they rise.
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+#include "layers/core/atomic_file.h"
+#include "layers/core/error.h"
 
 #include "layers/data/dataset.h"
 #include "layers/data/validate.h"
@@ -47,8 +53,39 @@ struct MeanOfFinite {
   double mean() const { return count > 0 ? sum / count : std::nan(""); }
 };
 
-int check_physics(const std::string& path, const sim::ValidationConfig& limits, double crossing_target) {
+// The per-frame table of --frames-csv, in percent like the printed one.
+class FramesCsv {
+ public:
+  FramesCsv() {
+    text_ << "sequence,frame,h_penetration_pct,l_penetration_pct,h_crossing_pct,l_crossing_pct,h_crossing_pairs,"
+             "l_crossing_pairs,body_self_crossing_pct,h_crossing_clear_pct,max_stretch_pct,l_collision_paper_pct,"
+             "l_collision_ours_pct\n";
+  }
+  void add(const std::string& id, std::int64_t frame, const sim::FrameMeasures& m, const EvalLCollision& l) {
+    text_ << id << ',' << frame;
+    for (double v : {m.h_penetration, m.l_penetration, m.h_crossing, m.l_crossing}) text_ << ',' << 100 * v;
+    text_ << ',' << m.h_crossing_pairs << ',' << m.l_crossing_pairs;
+    for (double v : {m.body_self_crossing, m.h_crossing_clear, m.max_stretch, l.plain, l.ours}) text_ << ',' << 100 * v;
+    text_ << '\n';
+  }
+  std::string text() const { return text_.str(); }
+
+ private:
+  std::ostringstream text_;
+};
+
+// --frames-csv names a new file: nothing a user made is overwritten.
+void check_new_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec))
+    throw InputError::message(path, "", "exists; --frames-csv must name a new file (nothing is overwritten)");
+}
+
+int check_physics(const std::string& path, const sim::ValidationConfig& limits, double crossing_target,
+                  const std::string& frames_csv) {
+  if (!frames_csv.empty()) check_new_file(frames_csv);
   const data::Dataset dataset = data::Dataset::open(path);
+  FramesCsv frames;
   generate::PhysicsSummary summary(crossing_target);
   sim::SequenceMeasures all;
   MeanOfFinite all_ours, all_plain;
@@ -60,7 +97,7 @@ int check_physics(const std::string& path, const sim::ValidationConfig& limits, 
     const data::SequenceData seq = dataset.read_sequence(id);
     sim::SequenceMeasures m;
     MeanOfFinite ours, plain;
-    generate::for_each_stored_frame(seq, [&](std::int64_t, const generate::StoredFrame& f) {
+    generate::for_each_stored_frame(seq, [&](std::int64_t index, const generate::StoredFrame& f) {
       const sim::FrameMeasures frame = sim::measure_frame(f.body, f.garments, limits.l_reach);
       m.add(frame);
       all.add(frame);
@@ -70,6 +107,7 @@ int check_physics(const std::string& path, const sim::ValidationConfig& limits, 
       all_ours.add(l.ours);
       plain.add(l.plain);
       all_plain.add(l.plain);
+      frames.add(id, index, frame, l);
     });
     const std::vector<std::string> violations = m.violations(limits);
     std::string verdict = violations.empty() ? "ok" : "";
@@ -111,6 +149,11 @@ int check_physics(const std::string& path, const sim::ValidationConfig& limits, 
       100 * all.max_stretch(), static_cast<long long>(all.nonfinite()), over, 100 * limits.max_h_penetration,
       100 * limits.max_l_penetration, 100 * limits.max_h_crossing, 100 * limits.max_l_crossing,
       100 * limits.max_stretch);
+  if (!frames_csv.empty()) {
+    check_new_file(frames_csv);  // made meanwhile by someone else: still not ours to replace
+    write_text_atomic(frames_csv, frames.text());
+    std::printf("per-frame measures: %s\n", frames_csv.c_str());
+  }
   return over == 0 ? static_cast<int>(kOk) : static_cast<int>(kFailure);
 }
 
@@ -123,6 +166,7 @@ VerbRun register_validate(CLI::App& app, const Global&) {
   auto physics = std::make_shared<bool>(false);
   auto limits = std::make_shared<sim::ValidationConfig>();
   auto target = std::make_shared<double>(0.1);
+  auto frames_csv = std::make_shared<std::string>();
   cmd->add_option("path", *path, "dataset folder or shard .h5 file")->required();
   cmd->add_flag("--physics", *physics,
                 "also recompute the generator's validation measures from the stored frames (H/L-penetration, "
@@ -131,7 +175,11 @@ VerbRun register_validate(CLI::App& app, const Global&) {
   cmd->add_option("--crossing-target", *target,
                   "with --physics: count the frames whose H- and L-crossing are at most this percentage")
       ->check(CLI::Range(0.0, 100.0));
-  return [path, physics, limits, target]() {
+  cmd->add_option("--frames-csv", *frames_csv,
+                  "with --physics: also write every frame's measures (one row per sequence and frame, in percent) "
+                  "to this new file");
+  return [path, physics, limits, target, frames_csv]() {
+    if (!frames_csv->empty() && !*physics) throw UsageError("--frames-csv needs --physics");
     auto problems = data::validate_dataset(*path);
     for (const auto& p : problems) std::printf("%s\n", p.to_string().c_str());
     if (!problems.empty()) {
@@ -139,7 +187,7 @@ VerbRun register_validate(CLI::App& app, const Global&) {
       return static_cast<int>(kFailure);
     }
     std::printf("%s: valid LAYERS-H5 (format version 1)\n", path->c_str());
-    return *physics ? check_physics(*path, *limits, *target / 100) : static_cast<int>(kOk);
+    return *physics ? check_physics(*path, *limits, *target / 100, *frames_csv) : static_cast<int>(kOk);
   };
 }
 

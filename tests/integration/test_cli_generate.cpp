@@ -6,6 +6,7 @@
 // pipeline; the physics checks live in the sim and generator tests.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -92,6 +93,36 @@ TEST(CliGenerate, ShardsThenCompleteDatasetThatValidates) {
     EXPECT_NE(physics.output.find(id), std::string::npos) << id;
   const bool clean = physics.output.find("; 0 over the thresholds") != std::string::npos;
   EXPECT_EQ(physics.exit_code, clean ? 0 : 1) << physics.output;
+
+  // Every frame's measures as a table: a header and one row per sequence
+  // and frame, in the order of the dataset.
+  const std::string csv = dir.file("frames.csv");
+  auto rows = run_command(test::layers_bin() + " validate --physics " + out + " --frames-csv " + csv);
+  EXPECT_EQ(rows.exit_code, physics.exit_code) << rows.output;
+  std::ifstream in(csv);
+  std::string line;
+  ASSERT_TRUE(std::getline(in, line));
+  EXPECT_EQ(line.rfind("sequence,frame,h_penetration_pct,", 0), 0u) << line;
+  int count = 0;
+  std::vector<std::string> seen;
+  while (std::getline(in, line)) {
+    ++count;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 12) << line;
+    const std::string id = line.substr(0, line.find(','));
+    if (seen.empty() || seen.back() != id) seen.push_back(id);
+  }
+  EXPECT_EQ(count, 18);
+  EXPECT_EQ(seen, (std::vector<std::string>{"seq-000000", "seq-000001", "seq-000002"}));
+  // The file is the user's now: asked again, validate refuses and keeps it.
+  const std::string kept = bytes(csv);
+  auto again = run_command(test::layers_bin() + " validate --physics " + out + " --frames-csv " + csv);
+  EXPECT_EQ(again.exit_code, 1) << again.output;
+  EXPECT_NE(again.output.find("--frames-csv must name a new file"), std::string::npos) << again.output;
+  EXPECT_EQ(bytes(csv), kept);
+  auto no_physics = run_command(test::layers_bin() + " validate " + out + " --frames-csv " + dir.file("other.csv"));
+  EXPECT_EQ(no_physics.exit_code, 2) << no_physics.output;
+  EXPECT_NE(no_physics.output.find("--frames-csv needs --physics"), std::string::npos) << no_physics.output;
+  EXPECT_FALSE(fs::exists(dir.file("other.csv")));
 }
 
 TEST(CliGenerate, SameSeedSameBytesAndResumeRedoesOnlyWhatIsMissing) {
