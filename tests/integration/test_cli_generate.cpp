@@ -15,6 +15,7 @@
 #include "layers/core/atomic_file.h"
 #include "layers/core/config_node.h"
 #include "layers/core/text_file.h"
+#include "layers/data/dataset.h"
 #include "run_command.h"
 #include "temp_dir.h"
 
@@ -144,6 +145,17 @@ TEST(CliGenerate, SameSeedSameBytesAndResumeRedoesOnlyWhatIsMissing) {
   ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
   EXPECT_NE(resumed.output.find("1 simulated now"), std::string::npos) << resumed.output;
   EXPECT_EQ(bytes(dir.file("a/shard-00001.h5")), shard1);
+
+  // The attribute-to-material map is the config's: another one makes other frames.
+  auto stiffer = run_command(generate(dir.file("c"), "--set garments.material.compression_per_stiffness=20"));
+  ASSERT_EQ(stiffer.exit_code, 0) << stiffer.output;
+  const auto positions = [&](const std::string& folder) {
+    const data::Dataset ds = data::Dataset::open(dir.file(folder));
+    return ds.read_sequence(ds.ids().front()).garments.front().positions;
+  };
+  const std::vector<float> as_shipped = positions("a"), stiffer_frames = positions("c");
+  ASSERT_EQ(as_shipped.size(), stiffer_frames.size());
+  EXPECT_NE(as_shipped, stiffer_frames);
 }
 
 TEST(CliGenerate, BadConfigAndMismatchedResume) {

@@ -112,7 +112,8 @@ void SceneSimulation::add_garments() {
     options.uv_faces =
         Eigen::Map<const geometry::Faces>(g.uv_faces.data(), static_cast<Eigen::Index>(g.uv_faces.size() / 3), 3);
     const std::string what = spec_.id + " " + g.name;
-    solver_.add_cloth(sim::Cloth(rest, sim::to_material(garment_attributes(g.attributes, what), {}, what), options));
+    solver_.add_cloth(sim::Cloth(
+        rest, sim::to_material(garment_attributes(g.attributes, what), config_.garments.material, what), options));
   }
 }
 

@@ -65,6 +65,19 @@ TEST_F(SavedConfig, ASettingAddedLaterCountsAtItsDefault) {
   EXPECT_FALSE(same_saved_config(save(before), resolved(roomy)));
 }
 
+TEST_F(SavedConfig, AFileWithoutTheMaterialMappingHasTheDefaultOne) {
+  GeneratorConfig c;
+  std::string before = resolved(c);
+  for (const char* key : {"material:", "density_per_mass:", "modulus_per_stiffness:", "compression_per_stiffness:",
+                          "shear_per_stiffness:", "rigidity_per_bending:", "friction_per_unit:"})
+    before = without_line(before, key);
+  ASSERT_EQ(before.find("rigidity_per_bending"), std::string::npos);
+  EXPECT_TRUE(same_saved_config(save(before), resolved(c)));
+  GeneratorConfig stiffer = c;
+  stiffer.garments.material.compression_per_stiffness *= 4;
+  EXPECT_FALSE(same_saved_config(save(before), resolved(stiffer)));
+}
+
 TEST_F(SavedConfig, AFileTheSchemaRejectsIsNotTheSame) {
   GeneratorConfig c;
   EXPECT_FALSE(same_saved_config(save(resolved(c) + "no_such_setting: 3\n"), resolved(c)));

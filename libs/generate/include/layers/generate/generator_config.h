@@ -101,6 +101,9 @@ struct GarmentSampling {
   garment::GarmentParams fit;  // templates: edge length, ease, lengths, clearances
   std::vector<OutfitConfig> outfits{OutfitConfig{}};
   AttributeRanges attributes;
+  // How the drawn attributes become physical parameters (docs/sim.md
+  // section 3); the defaults are those of every shipped dataset.
+  sim::MaterialMapping material;
   // Skirts and dresses (torso sections below the hips) at least as loose as
   // the scene's motion spreads the legs (garment_leg_room.h).
   bool leg_room = true;
@@ -116,6 +119,7 @@ struct GarmentSampling {
     v("fit", fit);
     v("outfits", outfits);
     v("attributes", attributes);
+    v("material", material);
     v("leg_room", leg_room,
       cfg::opt().help("make skirts and dresses loose enough for the legs' widest spread in the scene's motion"));
     v("hip_room", hip_room,
