@@ -63,27 +63,27 @@ class FramesCsv {
   }
   void add(const std::string& id, std::int64_t frame, const sim::FrameMeasures& m, const EvalLCollision& l) {
     text_ << id << ',' << frame;
-    for (double v : {m.h_penetration, m.l_penetration, m.h_crossing, m.l_crossing}) text_ << ',' << 100 * v;
+    for (double v : {m.h_penetration, m.l_penetration, m.h_crossing, m.l_crossing}) percent(v);
     text_ << ',' << m.h_crossing_pairs << ',' << m.l_crossing_pairs;
-    for (double v : {m.body_self_crossing, m.h_crossing_clear, m.max_stretch, l.plain, l.ours}) text_ << ',' << 100 * v;
+    for (double v : {m.body_self_crossing, m.h_crossing_clear, m.max_stretch, l.plain, l.ours}) percent(v);
     text_ << '\n';
   }
   std::string text() const { return text_.str(); }
 
  private:
+  // A value that was not measured (NaN) is an empty field.
+  void percent(double v) {
+    text_ << ',';
+    if (!std::isnan(v)) text_ << 100 * v;
+  }
   std::ostringstream text_;
 };
 
 // --frames-csv names a new file: nothing a user made is overwritten.
-void check_new_file(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::exists(path, ec))
-    throw InputError::message(path, "", "exists; --frames-csv must name a new file (nothing is overwritten)");
-}
+constexpr const char* kFramesCsvExists = "exists; --frames-csv must name a new file (nothing is overwritten)";
 
 int check_physics(const std::string& path, const sim::ValidationConfig& limits, double crossing_target,
                   const std::string& frames_csv) {
-  if (!frames_csv.empty()) check_new_file(frames_csv);
   const data::Dataset dataset = data::Dataset::open(path);
   FramesCsv frames;
   generate::PhysicsSummary summary(crossing_target);
@@ -150,8 +150,7 @@ int check_physics(const std::string& path, const sim::ValidationConfig& limits, 
       100 * limits.max_l_penetration, 100 * limits.max_h_crossing, 100 * limits.max_l_crossing,
       100 * limits.max_stretch);
   if (!frames_csv.empty()) {
-    check_new_file(frames_csv);  // made meanwhile by someone else: still not ours to replace
-    write_text_atomic(frames_csv, frames.text());
+    write_new_text_file(frames_csv, frames.text(), kFramesCsvExists);
     std::printf("per-frame measures: %s\n", frames_csv.c_str());
   }
   return over == 0 ? static_cast<int>(kOk) : static_cast<int>(kFailure);
@@ -180,6 +179,9 @@ VerbRun register_validate(CLI::App& app, const Global&) {
                   "to this new file");
   return [path, physics, limits, target, frames_csv]() {
     if (!frames_csv->empty() && !*physics) throw UsageError("--frames-csv needs --physics");
+    std::error_code ec;
+    if (!frames_csv->empty() && std::filesystem::exists(*frames_csv, ec))
+      throw InputError::message(*frames_csv, "", kFramesCsvExists);
     auto problems = data::validate_dataset(*path);
     for (const auto& p : problems) std::printf("%s\n", p.to_string().c_str());
     if (!problems.empty()) {

@@ -119,6 +119,7 @@ TEST(CliGenerate, ShardsThenCompleteDatasetThatValidates) {
   auto again = run_command(test::layers_bin() + " validate --physics " + out + " --frames-csv " + csv);
   EXPECT_EQ(again.exit_code, 1) << again.output;
   EXPECT_NE(again.output.find("--frames-csv must name a new file"), std::string::npos) << again.output;
+  EXPECT_EQ(again.output.find("valid LAYERS-H5"), std::string::npos) << "refused before any work: " << again.output;
   EXPECT_EQ(bytes(csv), kept);
   auto no_physics = run_command(test::layers_bin() + " validate " + out + " --frames-csv " + dir.file("other.csv"));
   EXPECT_EQ(no_physics.exit_code, 2) << no_physics.output;

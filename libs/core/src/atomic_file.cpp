@@ -4,7 +4,9 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -28,15 +30,38 @@ void AtomicPath::commit() {
   committed_ = true;
 }
 
+namespace {
+
+void write_temp(const AtomicPath& atomic, const std::string& text) {
+  std::ofstream out(atomic.temp(), std::ios::binary);
+  out << text;
+  out.flush();
+  if (!out) throw InputError::message(atomic.target(), "", "cannot write file");
+}
+
+}  // namespace
+
+void AtomicPath::commit_new(const std::string& exists_message) {
+  // link() fails if the target exists, so an existing file is never replaced.
+  if (::link(temp_.c_str(), target_.c_str()) != 0) {
+    const int error = errno;
+    if (error == EEXIST) throw InputError::message(target_, "", exists_message);
+    throw InputError::message(target_, "", std::string("cannot create the file: ") + std::strerror(error));
+  }
+  std::remove(temp_.c_str());
+  committed_ = true;
+}
+
 void write_text_atomic(const std::string& path, const std::string& text) {
   AtomicPath atomic(path);
-  {
-    std::ofstream out(atomic.temp(), std::ios::binary);
-    out << text;
-    out.flush();
-    if (!out) throw InputError::message(path, "", "cannot write file");
-  }
+  write_temp(atomic, text);
   atomic.commit();
+}
+
+void write_new_text_file(const std::string& path, const std::string& text, const std::string& exists_message) {
+  AtomicPath atomic(path);
+  write_temp(atomic, text);
+  atomic.commit_new(exists_message);
 }
 
 }  // namespace layers

@@ -59,6 +59,25 @@ TEST(AtomicFile, FailureKeepsPreviousFile) {
   EXPECT_THROW(write_text_atomic(dir.file("no/such/dir/x"), "y"), InputError);
 }
 
+TEST(AtomicFile, ANewFileNeverReplacesOneThatExists) {
+  test::TempDir dir;
+  const std::string path = dir.file("frames.csv");
+  write_new_text_file(path, "mine", "exists");
+  try {
+    write_new_text_file(path, "theirs", "exists; pick a new name");
+    ADD_FAILURE() << "an existing file was replaced";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("exists; pick a new name"), std::string::npos) << e.what();
+  }
+  std::ifstream in(path);
+  std::string word;
+  in >> word;
+  EXPECT_EQ(word, "mine");
+  int files = 0;  // no temporary left behind
+  for (auto& entry : std::filesystem::directory_iterator(dir.path())) files += entry.is_regular_file();
+  EXPECT_EQ(files, 1);
+}
+
 TEST(Progress, FormatsDurations) {
   EXPECT_EQ(Progress::format_duration(0), "00:00");
   EXPECT_EQ(Progress::format_duration(61.4), "01:01");
