@@ -27,6 +27,9 @@ VerbRun register_bench(CLI::App& app, const Global&) {
       ->check(CLI::Range(0, 4));
   cmd->add_option("--min-time", a->options.min_time, "seconds per measurement")->capture_default_str();
   cmd->add_option("--out", a->options.out, "JSON output (default <run.output>/bench.json)");
+  cmd->add_option("--checkpoint", a->options.checkpoint,
+                  "best, last (the run's own; initial weights when missing) or a checkpoint file")
+      ->capture_default_str();
   cmd->add_flag("--no-far-body", a->no_far, "skip the runs with a far-away copy of the body");
   cmd->add_flag("--no-train", a->no_train, "time inference only");
   return [a]() {
@@ -35,8 +38,8 @@ VerbRun register_bench(CLI::App& app, const Global&) {
     a->options.train = !a->no_train;
     const train::BenchReport r = train::run_bench(loaded.typed, load_plugins().registry, a->options);
     const std::string scene = r.split.empty() ? r.sequence : r.sequence + " (" + r.split + ")";
-    std::printf("%s (%lld parameters, %d threads) on %s\n", r.model.c_str(), static_cast<long long>(r.parameters),
-                r.threads, scene.c_str());
+    std::printf("%s (%lld parameters, %d threads, %s) on %s\n", r.model.c_str(), static_cast<long long>(r.parameters),
+                r.threads, r.checkpoint.empty() ? "initial weights" : r.checkpoint.c_str(), scene.c_str());
     std::printf("%5s %9s %9s %8s %12s %14s  %s\n", "level", "garment v", "body v", "far body", "infer ms/fr",
                 "train ms/fr", "counters");
     for (const auto& row : r.rows) {

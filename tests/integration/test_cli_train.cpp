@@ -177,5 +177,13 @@ TEST(CliTrain, SelectionNeverReadsTheTestSplitAndIsRecorded) {
     auto timed = run_command(bench + out + (*split ? std::string(" --split ") + split : std::string()));
     ASSERT_EQ(timed.exit_code, 0) << timed.output;
     EXPECT_EQ(nlohmann::json::parse(read_bytes(out))["split"], *split ? split : "test");
+    // The weights timed are the run's best checkpoint, and bench.json says so.
+    EXPECT_EQ(nlohmann::json::parse(read_bytes(out))["checkpoint"], run + "/checkpoint-best.pt");
   }
+  // A checkpoint file that is not there is an error, not the initial weights.
+  auto missing = run_command(bench + dir.file("bench-missing.json") + " --checkpoint " + dir.file("none.pt"));
+  EXPECT_EQ(missing.exit_code, 1) << missing.output;
+  EXPECT_NE(missing.output.find(dir.file("none.pt") + ": expected a checkpoint file to time, got no such file"),
+            std::string::npos)
+      << missing.output;
 }

@@ -116,6 +116,7 @@ std::vector<Step> run_steps(const StudyConfig& study, const StudyRun& run, const
     // so that a study evaluated on validation never opens the test split.
     train::BenchOptions b = study.bench;
     b.split = run.eval_splits.front();
+    b.checkpoint = run.checkpoint;  // what the evaluation reads, a lent one included
     const std::string opts = std::to_string(b.levels) + "/" + std::to_string(b.min_time) + "/" +
                              std::to_string(b.train) + "/" + std::to_string(b.far_body) + " on " + b.split;
     Step s = uses_checkpoint("bench", "bench " + opts);

@@ -13,6 +13,7 @@
 #include "layers/data/run_layout.h"
 #include "layers/geometry/subdivide.h"
 #include "layers/train/checkpoint.h"
+#include "layers/train/evaluator.h"
 #include "layers/train/frame_loss.h"
 #include "layers/train/session.h"
 #include "layers/train/trainer.h"
@@ -81,8 +82,14 @@ BenchReport run_bench(const ExperimentConfig& config, const zoo::Registry& regis
   report.model = s.model->name();
   report.parameters = s.model->info().parameters;
   report.threads = at::get_num_threads();
-  const std::string best = checkpoint_path(config, "best");
-  if (std::filesystem::exists(best)) load_checkpoint(best, *s.model, nullptr);
+  const std::string checkpoint = resolve_checkpoint(config, options.checkpoint);
+  const bool own = options.checkpoint == "best" || options.checkpoint == "last";
+  if (std::filesystem::exists(checkpoint)) {
+    load_checkpoint(checkpoint, *s.model, nullptr);
+    report.checkpoint = checkpoint;
+  } else if (!own) {
+    throw InputError(checkpoint, "", "a checkpoint file to time", "no such file");
+  }
   const std::string split = !options.split.empty()       ? options.split
                             : !config.eval.split.empty() ? config.eval.split
                                                          : config.data.test_split;
@@ -195,10 +202,10 @@ BenchReport run_bench(const ExperimentConfig& config, const zoo::Registry& regis
                     {"ms_per_frame", r.ms_per_frame},
                     {"train_ms_per_frame", r.train_ms_per_frame}});
   }
-  nlohmann::ordered_json doc = {{"model", report.model},       {"parameters", report.parameters},
-                                {"threads", report.threads},   {"sequence", report.sequence},
-                                {"split", report.split},       {"dataset", config.data.dataset},
-                                {"experiment", config.source}, {"rows", rows}};
+  nlohmann::ordered_json doc = {
+      {"model", report.model},          {"parameters", report.parameters}, {"threads", report.threads},
+      {"sequence", report.sequence},    {"split", report.split},           {"checkpoint", report.checkpoint},
+      {"dataset", config.data.dataset}, {"experiment", config.source},     {"rows", rows}};
   std::filesystem::create_directories(std::filesystem::path(report.out).parent_path().empty()
                                           ? std::filesystem::path(".")
                                           : std::filesystem::path(report.out).parent_path());

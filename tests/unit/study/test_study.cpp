@@ -66,6 +66,7 @@ class StudyTest : public testing::Test {
     a.bench = [this](const study::StudyRun& run, const train::BenchOptions& options) {
       calls["bench " + run.name]++;
       bench_split[run.name] = options.split;
+      bench_checkpoint[run.name] = options.checkpoint;
       touch(fs::path(run.dir) / "bench.json", "{}");
     };
     a.report = [this](const study::StudyConfig&, const std::vector<std::string>& runs, const std::string& out) {
@@ -91,7 +92,8 @@ class StudyTest : public testing::Test {
   test::TempDir dir{"layers-study"};
   std::string study_file;
   std::map<std::string, int> calls;
-  std::map<std::string, std::string> bench_split;  // per run: BenchOptions::split of its last bench
+  std::map<std::string, std::string> bench_split;       // per run: BenchOptions::split of its last bench
+  std::map<std::string, std::string> bench_checkpoint;  // per run: BenchOptions::checkpoint of its last bench
   std::string fail_train;
   std::size_t report_runs = 0;
 };
@@ -301,6 +303,15 @@ TEST_F(StudyTest, RequiredStudyRunsFirstAndLendsItsCheckpoint) {
   EXPECT_EQ(calls["train a"], 2);
   EXPECT_EQ(calls["eval a"], 4);
   EXPECT_EQ(calls["eval b"], 1);
+  // A bench step times the lent weights, not the borrowing run's own.
+  bench_checkpoint.clear();
+  const std::string timed = dir.write("timed.yaml", "requires: [study.yaml]\noutput: " + dir.file("timed") +
+                                                        "\ndataset: {config: gen.yaml, folder: " + dir.file("data") +
+                                                        "}\nsteps: [eval, bench]\nexperiments:\n"
+                                                        "  - {name: a, file: exp.yaml, checkpoint: " +
+                                                        dir.file("out/a") + "}\n");
+  ASSERT_TRUE(study::run_study(timed, {}, actions(), {}).ok());
+  EXPECT_EQ(bench_checkpoint["a"], dir.file("out/a") + "/checkpoint-best.pt");
 }
 
 TEST_F(StudyTest, RequiredCycleAndMissingCheckpointAreReported) {

@@ -22,9 +22,10 @@ namespace layers::train {
 
 // The defaults are those of `layers bench`; a study's `bench:` section
 // starts from its own (layers/study/config.h, study_bench()). The keys of
-// visit() are what a study file may set; sequence, split and out are set
-// by `layers bench` flags (a study sets split to the split its run is
-// evaluated on and writes <run>/bench.json).
+// visit() are what a study file may set; sequence, split, out and
+// checkpoint are set by `layers bench` flags (a study sets split to the
+// split its run is evaluated on and checkpoint to the one its evaluation
+// reads, and writes <run>/bench.json).
 struct BenchOptions {
   std::string sequence;   // default: the first sequence of `split`
   std::string split;      // default: eval.split, else data.test_split
@@ -33,6 +34,10 @@ struct BenchOptions {
   bool train = true;      // also time a training step (forward + losses + backward)
   double min_time = 0.5;  // seconds per measurement
   std::string out;        // JSON file (default <run.output>/bench.json)
+  // best, last (the run's own; missing: the model's initial weights, which
+  // time the same) or a checkpoint file, which must exist (a study sets its
+  // run's checkpoint, a lent one included).
+  std::string checkpoint = "best";
 
   template <class V>
   void visit(V& v) {
@@ -54,7 +59,8 @@ struct BenchRow {
 
 struct BenchReport {
   std::string model, sequence, out;
-  std::string split;  // the split `sequence` was taken from ("" when given by --sequence)
+  std::string split;       // the split `sequence` was taken from ("" when given by --sequence)
+  std::string checkpoint;  // the checkpoint file loaded ("" = the model's initial weights)
   std::int64_t parameters = 0;
   int threads = 0;
   std::vector<BenchRow> rows;
