@@ -45,6 +45,7 @@ Chart speed_accuracy_chart(const Gnuplot& gp, const std::string& dir, const std:
   std::vector<std::string> plots, unmeasured;
   std::size_t blocks = 0, bench_blocks = 0;
   std::ostringstream bench_plots;
+  std::vector<std::size_t> placed;  // the runs with a point on the chart
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const RunResults& r = runs[i];
     if (!r.eval) continue;
@@ -53,6 +54,7 @@ Chart speed_accuracy_chart(const Gnuplot& gp, const std::string& dir, const std:
       unmeasured.push_back(r.name);
       continue;
     }
+    placed.push_back(i);
     points << datum(r.eval->ms_per_frame) << ' ' << datum(error) << ' '
            << data_label(r.name + (front[i] ? " [front]" : "")) << "\n\n\n";
     plots.push_back(gnuplot_string(name + "_runs.dat") + " index " + std::to_string(blocks++) +
@@ -99,7 +101,7 @@ Chart speed_accuracy_chart(const Gnuplot& gp, const std::string& dir, const std:
   gp.plot(dir, name, s.str());
 
   std::string caption =
-      "Each point is one run: its mean Euclidean error over " + evaluated_sequences(runs) +
+      "Each point is one run: its mean Euclidean error over " + evaluated_sequences(runs, placed) +
       " (mm) against the time its model took per predicted frame during evaluation (ms, log scale). Lower "
       "and further left is better. "
       "Runs circled in red and marked [front] are on the Pareto front: no other run is at least as fast "
@@ -200,7 +202,7 @@ std::vector<Chart> by_step_charts(const Gnuplot& gp, const std::string& dir, con
     }
     s << "\n";
     gp.plot(dir, metric.name, s.str());
-    std::string caption = "Mean over " + evaluated_sequences(runs) + " of " + metric.what +
+    std::string caption = "Mean over " + evaluated_sequences(runs, plotted) + " of " + metric.what +
                           " at each rollout step: the model's own predictions are fed back, the body and wind "
                           "stay ground truth, so growth along the x axis is accumulated drift." +
                           (m > 0 ? " The dotted grey line is the ground truth's own rate (mean over the first "
@@ -255,7 +257,7 @@ Chart per_type_chart(const Gnuplot& gp, const std::string& dir, const std::vecto
   s << "\n";
   gp.plot(dir, name, s.str());
   return {name + ".png", "Error per garment type",
-          "For every garment type, each run's mean Euclidean error over " + evaluated_sequences(runs) +
+          "For every garment type, each run's mean Euclidean error over " + evaluated_sequences(runs, plotted) +
               " that hold that type (bar) and its standard deviation over those sequences (whisker). Outer "
               "garments (e.g. jacket) ride on the inner ones, so their error includes the inner layer's drift."};
 }

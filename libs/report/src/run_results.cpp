@@ -223,8 +223,15 @@ std::int64_t EvalResults::first_divergence_step() const {
 }
 
 std::string evaluated_sequences(const std::vector<RunResults>& runs) {
+  std::vector<std::size_t> all(runs.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  return evaluated_sequences(runs, all);
+}
+
+std::string evaluated_sequences(const std::vector<RunResults>& runs, const std::vector<std::size_t>& plotted) {
   std::vector<std::string> splits;
-  for (const RunResults& r : runs) {
+  for (std::size_t i : plotted) {
+    const RunResults& r = runs.at(i);
     if (r.eval && !r.eval->split.empty() && std::find(splits.begin(), splits.end(), r.eval->split) == splits.end())
       splits.push_back(r.eval->split);
   }

@@ -91,6 +91,10 @@ TEST(Selection, ReportSaysWhichSplitChoseWhatAndMarksTheTestSplit) {
   EXPECT_EQ(evaluated_sequences({load_run(runs[0]), load_run(runs[2]), load_run(runs[1])}),
             "each run's evaluated sequences (test or val)");
   EXPECT_EQ(evaluated_sequences({}), "the evaluated sequences");
+  // A chart's caption speaks of the runs it plots only.
+  const std::vector<RunResults> three{load_run(runs[0]), load_run(runs[2]), load_run(runs[1])};
+  EXPECT_EQ(evaluated_sequences(three, {1}), "the val sequences");
+  EXPECT_EQ(evaluated_sequences(three, {0, 2}), "the test sequences");
 
   const ReportResult r = write_report(tables_only(runs), dir.file("out"));
   EXPECT_EQ(r.runs_with_metrics, 4u);

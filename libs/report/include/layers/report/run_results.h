@@ -145,6 +145,8 @@ std::string selection_flag(const RunResults& run);
 // sequences (val or test)" when they differ (splits in first-seen order),
 // "the evaluated sequences" when no run names its split.
 std::string evaluated_sequences(const std::vector<RunResults>& runs);
+// The same over the runs a chart plots (indices into `runs`).
+std::string evaluated_sequences(const std::vector<RunResults>& runs, const std::vector<std::size_t>& plotted);
 
 // The run folders with each folder that holds no run of its own but
 // seed-<s> folders (a study experiment repeated over seeds) replaced by
