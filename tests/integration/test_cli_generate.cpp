@@ -114,6 +114,13 @@ TEST(CliGenerate, ShardsThenCompleteDatasetThatValidates) {
   }
   EXPECT_EQ(count, 18);
   EXPECT_EQ(seen, (std::vector<std::string>{"seq-000000", "seq-000001", "seq-000002"}));
+  // Measured on two threads: the same report and the same table.
+  auto two = run_command(test::layers_bin() + " validate --physics " + out + " --threads 2 --frames-csv " +
+                         dir.file("frames2.csv"));
+  EXPECT_EQ(two.exit_code, rows.exit_code) << two.output;
+  EXPECT_EQ(two.output.substr(0, two.output.rfind("per-frame measures:")),
+            rows.output.substr(0, rows.output.rfind("per-frame measures:")));
+  EXPECT_EQ(bytes(dir.file("frames2.csv")), bytes(csv));
   // The file is the user's now: asked again, validate refuses and keeps it.
   const std::string kept = bytes(csv);
   auto again = run_command(test::layers_bin() + " validate --physics " + out + " --frames-csv " + csv);
