@@ -12,7 +12,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <mutex>
 #include <sstream>
 #include <vector>
 
@@ -108,24 +107,19 @@ int check_physics(const std::string& path, const sim::ValidationConfig& limits, 
   std::printf("%-14s %6s %9s %9s %13s %12s %9s %9s %9s %9s %9s %9s %9s  %s\n", "sequence", "frames", "H-pen", "L-pen",
               "L-coll(paper)", "L-coll(ours)", "H-x mean", "H-x max", "L-x mean", "L-x max", "body-self", "H-x clear",
               "stretch", "verdict");
-  // Sequences are measured `threads` at a time in batches (HDF5 reads one
-  // at a time) and reported in the dataset's order as each batch ends.
-  const std::vector<std::string>& ids = dataset.ids();
-  const std::size_t batch = 4 * static_cast<std::size_t>(std::max(threads, 1));
-  std::mutex reading;
-  std::vector<MeasuredSequence> measured;
+  // Sequences are measured `threads` at a time (the Dataset serialises its
+  // HDF5 reads) and reported in the dataset's order after each such batch.
+  const std::vector<std::string> ids = dataset.ids();
+  const std::size_t batch = static_cast<std::size_t>(std::max(threads, 1));
+  std::vector<MeasuredSequence> batch_results;
   for (std::size_t k = 0; k < ids.size(); ++k) {
     if (k % batch == 0) {
-      const std::size_t first = k, count = std::min(batch, ids.size() - k);
-      measured.assign(count, {});
-      parallel_indices(count, threads, [&](std::size_t j) {
-        data::SequenceData seq;
-        {
-          const std::lock_guard<std::mutex> lock(reading);
-          seq = dataset.read_sequence(ids[first + j]);
-        }
+      const std::size_t first = k;
+      batch_results.assign(std::min(batch, ids.size() - k), {});
+      parallel_indices(batch_results.size(), threads, [&](std::size_t j) {
+        const data::SequenceData seq = dataset.read_sequence(ids[first + j]);
         generate::for_each_stored_frame(seq, [&](std::int64_t index, const generate::StoredFrame& f) {
-          measured[j].frames.push_back(
+          batch_results[j].frames.push_back(
               {index, sim::measure_frame(f.body, f.garments, limits.l_reach), eval_l_collision(f)});
         });
       });
@@ -133,7 +127,7 @@ int check_physics(const std::string& path, const sim::ValidationConfig& limits, 
     const std::string& id = ids[k];
     sim::SequenceMeasures m;
     MeanOfFinite ours, plain;
-    for (const MeasuredFrame& f : measured[k % batch].frames) {
+    for (const MeasuredFrame& f : batch_results[k % batch].frames) {
       m.add(f.measures);
       all.add(f.measures);
       summary.add_frame(f.measures);
@@ -176,7 +170,7 @@ int check_physics(const std::string& path, const sim::ValidationConfig& limits, 
       "%.3f%% worst frame %.3f%%, body faces crossing the body %.3f%% mean, H-crossing clear of them mean %.3f%% "
       "worst frame %.3f%%, max stretch %.2f%%, %lld non-finite values; %d over the thresholds (H %.2f%%, L "
       "%.2f%%, H-crossing %.2f%%, L-crossing %.2f%%, stretch %.0f%%)\n",
-      path.c_str(), dataset.ids().size(), all.frames(), 100 * all.mean_h_penetration(), 100 * all.mean_l_penetration(),
+      path.c_str(), ids.size(), all.frames(), 100 * all.mean_h_penetration(), 100 * all.mean_l_penetration(),
       1000 * limits.l_reach, 100 * all_plain.mean(), 100 * all_ours.mean(), 100 * all.mean_h_crossing(),
       100 * all.max_h_crossing(), 100 * all.mean_l_crossing(), 100 * all.max_l_crossing(),
       100 * all.mean_body_self_crossing(), 100 * all.mean_h_crossing_clear(), 100 * all.max_h_crossing_clear(),
@@ -217,6 +211,7 @@ VerbRun register_validate(CLI::App& app, const Global&) {
       ->check(CLI::Range(1, 256));
   return [path, physics, limits, target, frames_csv, threads]() {
     if (!frames_csv->empty() && !*physics) throw UsageError("--frames-csv needs --physics");
+    if (*threads != 1 && !*physics) throw UsageError("--threads needs --physics");
     std::error_code ec;
     if (!frames_csv->empty() && std::filesystem::exists(*frames_csv, ec))
       throw InputError::message(*frames_csv, "", kFramesCsvExists);

@@ -132,6 +132,9 @@ TEST(CliGenerate, ShardsThenCompleteDatasetThatValidates) {
   EXPECT_EQ(no_physics.exit_code, 2) << no_physics.output;
   EXPECT_NE(no_physics.output.find("--frames-csv needs --physics"), std::string::npos) << no_physics.output;
   EXPECT_FALSE(fs::exists(dir.file("other.csv")));
+  auto threads_alone = run_command(test::layers_bin() + " validate " + out + " --threads 2");
+  EXPECT_EQ(threads_alone.exit_code, 2) << threads_alone.output;
+  EXPECT_NE(threads_alone.output.find("--threads needs --physics"), std::string::npos) << threads_alone.output;
 }
 
 TEST(CliGenerate, SameSeedSameBytesAndResumeRedoesOnlyWhatIsMissing) {

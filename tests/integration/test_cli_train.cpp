@@ -183,7 +183,7 @@ TEST(CliTrain, SelectionNeverReadsTheTestSplitAndIsRecorded) {
   // A checkpoint file that is not there is an error, not the initial weights.
   auto missing = run_command(bench + dir.file("bench-missing.json") + " --checkpoint " + dir.file("none.pt"));
   EXPECT_EQ(missing.exit_code, 1) << missing.output;
-  EXPECT_NE(missing.output.find(dir.file("none.pt") + ": expected a checkpoint file to time, got no such file"),
+  EXPECT_NE(missing.output.find(dir.file("none.pt") + ": checkpoint: expected an existing file, got no such file"),
             std::string::npos)
       << missing.output;
 }

@@ -13,7 +13,11 @@ namespace layers {
 void parallel_indices(std::size_t n, int threads, const std::function<void(std::size_t)>& f) {
   std::atomic<std::size_t> next{0};
   std::atomic<bool> stop{false};
+  // The failure of the lowest index wins: indices are claimed in order, so
+  // every index below it has run, and the error is the one a single thread
+  // would have met first.
   std::exception_ptr failure;
+  std::size_t failed_at = n;
   std::mutex mutex;
   const auto worker = [&] {
     while (!stop) {
@@ -23,15 +27,23 @@ void parallel_indices(std::size_t n, int threads, const std::function<void(std::
         f(i);
       } catch (...) {
         const std::lock_guard<std::mutex> lock(mutex);
-        if (!failure) failure = std::current_exception();
+        if (i < failed_at) {
+          failed_at = i;
+          failure = std::current_exception();
+        }
         stop = true;
       }
     }
   };
-  const std::size_t count =
-      std::min<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), std::max<std::size_t>(n, 1));
+  const std::size_t wanted = std::min(static_cast<std::size_t>(std::max(threads, 1)), std::max<std::size_t>(n, 1));
   std::vector<std::thread> pool;
-  for (std::size_t t = 1; t < count; ++t) pool.emplace_back(worker);
+  try {
+    for (std::size_t t = 1; t < wanted; ++t) pool.emplace_back(worker);
+  } catch (...) {  // no more threads: stop the ones started, then report it
+    stop = true;
+    for (std::thread& t : pool) t.join();
+    throw;
+  }
   worker();
   for (std::thread& t : pool) t.join();
   if (failure) std::rethrow_exception(failure);

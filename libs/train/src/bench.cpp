@@ -82,13 +82,13 @@ BenchReport run_bench(const ExperimentConfig& config, const zoo::Registry& regis
   report.model = s.model->name();
   report.parameters = s.model->info().parameters;
   report.threads = at::get_num_threads();
+  // The run's own best or last may not exist yet (the initial weights are
+  // timed); a named file must.
   const std::string checkpoint = resolve_checkpoint(config, options.checkpoint);
   const bool own = options.checkpoint == "best" || options.checkpoint == "last";
-  if (std::filesystem::exists(checkpoint)) {
+  if (!own || std::filesystem::exists(checkpoint)) {
     load_checkpoint(checkpoint, *s.model, nullptr);
     report.checkpoint = checkpoint;
-  } else if (!own) {
-    throw InputError(checkpoint, "", "a checkpoint file to time", "no such file");
   }
   const std::string split = !options.split.empty()       ? options.split
                             : !config.eval.split.empty() ? config.eval.split

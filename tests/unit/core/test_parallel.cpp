@@ -1,9 +1,12 @@
-// parallel_indices: every index once on any thread count, the first
-// exception rethrown after the threads stop.
+// parallel_indices: every index once on any thread count; the lowest
+// failing index's exception rethrown after the threads stop.
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <stdexcept>
+#include <string>
+#include <thread>
 #include <vector>
 
 #include "layers/core/parallel.h"
@@ -21,15 +24,35 @@ TEST(ParallelIndices, EveryIndexOnce) {
   }
 }
 
-TEST(ParallelIndices, AFailureStopsNewWorkAndIsRethrown) {
+TEST(ParallelIndices, TheLowestFailingIndexIsRethrownAndWorkStops) {
+  // One thread: it stops right after the failing index.
   std::atomic<int> ran{0};
-  EXPECT_THROW(parallel_indices(1000, 3,
-                                [&](std::size_t i) {
-                                  ++ran;
-                                  if (i == 5) throw std::runtime_error("index 5 failed");
-                                }),
-               std::runtime_error);
-  EXPECT_LT(ran, 1000);
+  const auto fail_at = [&](std::size_t bad, std::size_t also_bad) {
+    return [&ran, bad, also_bad](std::size_t i) {
+      ++ran;
+      if (i == bad || i == also_bad) throw std::runtime_error("index " + std::to_string(i));
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    };
+  };
+  try {
+    parallel_indices(1000, 1, fail_at(5, 9));
+    ADD_FAILURE() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "index 5");
+  }
+  EXPECT_EQ(ran, 6);
+  // Several threads: the lower of two failures is the one reported, and
+  // not every index runs.
+  for (int round = 0; round < 5; ++round) {
+    ran = 0;
+    try {
+      parallel_indices(1000, 3, fail_at(9, 5));
+      ADD_FAILURE() << "no exception";
+    } catch (const std::runtime_error& e) {
+      EXPECT_STREQ(e.what(), "index 5");
+    }
+    EXPECT_LT(ran, 1000);
+  }
 }
 
 }  // namespace

@@ -11,8 +11,9 @@ namespace layers {
 // Calls f(i) for every i in [0, n), on up to `threads` threads (at least
 // the calling one). Each index runs once; which thread runs it is not
 // fixed, so f must write its result to a place of its own (e.g. slot i).
-// If f throws, no new index starts, and the first exception is rethrown
-// once every thread has stopped.
+// If f throws, no new index starts, and once every thread has stopped the
+// exception of the lowest failing index is rethrown (the one a single
+// thread would have met).
 void parallel_indices(std::size_t n, int threads, const std::function<void(std::size_t)>& f);
 
 }  // namespace layers
