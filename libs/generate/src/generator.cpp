@@ -5,15 +5,14 @@
 
 #include <spdlog/spdlog.h>
 
-#include <atomic>
 #include <filesystem>
 #include <map>
 #include <mutex>
 #include <set>
-#include <thread>
 
 #include "layers/core/atomic_file.h"
 #include "layers/core/error.h"
+#include "layers/core/parallel.h"
 #include "layers/core/progress.h"
 #include "layers/core/source_revision.h"
 #include "layers/core/text_file.h"
@@ -201,55 +200,34 @@ GenerateReport generate_dataset(const GeneratorConfig& config, const std::string
   }
 
   Progress progress("generate " + config.name, todo.size(), "scenes");
-  std::atomic<std::size_t> next{0};
   std::mutex mutex;  // report, progress, shard merging
-  std::exception_ptr failure;
-  auto worker = [&]() {
-    while (true) {
-      std::size_t k = next++;
-      if (k >= todo.size()) return;
-      {
-        std::lock_guard<std::mutex> lock(mutex);
-        if (failure) return;
-      }
-      try {
-        const SceneSpec spec = sample_scene(config, todo[k]);
-        SceneResult result = simulate_scene(config, spec);
-        std::string reasons;
-        for (const auto& v : result.violations) reasons += (reasons.empty() ? "" : "; ") + v;
-        if (result.ok)
-          data::write_shard(layout.part(spec.id).string(), {result.sequence});
-        else
-          write_text_atomic(layout.skipped(spec.id).string(), reasons + "\n");
-        std::lock_guard<std::mutex> lock(mutex);
-        ++report.simulated;
-        report.simulated_frames += result.simulated_frames;
-        report.simulate_seconds += result.seconds;
-        report.simulate_cpu_seconds += result.cpu_seconds;
-        if (result.ok) {
-          ++report.written;
-        } else {
-          ++report.skipped;
-          report.skip_reasons.push_back(spec.id + " (" + motion_family(spec.motion) + "): " + reasons);
-          spdlog::warn("{} skipped ({}): {}", spec.id, spec.motion, reasons);
-        }
-        merge_shard(layout, todo[k] / config.sequences_per_shard);
-        if (options.progress)
-          progress.advance(1, "h-pen " + std::to_string(100.0 * result.mean_h_penetration).substr(0, 4) + "% skipped " +
-                                  std::to_string(report.skipped));
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(mutex);
-        if (!failure) failure = std::current_exception();
-        return;
-      }
+  // Scenes on `threads` threads; a failure stops new scenes and is rethrown.
+  parallel_indices(todo.size(), options.threads, [&](std::size_t k) {
+    const SceneSpec spec = sample_scene(config, todo[k]);
+    SceneResult result = simulate_scene(config, spec);
+    std::string reasons;
+    for (const auto& v : result.violations) reasons += (reasons.empty() ? "" : "; ") + v;
+    if (result.ok)
+      data::write_shard(layout.part(spec.id).string(), {result.sequence});
+    else
+      write_text_atomic(layout.skipped(spec.id).string(), reasons + "\n");
+    std::lock_guard<std::mutex> lock(mutex);
+    ++report.simulated;
+    report.simulated_frames += result.simulated_frames;
+    report.simulate_seconds += result.seconds;
+    report.simulate_cpu_seconds += result.cpu_seconds;
+    if (result.ok) {
+      ++report.written;
+    } else {
+      ++report.skipped;
+      report.skip_reasons.push_back(spec.id + " (" + motion_family(spec.motion) + "): " + reasons);
+      spdlog::warn("{} skipped ({}): {}", spec.id, spec.motion, reasons);
     }
-  };
-  const int threads = std::max(1, std::min<int>(options.threads, static_cast<int>(todo.size())));
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
-  if (failure) std::rethrow_exception(failure);
+    merge_shard(layout, todo[k] / config.sequences_per_shard);
+    if (options.progress)
+      progress.advance(1, "h-pen " + std::to_string(100.0 * result.mean_h_penetration).substr(0, 4) + "% skipped " +
+                              std::to_string(report.skipped));
+  });
   if (options.progress && !todo.empty()) progress.finish();
 
   if (options.finalize) {
