@@ -8,10 +8,10 @@
 #include <filesystem>
 #include <mutex>
 #include <set>
-#include <thread>
 
 #include "layers/core/atomic_file.h"
 #include "layers/core/error.h"
+#include "layers/core/parallel.h"
 #include "layers/core/progress.h"
 #include "layers/core/text_file.h"
 #include "layers/data/run_layout.h"
@@ -167,40 +167,29 @@ Step report_step(const StudyConfig& study, const std::vector<StudyRun>& runs, co
 std::set<std::string> run_lanes(const std::string& study, const std::vector<StudyRun>& runs, int lanes,
                                 const StudyActions& actions) {
   std::mutex mutex;
-  std::size_t next = 0;
   std::set<std::string> failed;
   const auto say = [&](const std::string& line) {
     const std::lock_guard<std::mutex> lock(mutex);
     std::printf("[%s] %s\n", study.c_str(), line.c_str());
     std::fflush(stdout);
   };
-  const auto worker = [&] {
-    for (;;) {
-      const StudyRun* run = nullptr;
-      {
-        const std::lock_guard<std::mutex> lock(mutex);
-        if (next == runs.size()) return;
-        run = &runs[next++];
-      }
-      say(run->name + ": lane started");
-      const Timer timer;
-      bool ok = false;
-      try {
-        ok = actions.lane(*run);
-      } catch (const std::exception& e) {
-        say(run->name + ": lane could not start: " + e.what());
-      }
-      say(run->name + (ok ? ": lane done in " : ": lane FAILED after ") + Progress::format_duration(timer.seconds()));
-      if (!ok) {
-        const std::lock_guard<std::mutex> lock(mutex);
-        failed.insert(run->name);
-      }
+  // A lane's failure is recorded, never thrown: every run gets its lane.
+  parallel_indices(runs.size(), lanes, [&](std::size_t i) {
+    const StudyRun& run = runs[i];
+    say(run.name + ": lane started");
+    const Timer timer;
+    bool ok = false;
+    try {
+      ok = actions.lane(run);
+    } catch (const std::exception& e) {
+      say(run.name + ": lane could not start: " + e.what());
     }
-  };
-  std::vector<std::thread> pool;
-  const std::size_t n = std::min(runs.size(), static_cast<std::size_t>(lanes));
-  for (std::size_t i = 0; i < n; ++i) pool.emplace_back(worker);
-  for (std::thread& t : pool) t.join();
+    say(run.name + (ok ? ": lane done in " : ": lane FAILED after ") + Progress::format_duration(timer.seconds()));
+    if (!ok) {
+      const std::lock_guard<std::mutex> lock(mutex);
+      failed.insert(run.name);
+    }
+  });
   return failed;
 }
 
