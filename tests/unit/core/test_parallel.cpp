@@ -24,33 +24,32 @@ TEST(ParallelIndices, EveryIndexOnce) {
   }
 }
 
-TEST(ParallelIndices, TheLowestFailingIndexIsRethrownAndWorkStops) {
-  // One thread: it stops right after the failing index.
-  std::atomic<int> ran{0};
-  const auto fail_at = [&](std::size_t bad, std::size_t also_bad) {
-    return [&ran, bad, also_bad](std::size_t i) {
+// Runs 1000 indices on `threads` threads where indices `bad` and
+// `also_bad` throw; returns the message rethrown ("" if none) and counts
+// the indices that ran.
+std::string failure_of(int threads, std::size_t bad, std::size_t also_bad, std::atomic<int>& ran) {
+  ran = 0;
+  try {
+    parallel_indices(1000, threads, [&](std::size_t i) {
       ++ran;
       if (i == bad || i == also_bad) throw std::runtime_error("index " + std::to_string(i));
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    };
-  };
-  try {
-    parallel_indices(1000, 1, fail_at(5, 9));
-    ADD_FAILURE() << "no exception";
+    });
   } catch (const std::runtime_error& e) {
-    EXPECT_STREQ(e.what(), "index 5");
+    return e.what();
   }
+  return "";
+}
+
+TEST(ParallelIndices, TheLowestFailingIndexIsRethrownAndWorkStops) {
+  std::atomic<int> ran{0};
+  // One thread stops right after the failing index.
+  EXPECT_EQ(failure_of(1, 5, 9, ran), "index 5");
   EXPECT_EQ(ran, 6);
   // Several threads: the lower of two failures is the one reported, and
   // not every index runs.
   for (int round = 0; round < 5; ++round) {
-    ran = 0;
-    try {
-      parallel_indices(1000, 3, fail_at(9, 5));
-      ADD_FAILURE() << "no exception";
-    } catch (const std::runtime_error& e) {
-      EXPECT_STREQ(e.what(), "index 5");
-    }
+    EXPECT_EQ(failure_of(3, 9, 5, ran), "index 5");
     EXPECT_LT(ran, 1000);
   }
 }
