@@ -60,8 +60,7 @@ std::vector<StudyRun> resolve_runs(const StudyConfig& study) {
       for (const std::string& s : e.steps.empty() ? study.steps : e.steps)
         if (s != "report" && !(s == "train" && !e.checkpoint.empty())) r.steps.push_back(s);
       r.eval_splits = study.eval.splits;
-      if (r.eval_splits.empty())
-        r.eval_splits.push_back(!r.config.eval.split.empty() ? r.config.eval.split : r.config.data.test_split);
+      if (r.eval_splits.empty()) r.eval_splits.push_back(train::evaluated_split(r.config));
       const std::string file = data::run_layout::checkpoint(study.eval.checkpoint);
       r.external_checkpoint = !e.checkpoint.empty();
       const fs::path lent = r.repeated ? fs::path(e.checkpoint) / seed_folder : fs::path(e.checkpoint);

@@ -90,9 +90,7 @@ BenchReport run_bench(const ExperimentConfig& config, const zoo::Registry& regis
     load_checkpoint(checkpoint, *s.model, nullptr);
     report.checkpoint = checkpoint;
   }
-  const std::string split = !options.split.empty()       ? options.split
-                            : !config.eval.split.empty() ? config.eval.split
-                                                         : config.data.test_split;
+  const std::string split = evaluated_split(config, options.split);
   report.sequence = options.sequence;
   if (report.sequence.empty()) {
     report.split = split;

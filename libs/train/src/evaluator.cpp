@@ -248,9 +248,7 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
   report.checkpoint = resolve_checkpoint(config, options.checkpoint);
   const CheckpointState state = load_checkpoint(report.checkpoint, *s.model, nullptr);
   s.model->train(false);
-  report.split = !options.split.empty()       ? options.split
-                 : !config.eval.split.empty() ? config.eval.split
-                                              : config.data.test_split;
+  report.split = evaluated_split(config, options.split);
   const json selection = selection_of(state, report.checkpoint, report.split);
   report.checkpoint_kind = selection["checkpoint"].get<std::string>();
   report.chosen_on = selection["chosen_on"].get<std::string>();

@@ -19,6 +19,11 @@ ExperimentConfig load_experiment(const std::string& path, const std::vector<std:
   return read_experiment(tree, path);
 }
 
+std::string evaluated_split(const ExperimentConfig& config, const std::string& requested) {
+  if (!requested.empty()) return requested;
+  return !config.eval.split.empty() ? config.eval.split : config.data.test_split;
+}
+
 void check_selection(const ExperimentConfig& config) {
   const DataConfig& d = config.data;
   for (const auto& [field, split] : {std::pair<const char*, const std::string*>{"data.val_split", &d.val_split},

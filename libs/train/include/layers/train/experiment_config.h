@@ -145,4 +145,8 @@ ExperimentConfig load_experiment(const std::string& path, const std::vector<std:
 // (libs/study runs.cpp) check it before anything runs.
 void check_selection(const ExperimentConfig& config);
 
+// The split an evaluation or a benchmark reads: `requested` (a command
+// line's --split), else eval.split, else data.test_split.
+std::string evaluated_split(const ExperimentConfig& config, const std::string& requested = "");
+
 }  // namespace layers::train
