@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -99,7 +100,8 @@ constexpr const char* kFramesCsvExists = "exists; --frames-csv must name a new f
 int check_physics(const std::string& path, const sim::ValidationConfig& limits, double crossing_target,
                   const std::string& frames_csv, int threads) {
   const data::Dataset dataset = data::Dataset::open(path);
-  FramesCsv frames;
+  std::optional<FramesCsv> frames;  // only when asked for
+  if (!frames_csv.empty()) frames.emplace();
   generate::PhysicsSummary summary(crossing_target);
   sim::SequenceMeasures all;
   MeanOfFinite all_ours, all_plain;
@@ -135,7 +137,7 @@ int check_physics(const std::string& path, const sim::ValidationConfig& limits, 
       all_ours.add(f.l.ours);
       plain.add(f.l.plain);
       all_plain.add(f.l.plain);
-      frames.add(id, f.index, f.measures, f.l);
+      if (frames) frames->add(id, f.index, f.measures, f.l);
     }
     const std::vector<std::string> violations = m.violations(limits);
     std::string verdict = violations.empty() ? "ok" : "";
@@ -177,8 +179,8 @@ int check_physics(const std::string& path, const sim::ValidationConfig& limits, 
       100 * all.max_stretch(), static_cast<long long>(all.nonfinite()), over, 100 * limits.max_h_penetration,
       100 * limits.max_l_penetration, 100 * limits.max_h_crossing, 100 * limits.max_l_crossing,
       100 * limits.max_stretch);
-  if (!frames_csv.empty()) {
-    write_new_text_file(frames_csv, frames.text(), kFramesCsvExists);
+  if (frames) {
+    write_new_text_file(frames_csv, frames->text(), kFramesCsvExists);
     std::printf("per-frame measures: %s\n", frames_csv.c_str());
   }
   return over == 0 ? static_cast<int>(kOk) : static_cast<int>(kFailure);
