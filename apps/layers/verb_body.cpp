@@ -57,6 +57,7 @@ VerbRun register_body(CLI::App& app, const Global&) {
     int frames = 120, transition = 15;
     std::uint64_t seed = 0;
     double arm_room = 0.0, thigh_room = 0.0;
+    int skin_untangle = 0;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--shape", a->shape, "shape parameters in 0..1, e.g. gender=0.3,muscle=0.5,weight=0.6,height=0.45");
@@ -69,6 +70,9 @@ VerbRun register_body(CLI::App& app, const Global&) {
   cmd->add_option("--arm-room", a->arm_room, "mm of room for the cloth between arms and torso (0 = off)")
       ->capture_default_str();
   cmd->add_option("--thigh-room", a->thigh_room, "mm of room for the cloth between the legs, thighs to feet (0 = off)")
+      ->capture_default_str();
+  cmd->add_option("--skin-untangle", a->skin_untangle,
+                  "rounds of pushing the posed skin out of itself where it crosses itself (0 = off)")
       ->capture_default_str();
   cmd->add_option("--id", a->id, "sequence id")->capture_default_str();
   cmd->add_option("--out", a->out, "output: a shard file (*.h5) or a dataset folder")->required();
@@ -93,6 +97,11 @@ VerbRun register_body(CLI::App& app, const Global&) {
     section.map.emplace_back("on_intersection", scalar(a->on_intersection, "--on-intersection"));
     section.map.emplace_back("arm_room_mm", scalar(std::to_string(a->arm_room), "--arm-room"));
     section.map.emplace_back("thigh_room_mm", scalar(std::to_string(a->thigh_room), "--thigh-room"));
+    cfg::Node untangle;
+    untangle.kind = cfg::Node::Kind::Map;
+    untangle.file = section.file;
+    untangle.map.emplace_back("passes", scalar(std::to_string(a->skin_untangle), "--skin-untangle"));
+    section.map.emplace_back("skin_untangle", untangle);
     auto config = cfg::read<motion::BodyMotionConfig>(section, "body");
     if (!a->export_format.empty()) data::parse_export_format(a->export_format, "--export");
 
@@ -135,6 +144,13 @@ VerbRun register_body(CLI::App& app, const Global&) {
     if (config.thigh_room_mm > 0)
       std::printf("thigh room %.0f mm: %s\n", config.thigh_room_mm,
                   report.thigh_room.describe("legs", report.frames).c_str());
+    if (config.skin_untangle.passes > 0)
+      std::printf(
+          "skin untangling: %d of %d frames changed; skin faces crossing the skin: %.1f per frame before, "
+          "%.1f after\n",
+          report.skin_frames, static_cast<int>(seq.n_frames),
+          seq.n_frames ? static_cast<double>(report.skin_crossing_before) / seq.n_frames : 0.0,
+          seq.n_frames ? static_cast<double>(report.skin_crossing_after) / seq.n_frames : 0.0);
 
     if (!a->export_format.empty()) {
       std::string dir =

@@ -38,6 +38,7 @@ SequenceOptions sequence_options(const BodyMotionConfig& config) {
   o.intersection.tolerance = config.intersection_tolerance_mm / 1000.0;
   o.arm_room = config.arm_room_mm / 1000.0;
   o.thigh_room = config.thigh_room_mm / 1000.0;
+  o.skin_untangle = config.skin_untangle.options();
   o.on_intersection = config.on_intersection;
   return o;
 }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "intersection_repair.h"
 #include "layers/body/pose_body.h"
@@ -146,8 +147,16 @@ BodySequence generate_body_sequence(const body::Body& body, const MotionSource& 
   seq.root.resize(keep.size() * 3);
   seq.root_rot.resize(keep.size() * 4);
   seq.joints.resize(keep.size() * nj * 12);
+  std::optional<body::SkinUntangler> untangler;
+  if (options.skin_untangle.passes > 0) untangler.emplace(body);
   for (std::size_t i = 0; i < keep.size(); ++i) {
-    const body::BodyFrame frame = body::pose_body(body, poses[keep[i]]);
+    body::BodyFrame frame = body::pose_body(body, poses[keep[i]]);
+    if (untangler) {
+      const body::SkinUntangleResult r = untangler->apply(frame.vertices, options.skin_untangle);
+      seq.intersection.skin_crossing_before += r.crossing_before;
+      seq.intersection.skin_crossing_after += r.crossing_after;
+      seq.intersection.skin_frames += r.moved > 0;
+    }
     std::copy(frame.vertices.data(), frame.vertices.data() + nv * 3, seq.positions.data() + i * nv * 3);
     for (int k = 0; k < 3; ++k) seq.root[i * 3 + k] = static_cast<float>(frame.joints.position[0][k]);
     const body::Quat& q = frame.joints.rotation[0];

@@ -81,6 +81,7 @@ struct BodySampling {
   double intersection_tolerance_mm = 4.0;
   double arm_room_mm = 0.0;    // room for the cloth under the arms (motion::SequenceOptions::arm_room); 0 = off
   double thigh_room_mm = 0.0;  // room for the cloth between the thighs (SequenceOptions::thigh_room); 0 = off
+  motion::SkinUntangleConfig skin_untangle;  // smoothing of the skin's own folds (body::SkinUntangler); off by default
 
   template <class V>
   void visit(V& v) {
@@ -94,6 +95,7 @@ struct BodySampling {
       cfg::opt().range(0, 100).help("room for the cloth between arms and torso; closer arms are abducted (0 = off)"));
     v("thigh_room_mm", thigh_room_mm,
       cfg::opt().range(0, 100).help("room for the cloth between the thighs; closer legs are abducted (0 = off)"));
+    v("skin_untangle", skin_untangle);
   }
 };
 

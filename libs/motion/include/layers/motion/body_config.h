@@ -12,6 +12,7 @@
 //     intersection_tolerance_mm: 4
 //     arm_room_mm: 0               # > 0: abduct arms closer than this to the torso
 //     thigh_room_mm: 0             # > 0: abduct legs whose thighs come closer than this
+//     skin_untangle: {passes: 0, margin_mm: 0.5, steps: 3}  # push the skin out of itself
 //     on_intersection: longest_run # or drop, keep
 #pragma once
 
@@ -26,6 +27,28 @@
 
 namespace layers::motion {
 
+// SequenceOptions::skin_untangle as a config block (body::SkinUntangler).
+struct SkinUntangleConfig {
+  int passes = 0;
+  double margin_mm = 0.5;
+  int steps = 3;
+
+  template <class V>
+  void visit(V& v) {
+    v("passes", passes,
+      cfg::opt().range(0, 100).help("rounds of pushing the posed skin out of itself where it crosses (0 = off)"));
+    v("margin_mm", margin_mm, cfg::opt().range(0, 10).help("how far past the other sheet a pushed vertex goes"));
+    v("steps", steps, cfg::opt().range(0, 20).help("Taubin lambda/mu step pairs after each push"));
+  }
+  body::SkinUntangleOptions options() const {
+    body::SkinUntangleOptions o;
+    o.passes = passes;
+    o.margin = margin_mm / 1000.0;
+    o.steps = steps;
+    return o;
+  }
+};
+
 struct BodyMotionConfig {
   body::ShapeParams shape;
   std::string motion = "procedural:walk";
@@ -35,6 +58,7 @@ struct BodyMotionConfig {
   double intersection_tolerance_mm = 4.0;
   double arm_room_mm = 0.0;    // SequenceOptions::arm_room; 0 = off
   double thigh_room_mm = 0.0;  // SequenceOptions::thigh_room; 0 = off
+  SkinUntangleConfig skin_untangle;
   std::string on_intersection = "longest_run";
   std::string assets;  // asset root; "" = $LAYERS_ASSETS or the build-time default
 
@@ -51,6 +75,7 @@ struct BodyMotionConfig {
       cfg::opt().range(0, 100).help("room for the cloth between arms and torso; closer arms are abducted (0 = off)"));
     v("thigh_room_mm", thigh_room_mm,
       cfg::opt().range(0, 100).help("room for the cloth between the thighs; closer legs are abducted (0 = off)"));
+    v("skin_untangle", skin_untangle);
     v("on_intersection", on_intersection, cfg::opt().choices({"longest_run", "drop", "keep"}));
     v("assets", assets,
       cfg::opt().help("asset root (default: $LAYERS_ASSETS, then <prefix>/share/layers/assets, then <source>/assets)"));

@@ -14,6 +14,7 @@
 
 #include "layers/body/body_model.h"
 #include "layers/body/self_intersection.h"
+#include "layers/body/skin_untangle.h"
 #include "layers/motion/motion.h"
 
 namespace layers::motion {
@@ -38,6 +39,10 @@ struct SequenceOptions {
   // mocap subject standing with the thighs together leaves less.
   double thigh_room = 0.0;
   double max_thigh_room_turn = 0.15;
+  // Smoothing of the skin where it passes through itself, applied to every
+  // written frame after the pose is final (body::SkinUntangler; passes 0 =
+  // off). It changes the stored skin, never the joints.
+  body::SkinUntangleOptions skin_untangle;
   // What happens to frames still intersecting after resolution:
   // "longest_run" keeps the longest run of consecutive clean frames,
   // "drop" removes the bad frames (the sequence then skips in time),
@@ -69,6 +74,11 @@ struct IntersectionReport {
   long crossing_before = 0, crossing_after = 0;
   int crossing_limbs = 0;
   RoomReport arm_room, thigh_room;
+  // Skin untangling (SequenceOptions::skin_untangle), over the written
+  // frames: skin faces crossing another skin face, summed before and after,
+  // and the frames it changed.
+  long skin_crossing_before = 0, skin_crossing_after = 0;
+  int skin_frames = 0;
   double share_intersecting() const { return frames ? static_cast<double>(intersecting) / frames : 0.0; }
 };
 
