@@ -8,13 +8,16 @@
 // thread its own scene, as with `--threads 2`). Set-up and warm-up (a
 // short drape and blend) are not timed; each iteration is one recorded
 // frame (1/30 s of motion). Arguments: edge length in tenths of a mm,
-// substeps, edge-edge contact (3: the defaults, layers 6 mm and body 2 mm;
-// 1: layers only; 0: off; the 25 mm scene runs all three to price them).
+// substeps, contact passes as bits: 1 layer edge-edge (6 mm), 2 body
+// edge-edge (2 mm), 4 the continuous-collision pass (7: the defaults; each
+// resolution runs with and without the pass, the 25 mm scene also without
+// body edges to price them).
 // Counters: garment vertices, the solver's own split of the time per frame
 // (per thread), the strain cap's sweeps per frame, and the generator's
 // validation measures over the timed frames (measured outside the timing):
 // mean H- and L-penetration (%), mean exact H- and L-crossing (%) and max
-// edge stretch (%).
+// edge stretch (%), and the most crossing face pairs between garments in
+// any timed frame (cloth_x).
 #include <benchmark/benchmark.h>
 
 #include <string>
@@ -46,6 +49,7 @@ gen::SceneSimulation make_scene(double edge_mm, int substeps, int frames, int ed
   config.sim.iterations = 2;
   if ((edge_contact & 1) == 0) config.sim.layer_edge_thickness = 0;
   if ((edge_contact & 2) == 0) config.sim.body_edge_thickness = 0;
+  config.sim.collision_pass = (edge_contact & 4) != 0;
   gen::SceneSpec spec = gen::sample_scene(config, 0);
   spec.shape = {};  // the average body
   return gen::SceneSimulation(config, spec);
@@ -54,7 +58,7 @@ gen::SceneSimulation make_scene(double edge_mm, int substeps, int frames, int ed
 void BM_GeneratorFrame(benchmark::State& state) {
   const double edge_mm = 0.1 * static_cast<double>(state.range(0));
   const int frames = static_cast<int>(state.max_iterations);
-  // Third argument: bit 0 layer edges, bit 1 body edges.
+  // Third argument: bit 0 layer edges, bit 1 body edges, bit 2 the collision pass.
   const int edge_contact = static_cast<int>(state.range(2));
   gen::SceneSimulation scene = make_scene(edge_mm, static_cast<int>(state.range(1)), frames, edge_contact);
   if (!scene.usable()) {
@@ -85,6 +89,9 @@ void BM_GeneratorFrame(benchmark::State& state) {
   state.counters["body_ms"] = per_frame_ms(t.body_contact);
   state.counters["self_ms"] = per_frame_ms(t.self_contact);
   state.counters["cap_ms"] = per_frame_ms(t.strain_cap);
+  state.counters["pass_ms"] = per_frame_ms(t.collision_pass);
+  state.counters["cloth_x"] =
+      benchmark::Counter(static_cast<double>(measures.max_cloth_crossings()), benchmark::Counter::kAvgThreads);
   state.counters["H_pct"] = benchmark::Counter(100 * measures.mean_h_penetration(), benchmark::Counter::kAvgThreads);
   state.counters["L_pct"] = benchmark::Counter(100 * measures.mean_l_penetration(), benchmark::Counter::kAvgThreads);
   state.counters["Lx_pct"] = benchmark::Counter(100 * measures.mean_l_crossing(), benchmark::Counter::kAvgThreads);
@@ -97,6 +104,7 @@ void BM_GeneratorFrame(benchmark::State& state) {
 // Iterations are fixed (frames of the walk to record); wall time, since two
 // threads run at once.
 BENCHMARK(BM_GeneratorFrame)
+    ->Args({500, 16, 7})
     ->Args({500, 16, 3})
     ->Iterations(30)
     ->Threads(1)
@@ -104,6 +112,7 @@ BENCHMARK(BM_GeneratorFrame)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_GeneratorFrame)
+    ->Args({250, 16, 7})
     ->Args({250, 16, 3})
     ->Iterations(20)
     ->Threads(1)
@@ -111,6 +120,7 @@ BENCHMARK(BM_GeneratorFrame)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_GeneratorFrame)
+    ->Args({125, 16, 7})
     ->Args({125, 16, 3})
     ->Iterations(8)
     ->Threads(1)
@@ -118,20 +128,21 @@ BENCHMARK(BM_GeneratorFrame)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_GeneratorFrame)
-    ->Args({225, 10, 3})
+    ->Args({225, 10, 7})
     ->Iterations(20)
     ->Threads(1)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_GeneratorFrame)
-    ->Args({225, 16, 3})
+    ->Args({225, 16, 7})
     ->Iterations(20)
     ->Threads(1)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
-// The cost of edge-edge contact: the 25 mm scene without body edges, and
-// without any.
+// The cost of edge-edge contact: the 25 mm scene with the pass and without
+// body edges, and without the pass: without body edges, and without any.
 BENCHMARK(BM_GeneratorFrame)
+    ->Args({250, 16, 5})
     ->Args({250, 16, 1})
     ->Args({250, 16, 0})
     ->Iterations(20)

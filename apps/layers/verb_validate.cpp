@@ -73,13 +73,14 @@ class FramesCsv {
  public:
   FramesCsv() {
     text_ << "sequence,frame,h_penetration_pct,l_penetration_pct,h_crossing_pct,l_crossing_pct,h_crossing_pairs,"
-             "l_crossing_pairs,body_self_crossing_pct,h_crossing_clear_pct,max_stretch_pct,l_collision_paper_pct,"
+             "l_crossing_pairs,cloth_crossing_pairs,body_self_crossing_pct,h_crossing_clear_pct,max_stretch_pct,l_"
+             "collision_paper_pct,"
              "l_collision_ours_pct\n";
   }
   void add(const std::string& id, std::int64_t frame, const sim::FrameMeasures& m, const EvalLCollision& l) {
     text_ << id << ',' << frame;
     for (double v : {m.h_penetration, m.l_penetration, m.h_crossing, m.l_crossing}) percent(v);
-    text_ << ',' << m.h_crossing_pairs << ',' << m.l_crossing_pairs;
+    text_ << ',' << m.h_crossing_pairs << ',' << m.l_crossing_pairs << ',' << m.cloth_crossing_pairs;
     for (double v : {m.body_self_crossing, m.h_crossing_clear, m.max_stretch, l.plain, l.ours}) percent(v);
     text_ << '\n';
   }
@@ -106,9 +107,9 @@ int check_physics(const std::string& path, const sim::ValidationConfig& limits, 
   sim::SequenceMeasures all;
   MeanOfFinite all_ours, all_plain;
   int over = 0;
-  std::printf("%-14s %6s %9s %9s %13s %12s %9s %9s %9s %9s %9s %9s %9s  %s\n", "sequence", "frames", "H-pen", "L-pen",
-              "L-coll(paper)", "L-coll(ours)", "H-x mean", "H-x max", "L-x mean", "L-x max", "body-self", "H-x clear",
-              "stretch", "verdict");
+  std::printf("%-14s %6s %9s %9s %13s %12s %9s %9s %9s %9s %8s %9s %9s %9s  %s\n", "sequence", "frames", "H-pen",
+              "L-pen", "L-coll(paper)", "L-coll(ours)", "H-x mean", "H-x max", "L-x mean", "L-x max", "cloth-x",
+              "body-self", "H-x clear", "stretch", "verdict");
   // Sequences are measured `threads` at a time (the Dataset serialises its
   // HDF5 reads) and reported in the dataset's order after each such batch.
   const std::vector<std::string> ids = dataset.ids();
@@ -144,11 +145,12 @@ int check_physics(const std::string& path, const sim::ValidationConfig& limits, 
     for (const std::string& v : violations) verdict += (verdict.empty() ? "" : "; ") + v;
     over += !violations.empty();
     std::printf(
-        "%-14s %6d %8.3f%% %8.3f%% %12.2f%% %11.2f%% %8.3f%% %8.3f%% %8.3f%% %8.3f%% %8.3f%% %8.3f%% %8.2f%%  %s\n",
+        "%-14s %6d %8.3f%% %8.3f%% %12.2f%% %11.2f%% %8.3f%% %8.3f%% %8.3f%% %8.3f%% %8lld %8.3f%% %8.3f%% %8.2f%%  "
+        "%s\n",
         id.c_str(), m.frames(), 100 * m.mean_h_penetration(), 100 * m.mean_l_penetration(), 100 * plain.mean(),
         100 * ours.mean(), 100 * m.mean_h_crossing(), 100 * m.max_h_crossing(), 100 * m.mean_l_crossing(),
-        100 * m.max_l_crossing(), 100 * m.mean_body_self_crossing(), 100 * m.mean_h_crossing_clear(),
-        100 * m.max_stretch(), verdict.c_str());
+        100 * m.max_l_crossing(), static_cast<long long>(m.max_cloth_crossings()), 100 * m.mean_body_self_crossing(),
+        100 * m.mean_h_crossing_clear(), 100 * m.max_stretch(), verdict.c_str());
     // A sequence without a measurable frame is left out of the spread
     // (SequenceMeasures reads 0 there).
     const auto measured = [&m](double v) { return m.measured() > 0 ? v : std::nan(""); };
@@ -169,16 +171,17 @@ int check_physics(const std::string& path, const sim::ValidationConfig& limits, 
       "%s: %zu sequences, %d frames: mean H-penetration %.3f%%, mean L-penetration %.3f%% (generator rule, reach %.0f "
       "mm), mean L-collision %.2f%% (evaluation, paper's rule) and %.2f%% (evaluation, ours: open-edge rule), "
       "H-crossing mean %.3f%% worst frame %.3f%%, L-crossing mean "
-      "%.3f%% worst frame %.3f%%, body faces crossing the body %.3f%% mean, H-crossing clear of them mean %.3f%% "
+      "%.3f%% worst frame %.3f%%, crossing face pairs between garments (all pairs, and self) worst frame %lld, body "
+      "faces crossing the body %.3f%% mean, H-crossing clear of them mean %.3f%% "
       "worst frame %.3f%%, max stretch %.2f%%, %lld non-finite values; %d over the thresholds (H %.2f%%, L "
       "%.2f%%, H-crossing %.2f%%, L-crossing %.2f%%, stretch %.0f%%)\n",
       path.c_str(), ids.size(), all.frames(), 100 * all.mean_h_penetration(), 100 * all.mean_l_penetration(),
       1000 * limits.l_reach, 100 * all_plain.mean(), 100 * all_ours.mean(), 100 * all.mean_h_crossing(),
       100 * all.max_h_crossing(), 100 * all.mean_l_crossing(), 100 * all.max_l_crossing(),
-      100 * all.mean_body_self_crossing(), 100 * all.mean_h_crossing_clear(), 100 * all.max_h_crossing_clear(),
-      100 * all.max_stretch(), static_cast<long long>(all.nonfinite()), over, 100 * limits.max_h_penetration,
-      100 * limits.max_l_penetration, 100 * limits.max_h_crossing, 100 * limits.max_l_crossing,
-      100 * limits.max_stretch);
+      static_cast<long long>(all.max_cloth_crossings()), 100 * all.mean_body_self_crossing(),
+      100 * all.mean_h_crossing_clear(), 100 * all.max_h_crossing_clear(), 100 * all.max_stretch(),
+      static_cast<long long>(all.nonfinite()), over, 100 * limits.max_h_penetration, 100 * limits.max_l_penetration,
+      100 * limits.max_h_crossing, 100 * limits.max_l_crossing, 100 * limits.max_stretch);
   if (frames) {
     write_new_text_file(frames_csv, frames->text(), kFramesCsvExists);
     std::printf("per-frame measures: %s\n", frames_csv.c_str());

@@ -1,6 +1,7 @@
 // Stored frames for the validation measures (see stored_measures.h).
 #include "layers/generate/stored_measures.h"
 
+#include "layers/generate/simulate.h"
 #include "layers/geometry/topology.h"
 
 namespace layers::generate {
@@ -27,6 +28,7 @@ void for_each_stored_frame(const data::SequenceData& seq,
     m.edges = geometry::unique_edges(m.faces);
     m.rest_lengths = geometry::edge_lengths(frame_points(g.rest, 0, g.n_vertices()), m.edges);
     m.outer = g.layer == 1;
+    m.self_contact = wants_self_contact(g.type);
     f.garments.push_back(std::move(m));
   }
   for (std::int64_t t = 0; t < seq.n_frames; ++t) {

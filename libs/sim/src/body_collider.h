@@ -60,6 +60,12 @@ class BodyCollider {
   // Topology and pose; InputError (naming "body") for bad faces or values.
   void reset(const geometry::TriMesh& body);
   bool empty() const { return topology_.num_faces() == 0; }
+  // This substep's sweep (after begin_substep): the pose at its start and
+  // at its end, the faces and the unique edges.
+  const Vec3s& pose_before() const { return previous_; }
+  const Vec3s& pose_now() const { return current_; }
+  const ContactTopology& topology() const { return topology_; }
+  const geometry::Edges& edges() const { return edges_; }
   int num_vertices() const { return static_cast<int>(start_.size()); }
 
   // Poses: the frame starts at the current pose and ends at `next` (same

@@ -79,11 +79,11 @@ class EdgeContact {
 //    corrections and friction mu. Precisely: each vertex keeps the side it
 //    was on at the start of the substep (outside, resp. inside, when it was
 //    exactly on the surface), so layers that start apart never cross and a
-//    hem that legitimately tucks under is not pushed through a sheet; an
-//    open boundary (a hem, a cuff) is a thin rod to keep `thickness` from.
-//    Layers that start crossed are not untangled: the warm-up must begin
-//    from separated garments. Then edge-edge proximity (EdgeContact) at
-//    `edge_thickness` (0: off).
+//    hem that legitimately tucks under is not pushed through a sheet
+//    (without the collision pass, a vertex found less than a thickness on
+//    the wrong side is taken back to the preferred side); an open boundary (a hem, a cuff) is a thin rod to keep
+//    `thickness` from. Layers that start crossed are not untangled: the warm-up must begin from separated garments.
+//    Then edge-edge proximity (EdgeContact) at `edge_thickness` (0: off).
 //  - support: an outer vertex touching an inner garment at the start of a
 //    frame is kept, in the outer garment's elastic solve, outside the plane
 //    of the inner face it touches (a one-sided attachment like the body
@@ -92,6 +92,9 @@ class EdgeContact {
 //    garment carries the outer one's weight.
 class LayerContact {
  public:
+  // On when the collision pass runs (it guarantees the side a vertex
+  // starts a substep on): the side is then never overridden.
+  void set_guarded(bool on) { guarded_ = on; }
   // Per vertex of an outer cloth.
   struct Memory {
     std::vector<std::uint8_t> touching;  // within 1.5 x thickness of an inner garment after the last substep
@@ -140,6 +143,7 @@ class LayerContact {
  private:
   SpatialHash grid_;
   EdgeContact edges_;
+  bool guarded_ = false;
   std::vector<double> inner_inv_mass_;
   Vec3s no_push_;
 };

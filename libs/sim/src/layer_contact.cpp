@@ -21,7 +21,8 @@ namespace {
 void points_against_surface(Cloth::State& points, const std::vector<double>& point_inv_mass, const Cloth& surface,
                             Cloth::State& surface_state, const std::vector<double>& surface_inv_mass,
                             const SpatialHash& grid, double preferred, double thickness, double mu, int surface_index,
-                            LayerContact::Memory& memory, bool record, Vec3s& point_push, Vec3s& surface_push) {
+                            LayerContact::Memory& memory, bool record, bool guarded, Vec3s& point_push,
+                            Vec3s& surface_push) {
   const double radius = grid.cell();
   const ContactTopology& topology = surface.topology();
   for (std::size_t i = 0; i < points.x.size(); ++i) {
@@ -48,11 +49,13 @@ void points_against_surface(Cloth::State& points, const std::vector<double>& poi
     if (nearest < 0 || !closest_around(topology, surface_state.x, nearest, p, hit)) continue;
     const double before = side_offset(topology, surface_state.x_start, hit, points.x_start[i]);
     double side = before > 0 ? 1.0 : before < 0 ? -1.0 : preferred;
-    // A vertex found less than a thickness on the wrong side of the surface
-    // it faces (e.g. after the nearest face switched to another sheet of a
-    // fold, or a shallow crossing in an earlier substep) is taken back to
-    // the preferred side rather than kept crossed.
-    if (side != preferred && hit.facing && -preferred * hit.offset < thickness) side = preferred;
+    // Without the collision pass, a vertex found less than a thickness on
+    // the wrong side of the surface it faces (e.g. after the nearest face
+    // switched to another sheet of a fold, or a shallow crossing in an
+    // earlier substep) is taken back to the preferred side rather than kept
+    // crossed. With the pass (`guarded`) nothing crosses, so the side at the
+    // start of the substep is the true one and is kept.
+    if (!guarded && side != preferred && hit.facing && -preferred * hit.offset < thickness) side = preferred;
     if (record && side == preferred && hit.facing && side * hit.offset < 1.5 * thickness) {
       memory.touching[i] = 1;
       memory.inner[i] = surface_index;
@@ -94,10 +97,10 @@ void LayerContact::collide(int inner_index, const Cloth& inner, Cloth::State& in
   }
   grid_.build(inner_state.x, 1.5 * thickness + inner.topology().reach());
   points_against_surface(outer_state, outer_state.inv_mass, inner, inner_state, inner_inv_mass_, grid_, +1.0, thickness,
-                         mu, inner_index, outer_memory, true, outer_push, inner_push);
+                         mu, inner_index, outer_memory, true, guarded_, outer_push, inner_push);
   grid_.build(outer_state.x, 1.5 * thickness + outer.topology().reach());
   points_against_surface(inner_state, inner_inv_mass_, outer, outer_state, outer_state.inv_mass, grid_, -1.0, thickness,
-                         mu, outer_index, inner_memory, false, inner_push, outer_push);
+                         mu, outer_index, inner_memory, false, guarded_, inner_push, outer_push);
   if (edge_thickness > 0) {
     const EdgeContact::Side in{&inner.edges(), &inner_state.x_start, &inner_state.x,
                                nullptr,        &inner_inv_mass_,     &inner_push};
@@ -116,7 +119,7 @@ void LayerContact::settle_outer(int inner_index, const Cloth& inner, Cloth::Stat
   no_push_.assign(inner_state.x.size(), Vec3::Zero());
   grid_.build(inner_state.x, 1.5 * thickness + inner.topology().reach());
   points_against_surface(outer_state, outer_state.inv_mass, inner, inner_state, inner_inv_mass_, grid_, +1.0, thickness,
-                         mu, inner_index, outer_memory, false, outer_push, no_push_);
+                         mu, inner_index, outer_memory, false, guarded_, outer_push, no_push_);
 }
 
 void LayerContact::make_supports(const Cloth::State& outer, Memory& memory) {

@@ -3,32 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ccd.h"
 #include "cloth_contact.h"
 
 namespace layers::sim::detail {
-
-namespace {
-
-// Closest points p0 + s (p1 - p0) and q0 + t (q1 - q0) of two segments
-// (s, t in [0, 1]).
-void closest_on_segments(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1, double& s, double& t) {
-  const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
-  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-  const double c = d1.dot(r), b = d1.dot(d2);
-  const double denom = a * e - b * b;
-  // Parallel (or degenerate) segments: any s works; start from 0.
-  s = (denom > 1e-18 * a * e && a > 0) ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
-  t = e > 0 ? (b * s + f) / e : 0.0;
-  if (t < 0) {
-    t = 0;
-    s = a > 0 ? std::clamp(-c / a, 0.0, 1.0) : 0.0;
-  } else if (t > 1) {
-    t = 1;
-    s = a > 0 ? std::clamp((b - c) / a, 0.0, 1.0) : 0.0;
-  }
-}
-
-}  // namespace
 
 void EdgeContact::file(const Side& inner, double thickness, double cell) {
   cells_.build(*inner.edges, inner.now(), thickness, std::max(cell, 1e-6));
@@ -62,7 +40,7 @@ double EdgeContact::collide(const Side& inner, const Side& outer, double thickne
       const Vec3 ihi = xi[c].cwiseMax(xi[d]).array() + thickness;
       if ((lo.array() > ihi.array()).any() || (hi.array() < ilo.array()).any()) return;
       double s, t;
-      closest_on_segments(xo[a], xo[b], xi[c], xi[d], s, t);
+      segment_segment_distance2(xo[a], xo[b], xi[c], xi[d], &s, &t);
       const Vec3 p = xo[a] + s * (xo[b] - xo[a]), q = xi[c] + t * (xi[d] - xi[c]);
       const Vec3 delta = p - q;
       if (delta.squaredNorm() >= thickness * thickness) return;

@@ -180,6 +180,17 @@ std::int64_t count_nonfinite(const geometry::Points& points) {
   return static_cast<std::int64_t>((!points.array().isFinite()).count());
 }
 
+std::int64_t cloth_crossings(const std::vector<MeasuredGarment>& garments) {
+  std::int64_t pairs = 0;
+  for (std::size_t a = 0; a < garments.size(); ++a) {
+    const geometry::FaceTree tree({garments[a].positions, garments[a].faces});
+    if (garments[a].self_contact) pairs += geometry::self_crossings(tree).pairs;
+    for (std::size_t b = 0; b < a; ++b)
+      pairs += geometry::crossings({garments[b].positions, garments[b].faces}, tree).pairs;
+  }
+  return pairs;
+}
+
 FrameMeasures measure_frame(const geometry::TriMesh& body, const std::vector<MeasuredGarment>& garments, double l_reach,
                             bool body_self) {
   FrameMeasures out;
@@ -222,6 +233,7 @@ FrameMeasures measure_frame(const geometry::TriMesh& body, const std::vector<Mea
     out.l_crossing = l.a_vertex_share();
     out.l_crossing_pairs = l.pairs;
   }
+  out.cloth_crossing_pairs = cloth_crossings(garments);
   for (const MeasuredGarment& g : garments) {
     out.max_stretch = std::max(out.max_stretch, max_edge_stretch(g.positions, g.edges, g.rest_lengths));
   }
@@ -243,7 +255,8 @@ FrameMeasures measure_frame(const Solver& solver) {
   std::vector<MeasuredGarment> garments;
   for (int i = 0; i < solver.num_cloths(); ++i) {
     const Cloth& c = solver.cloth(i);
-    garments.push_back({c.positions(), c.faces(), c.edges(), c.rest_lengths(), top != bottom && c.layer() == top});
+    garments.push_back(
+        {c.positions(), c.faces(), c.edges(), c.rest_lengths(), top != bottom && c.layer() == top, c.self_contact()});
   }
   return measure_frame(solver.body(), garments, solver.config().validation.l_reach, false);
 }
@@ -260,6 +273,7 @@ void SequenceMeasures::add(const FrameMeasures& f) {
   sum_lx_ += f.l_crossing;
   max_h_crossing_ = std::max(max_h_crossing_, f.h_crossing);
   max_l_crossing_ = std::max(max_l_crossing_, f.l_crossing);
+  max_cloth_crossings_ = std::max(max_cloth_crossings_, f.cloth_crossing_pairs);
   if (std::isnan(f.body_self_crossing)) return;
   ++measured_self_;
   sum_self_ += f.body_self_crossing;
@@ -292,6 +306,10 @@ std::vector<std::string> SequenceMeasures::violations(const ValidationConfig& li
   }
   if (max_l_crossing_ > limits.max_l_crossing) {
     out.push_back("L-crossing " + percent(max_l_crossing_) + " in a frame exceeds " + percent(limits.max_l_crossing));
+  }
+  if (max_cloth_crossings_ > limits.max_cloth_crossings) {
+    out.push_back(std::to_string(max_cloth_crossings_) + " crossing face pairs between garments in a frame exceed " +
+                  std::to_string(limits.max_cloth_crossings));
   }
   if (max_stretch_ > limits.max_stretch) {
     out.push_back("maximum edge stretch " + percent(max_stretch_) + " exceeds " + percent(limits.max_stretch));

@@ -13,6 +13,7 @@
 
 #include "body_collider.h"
 #include "cloth_contact.h"
+#include "collision_pass.h"
 #include "fold_limit.h"
 #include "layers/core/error.h"
 #include "projective.h"
@@ -39,6 +40,11 @@ struct Solver::Impl {
   std::vector<double> body_push;                   // largest body push per cloth in the substep
   std::vector<std::vector<std::uint8_t>> claimed;  // per cloth: attachment aimed this iteration
   std::vector<std::uint8_t> held;                  // scratch: vertices touching the body or an inner layer
+  detail::CollisionPass pass;
+  std::vector<Cloth::State*> states;                // per cloth, for the collision pass
+  std::vector<std::vector<std::uint8_t>> reverted;  // per cloth: put back by the collision pass this substep
+  std::vector<Vec3s> before_pass, before_cap;       // per cloth: positions before the pass and before its cap
+  std::vector<std::vector<std::uint8_t>> moved;     // per cloth: moved by the cap after the pass
 
   void add(int n) {
     elastic.push_back(std::make_unique<detail::ProjectiveSystem>());
@@ -50,6 +56,10 @@ struct Solver::Impl {
     layer_memory.back().resize(n);
     for (auto* v : {&forces, &rhs, &reactions, &next_reactions, &push}) v->emplace_back(n, Vec3::Zero());
     claimed.emplace_back(n, 0);
+    reverted.emplace_back(n, 0);
+    before_pass.emplace_back();
+    before_cap.emplace_back();
+    moved.emplace_back(n, 0);
   }
 };
 
@@ -61,6 +71,8 @@ constexpr double kPi = 3.14159265358979323846;
 // Sweeps of the fold cap per substep: each fold is corrected again in the
 // next substep, so a few suffice.
 constexpr int kFoldSweeps = 4;
+// Rounds of (strain cap, collision pass again) after the collision pass.
+constexpr int kCapAfterPass = 3;
 
 double seconds_since(Clock::time_point& t) {
   const Clock::time_point now = Clock::now();
@@ -239,6 +251,7 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
     // outer layers once more against the inner ones (one-way), so that a
     // body push on an inner garment cannot leave the layers crossed.
     for (auto& lm : m.layer_memory) lm.forget_touching();
+    m.layers.set_guarded(c.collision_pass);
     for (Vec3s& p : m.push) std::fill(p.begin(), p.end(), Vec3::Zero());
     for_each_layer_pair([&](int a, int b, double mu) {
       m.layers.collide(a, cloths_[a], cloths_[a].state_, m.layer_memory[a], b, cloths_[b], cloths_[b].state_,
@@ -293,6 +306,56 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
     }
     timings_.strain_cap += seconds_since(t);
 
+    // The continuous-collision safety pass, after every position edit.
+    for (auto& r : m.reverted) std::fill(r.begin(), r.end(), 0);
+    if (c.collision_pass) {
+      m.states.clear();
+      for (Cloth& cloth : cloths_) m.states.push_back(&cloth.state_);
+      detail::SweptBody swept;
+      if (body) {
+        swept.start = &m.body.pose_before();
+        swept.end = &m.body.pose_now();
+        swept.faces = &m.body.topology().faces;
+        swept.edges = &m.body.edges();
+      }
+      for (std::size_t ci = 0; ci < cloths_.size(); ++ci) m.before_pass[ci] = cloths_[ci].state_.x;
+      const detail::CollisionPassStats ps =
+          m.pass.run(cloths_, m.states, swept, c.collision_gap, c.collision_rounds, m.push, m.reverted);
+      timings_.pass_pairs += ps.pairs;
+      timings_.pass_reverted += ps.reverted;
+      long yielded = ps.yielded;
+      // The pass's pushes can stretch edges next to the vertices it moved:
+      // the strain cap once more with those vertices held, then the pass
+      // again on what the cap moved (kCapAfterPass times at most).
+      bool again = c.max_strain > 0 && ps.pairs > 0;
+      for (int round = 0; again && round < kCapAfterPass; ++round) {
+        again = false;
+        for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
+          Cloth::State& s = cloths_[ci].state_;
+          m.before_cap[ci] = s.x;
+          m.held.assign(s.x.size(), 0);
+          for (std::size_t i = 0; i < s.x.size(); ++i) m.held[i] = m.reverted[ci][i] || s.x[i] != m.before_pass[ci][i];
+          m.limiters[ci].apply(cloths_[ci], s, c.max_strain, c.strain_sweeps, &m.held);
+          m.moved[ci].assign(s.x.size(), 0);
+          for (std::size_t i = 0; i < s.x.size(); ++i) {
+            if (s.x[i] == m.before_cap[ci][i]) continue;
+            m.moved[ci][i] = 1;
+            again = true;
+          }
+          m.before_pass[ci] = s.x;
+        }
+        if (!again) break;
+        const detail::CollisionPassStats more =
+            m.pass.run(cloths_, m.states, swept, c.collision_gap, c.collision_rounds, m.push, m.reverted, &m.moved);
+        timings_.pass_pairs += more.pairs;
+        timings_.pass_reverted += more.reverted;
+        yielded = more.yielded;
+        again = more.pairs > 0;
+      }
+      timings_.pass_yielded += yielded;
+    }
+    timings_.collision_pass += seconds_since(t);
+
     // Velocities from the position change, except that cloth-cloth pushes
     // move positions without adding velocity: they only remove the part of
     // the velocity that approached the contact (inelastic). Otherwise an
@@ -302,7 +365,7 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
       Cloth::State& s = cloths_[ci].state_;
       const Vec3s& push = m.push[ci];
       for (std::size_t i = 0; i < s.x.size(); ++i) {
-        if (s.inv_mass[i] == 0.0) {
+        if (s.inv_mass[i] == 0.0 || m.reverted[ci][i]) {
           s.v[i] = Vec3::Zero();
           continue;
         }

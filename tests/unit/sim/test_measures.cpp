@@ -206,6 +206,41 @@ TEST(Measures, CrossingsOfAFrame) {
   EXPECT_TRUE(SequenceMeasures().violations(limits).empty());
 }
 
+TEST(Measures, ClothCrossingsCountEveryPairOfGarmentsAndSelfWhereUsed) {
+  // Two sheets of the same layer (a t-shirt and trousers, say), the second
+  // tilted through the first; a third sheet folded through itself.
+  const geometry::TriMesh a = test::grid(V3(0, 0, 0), V3(0, 0, 0.3), V3(0.3, 0, 0), 6, 6);
+  geometry::TriMesh b = test::grid(V3(0.02, 0.01, 0.02), V3(0, 0, 0.25), V3(0.25, 0, 0), 5, 5);
+  const auto sheet = [](const geometry::TriMesh& m, bool self) {
+    return MeasuredGarment{m.vertices, m.faces, geometry::Edges(0, 2), Eigen::VectorXd(0), false, self};
+  };
+  EXPECT_EQ(cloth_crossings({sheet(a, false), sheet(b, false)}), 0);
+  b.vertices(14, 1) = -0.02f;  // an interior vertex pushed through the other sheet
+  const std::int64_t between = cloth_crossings({sheet(a, false), sheet(b, false)});
+  EXPECT_GT(between, 0);
+  // A sheet whose last row of faces is folded back down through its first
+  // row: counted only when the garment has self-contact.
+  geometry::TriMesh folded = test::grid(V3(0, 0, 0), V3(0, 0, 0.3), V3(0.3, 0, 0), 6, 6);
+  for (int i = 0; i < folded.num_vertices(); ++i) {
+    if (folded.vertices(i, 2) > 0.27f) {
+      folded.vertices(i, 2) = 0.02f;
+      folded.vertices(i, 1) = 0.03f;
+    }
+    if (folded.vertices(i, 2) > 0.22f && folded.vertices(i, 2) < 0.27f) folded.vertices(i, 1) = -0.03f;
+  }
+  EXPECT_EQ(cloth_crossings({sheet(folded, false)}), 0);
+  EXPECT_GT(cloth_crossings({sheet(folded, true)}), 0);
+  // The frame's count and the sequence's worst frame, against the rule.
+  const FrameMeasures f = measure_frame(floor_at(-1), {sheet(a, false), sheet(b, false)});
+  EXPECT_EQ(f.cloth_crossing_pairs, between);
+  SequenceMeasures seq;
+  seq.add(f);
+  EXPECT_EQ(seq.max_cloth_crossings(), between);
+  const auto v = seq.violations(ValidationConfig{});
+  ASSERT_FALSE(v.empty());
+  EXPECT_EQ(v.back(), std::to_string(between) + " crossing face pairs between garments in a frame exceed 0");
+}
+
 TEST(Measures, FrameOfASolverUsesTheTopLayerAsOuter) {
   Solver s;
   s.set_body(floor_at(0));

@@ -92,7 +92,7 @@ struct MeshCrossings {
 
 MeshCrossings crossings(const TriMesh& a, const FaceTree& b);
 // Calls visit(face of a, face of b) for every crossing pair, faces of a in
-// order (what crossings() counts; the simulator untangles them).
+// order (what crossings() counts).
 void visit_crossings(const TriMesh& a, const FaceTree& b, const std::function<void(int, int)>& visit);
 inline MeshCrossings crossings(const TriMesh& a, const TriMesh& b) { return crossings(a, FaceTree(b)); }
 

@@ -19,6 +19,7 @@ struct ValidationConfig {
   double l_reach = 0.03;             // only outer vertices this close to the inner layer can be behind it (m)
   double max_h_crossing = 1.0;       // largest share, in any frame, of garment vertices on faces through the body
   double max_l_crossing = 1.0;       // largest share, in any frame, of outer vertices on faces through the inner layer
+  int max_cloth_crossings = 0;       // most crossing face pairs between garments (all pairs, and self) in any frame
 
   template <class V>
   void visit(V& v) {
@@ -36,6 +37,9 @@ struct ValidationConfig {
     v("max_l_crossing", max_l_crossing,
       cfg::opt().range(0, 1).help(
           "largest share, in any frame, of outer vertices on faces passing through an inner garment"));
+    v("max_cloth_crossings", max_cloth_crossings,
+      cfg::opt().min(0).help("most crossing face pairs, in any frame, between two garments or within a garment with "
+                             "self-contact (the collision pass keeps them at 0)"));
   }
 };
 
@@ -51,12 +55,15 @@ struct SolverConfig {
   double layer_edge_thickness = 0.006;              // m kept between inner and outer edges (0: no edge-edge contact)
   double body_edge_thickness = 0.002;               // m kept between garment and body edges (0: off)
   double self_thickness = 0.004;                    // m kept between two parts of one garment
-  double max_strain = 0.08;      // strain limiting: edges are capped at (1 + max_strain) x rest (0: off)
-  int strain_sweeps = 1000;      // most Gauss-Seidel sweeps of the cap after the contacts (stops when none moves)
-  double max_fold = 0;           // degrees between neighbouring faces' normals a hinge may fold to (0: off)
-  double support_stiffness = 1;  // body-contact support weight / the vertex's own stiffness (docs/sim.md)
-  bool self_contact = true;      // master switch; each cloth also opts in (ClothOptions)
-  double wind_pressure = 0.004;  // Pa per unit of Blender wind strength (docs/sim.md)
+  double max_strain = 0.08;       // strain limiting: edges are capped at (1 + max_strain) x rest (0: off)
+  int strain_sweeps = 1000;       // most Gauss-Seidel sweeps of the cap after the contacts (stops when none moves)
+  double max_fold = 0;            // degrees between neighbouring faces' normals a hinge may fold to (0: off)
+  double support_stiffness = 1;   // body-contact support weight / the vertex's own stiffness (docs/sim.md)
+  bool self_contact = true;       // master switch; each cloth also opts in (ClothOptions)
+  double wind_pressure = 0.004;   // Pa per unit of Blender wind strength (docs/sim.md)
+  bool collision_pass = true;     // the continuous-collision safety pass at the end of every substep
+  double collision_gap = 0.0005;  // m: the pass keeps every pair of features at least about this far apart
+  int collision_rounds = 16;      // rounds of corrections before the fail-safe puts vertices back
   ValidationConfig validation;
 
   template <class V>
@@ -86,6 +93,13 @@ struct SolverConfig {
                                     "stiffness (0: projection only)"));
     v("self_contact", self_contact, cfg::opt().help("allow self-contact for cloths that ask for it"));
     v("wind_pressure", wind_pressure, cfg::opt().min(0).help("pressure (Pa) per unit of wind strength"));
+    v("collision_pass", collision_pass,
+      cfg::opt().help("continuous-collision safety pass at the end of every substep: no cloth passes through "
+                      "another cloth during a substep (docs/sim.md)"));
+    v("collision_gap", collision_gap,
+      cfg::opt().range(1e-6, 0.01).help("least distance the collision pass keeps between features (m)"));
+    v("collision_rounds", collision_rounds,
+      cfg::opt().range(0, 100).help("rounds of collision-pass corrections before its fail-safe"));
     v("validation", validation);
   }
 };

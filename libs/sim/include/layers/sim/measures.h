@@ -20,6 +20,10 @@
 //    outer vertices on outer faces that pass through an inner face, with
 //    the number of crossing face pairs. No heuristic: contact without
 //    crossing never counts, a crossing is never missed.
+//  - cloth crossings (exact): crossing face pairs between any two garments
+//    (inner and outer, and garments of the same layer) and within each
+//    garment that has self-contact; the collision pass keeps them at zero
+//    (docs/sim.md "Contact").
 //  - body self-crossing: share of body faces that pass through another
 //    body face (geometry::self_crossings; a posed arm sunk into the torso).
 //    A garment laid over such a seam must cross the body there, so
@@ -28,8 +32,9 @@
 //    for reading the H-crossing, never a threshold: thresholds apply to
 //    the H-crossing itself.
 // A sequence passes when the mean H- and L-penetration over its frames,
-// the largest H- and L-crossing of any frame and its maximum stretch stay
-// under the ValidationConfig thresholds and no value is non-finite.
+// the largest H- and L-crossing and cloth crossings of any frame and its
+// maximum stretch stay under the ValidationConfig thresholds and no value
+// is non-finite.
 #pragma once
 
 #include <cstdint>
@@ -65,6 +70,11 @@ double max_edge_stretch(const geometry::Points& positions, const geometry::Edges
                         const Eigen::VectorXd& rest_lengths);
 std::int64_t count_nonfinite(const geometry::Points& points);
 
+struct MeasuredGarment;
+// Crossing face pairs between any two of `garments` and within each that
+// has self-contact (positions as they are; non-finite faces cross nothing).
+std::int64_t cloth_crossings(const std::vector<MeasuredGarment>& garments);
+
 struct FrameMeasures {
   double h_penetration = 0;  // NaN when not measurable (non-finite positions)
   double l_penetration = 0;  // 0 with a single layer; NaN when not measurable
@@ -73,8 +83,9 @@ struct FrameMeasures {
   double h_crossing = 0;  // NaN when not measurable
   double l_crossing = 0;  // 0 with a single layer; NaN when not measurable
   std::int64_t h_crossing_pairs = 0, l_crossing_pairs = 0;
-  double body_self_crossing = 0;  // share of body faces; NaN when not measured
-  double h_crossing_clear = 0;    // NaN when not measured
+  std::int64_t cloth_crossing_pairs = 0;  // any two garments, and self where the garment has self-contact
+  double body_self_crossing = 0;          // share of body faces; NaN when not measured
+  double h_crossing_clear = 0;            // NaN when not measured
 };
 
 // One garment as measured: its positions, its edges with rest lengths and
@@ -85,6 +96,7 @@ struct MeasuredGarment {
   geometry::Edges edges;
   Eigen::VectorXd rest_lengths;
   bool outer = false;
+  bool self_contact = false;  // its own crossings count among the cloth crossings
 };
 
 // `body_self`: also measure the body's own crossings and the H-crossing
@@ -115,6 +127,7 @@ class SequenceMeasures {
   double mean_h_crossing_clear() const;
   double max_h_crossing_clear() const { return max_h_crossing_clear_; }
   double max_stretch() const { return max_stretch_; }
+  std::int64_t max_cloth_crossings() const { return max_cloth_crossings_; }  // worst frame's pairs
   std::int64_t nonfinite() const { return nonfinite_; }
   // Empty when the sequence passes; else one sentence per violated threshold
   // (e.g. "mean H-penetration 0.81% exceeds 0.50%").
@@ -126,7 +139,7 @@ class SequenceMeasures {
   double sum_hx_ = 0, sum_lx_ = 0, max_h_crossing_ = 0, max_l_crossing_ = 0;
   int measured_self_ = 0;
   double sum_self_ = 0, sum_hx_clear_ = 0, max_h_crossing_clear_ = 0;
-  std::int64_t nonfinite_ = 0;
+  std::int64_t nonfinite_ = 0, max_cloth_crossings_ = 0;
 };
 
 }  // namespace layers::sim

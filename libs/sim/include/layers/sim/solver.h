@@ -8,8 +8,11 @@
 // and inner garments support what rests on them (attachments fixed per
 // frame) -- caps edge strain, then projects the contacts: inner/outer
 // layers (two-way), self-contact, the body (kinematic), and the outer layers
-// once more against the inner ones; velocities follow from the position
-// change (cloth-cloth pushes add none). The body is a triangle mesh
+// once more against the inner ones, caps strain once more, and ends with
+// the continuous-collision safety pass (collision_pass.h: no cloth passes
+// through another, or through itself where it has self-contact, during the
+// substep; velocities follow from the position change (cloth-cloth pushes
+// and the pass's corrections add none). The body is a triangle mesh
 // whose vertices move linearly from one frame's pose to the next across the
 // substeps, so fast limbs advance only a fraction of a frame per substep.
 // Everything runs on one thread in a fixed order: the same inputs give
@@ -39,10 +42,14 @@ struct StepTimings {
   double elastic = 0;        // supports and refactorisation, stretch/shear/bending iterations, first strain cap
   double layer_contact = 0;  // inner/outer garments
   double self_contact = 0;
-  double body_contact = 0;  // including the per-substep body interpolation and grid
-  double strain_cap = 0;    // the strain cap after the contacts
-  long cap_sweeps = 0;      // sweeps it ran (all cloths and substeps)
-  long cap_unfinished = 0;  // cap calls that used all strain_sweeps while still correcting edges
+  double body_contact = 0;    // including the per-substep body interpolation and grid
+  double strain_cap = 0;      // the strain cap after the contacts
+  long cap_sweeps = 0;        // sweeps it ran (all cloths and substeps)
+  long cap_unfinished = 0;    // cap calls that used all strain_sweeps while still correcting edges
+  double collision_pass = 0;  // the continuous-collision safety pass
+  long pass_pairs = 0;        // colliding pairs it met (first round of each substep)
+  long pass_reverted = 0;     // cloth vertices its fail-safe put back at the substep's start
+  long pass_yielded = 0;      // body pairs the body swept through cloth that could not move
   double total = 0;
   long frames = 0;
 };

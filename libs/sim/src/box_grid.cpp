@@ -1,0 +1,61 @@
+// BoxGrid::build (see box_grid.h): two passes of a counting sort over the
+// cells each box overlaps.
+#include "box_grid.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace layers::sim::detail {
+
+bool BoxGrid::cells_of(const Box& b, std::int64_t lo[3], std::int64_t hi[3]) const {
+  for (int k = 0; k < 3; ++k) {
+    const double a = std::floor(b.lo[k] * inv_cell_), z = std::floor(b.hi[k] * inv_cell_);
+    if (!(z - a < kMaxSpan)) return false;
+    lo[k] = static_cast<std::int64_t>(a);
+    hi[k] = static_cast<std::int64_t>(z);
+  }
+  return true;
+}
+
+void BoxGrid::build(const std::vector<Box>& boxes, double cell) {
+  boxes_ = &boxes;
+  inv_cell_ = 1.0 / cell;
+  std::uint64_t size = 64;
+  while (size < 4 * boxes.size()) size *= 2;
+  mask_ = size - 1;
+  start_.assign(size + 2, 0);
+  wide_.clear();
+  filed_.assign(boxes.size(), 0);
+  if (seen_.size() != boxes.size()) {
+    seen_.assign(boxes.size(), 0u);
+    stamp_ = 0;
+  }
+  std::int64_t lo[3], hi[3];
+  const auto each_slot = [&](const Box& b, auto&& f) {
+    for (std::int64_t ix = lo[0]; ix <= hi[0]; ++ix)
+      for (std::int64_t iy = lo[1]; iy <= hi[1]; ++iy)
+        for (std::int64_t iz = lo[2]; iz <= hi[2]; ++iz) f(cell_slot(ix, iy, iz, mask_));
+    (void)b;
+  };
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    const Box& b = boxes[i];
+    if (!b.lo.allFinite() || !b.hi.allFinite()) continue;
+    filed_[i] = 1;
+    if (!cells_of(b, lo, hi)) {
+      wide_.push_back(static_cast<int>(i));
+      continue;
+    }
+    each_slot(b, [&](std::uint32_t s) { ++start_[s + 1]; });
+  }
+  for (std::uint64_t s = 0; s <= size; ++s) start_[s + 1] += start_[s];
+  entries_.resize(start_[size]);
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    const Box& b = boxes[i];
+    if (!filed_[i] || !cells_of(b, lo, hi)) continue;
+    each_slot(b, [&](std::uint32_t s) { entries_[start_[s]++] = static_cast<int>(i); });
+  }
+  for (std::uint64_t s = size; s > 0; --s) start_[s] = start_[s - 1];
+  start_[0] = 0;
+}
+
+}  // namespace layers::sim::detail

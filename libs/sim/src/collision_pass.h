@@ -1,0 +1,138 @@
+// collision_pass.h (internal) -- the continuous-collision safety pass that
+// ends every substep, after every position edit (docs/sim.md "Contact").
+//
+// Every vertex moves on a straight line from where it was at the start of
+// the substep (Cloth::State::x_start; the body's pose of the previous
+// substep) to where the substep left it. The pass finds every
+// vertex-triangle and edge-edge pair whose features come closer than the
+// pass's gap during that motion (additive CCD, ccd.h), between:
+//  - any two different cloths (inner and outer layers, and garments of the
+//    same layer such as a t-shirt and trousers);
+//  - a cloth and itself, for cloths with self-contact (pairs that share a
+//    vertex left out);
+//  - a cloth and the body, whose triangles sweep with it; pairs already
+//    crossed at the start of the substep (a cloth vertex behind a body
+//    face's plane; the cloth on the inner side of a body vertex or edge,
+//    by the body's vertex normals) are left to the proximity passes.
+// Broad phase: swept boxes of the cloths' vertices, edges and faces, grown
+// by half the gap, in BoxGrids rebuilt for each detection; the body's
+// features that sweep through the cloths' region in grids of their own,
+// filed once per pass (the body does not move during it). Cloth features
+// query both.
+//
+// Response, in rounds (at most `rounds`): each pair found is pushed apart
+// along the direction between its closest points at the time CCD stopped,
+// until the end positions are 2 x gap apart along it, split by inverse mass
+// (the body does not move), Gauss-Seidel in the order found. Then the
+// fail-safe: every cloth vertex of a pair still failing is put back where
+// it was at the start of the substep (its motion for this substep undone),
+// until no failing pair has a moving cloth vertex. Start positions free of
+// crossings therefore give end positions free of crossings between cloths,
+// always. Against the body the guarantee needs the body not to sweep into
+// cloth that has been put back: where it does (the body pinches the cloth
+// between two of its parts) the body yields and the pair is counted.
+//
+// All corrections are returned as pushes (the solver adds no velocity for
+// them); vertices put back are flagged (the solver stops them).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "box_grid.h"
+#include "ccd.h"
+#include "layers/sim/cloth.h"
+
+namespace layers::sim::detail {
+
+struct CollisionPassStats {
+  long pairs = 0;     // colliding pairs found in the first round
+  long rounds = 0;    // rounds of corrections run
+  long reverted = 0;  // cloth vertices put back at their start
+  long yielded = 0;   // body pairs the body swept through cloth it could not move
+};
+
+// The body as the pass sees it in one substep (null/empty: no body).
+struct SweptBody {
+  const Vec3s* start = nullptr;  // pose at the start of the substep
+  const Vec3s* end = nullptr;    // pose at its end
+  const std::vector<std::array<int, 3>>* faces = nullptr;
+  const geometry::Edges* edges = nullptr;
+};
+
+class CollisionPass {
+ public:
+  // `states` are the cloths' states (x_start and x; x is corrected in
+  // place), in the order of `cloths`. Corrections are added to
+  // pushes[cloth]; reverted[cloth][v] tells whether vertex v is put back.
+  // With `moved`, the same substep again after a later edit that moved
+  // only the flagged vertices (the body as in the last run): only pairs
+  // with a moved feature are tested again.
+  CollisionPassStats run(const std::vector<Cloth>& cloths, const std::vector<Cloth::State*>& states,
+                         const SweptBody& body, double gap, int rounds, std::vector<Vec3s>& pushes,
+                         std::vector<std::vector<std::uint8_t>>& reverted,
+                         const std::vector<std::vector<std::uint8_t>>* moved = nullptr);
+
+  // One pair whose features came within the gap: its four global vertices
+  // (vertex then triangle, or edge then edge) and the CCD stop time.
+  struct Hit {
+    std::array<int, 4> v;
+    bool edge_edge = false;
+    double toi = 0;
+  };
+
+ private:
+  void layout(const std::vector<Cloth>& cloths, const SweptBody& body);
+  CollisionPassStats resume(const std::vector<Cloth>& cloths, const std::vector<Cloth::State*>& states, double gap,
+                            int rounds, std::vector<Vec3s>& pushes, std::vector<std::vector<std::uint8_t>>& reverted,
+                            const std::vector<std::vector<std::uint8_t>>& moved);
+  // Rounds of corrections, the fail-safe, and the positions written back.
+  CollisionPassStats resolve(const std::vector<Cloth::State*>& states, double gap, int rounds,
+                             std::vector<Vec3s>& pushes, std::vector<std::vector<std::uint8_t>>& reverted);
+  // All pairs (incremental false), or only those with a feature that has a
+  // vertex moved since the last detection, plus the last hits with none.
+  void detect(double gap, std::vector<Hit>& hits, bool incremental);
+  // Pushes the pair apart; false when no vertex of it can move.
+  bool correct(const Hit& hit, double gap);
+  bool test(const std::array<int, 4>& v, bool edge_edge, double gap, std::vector<Hit>& hits) const;
+  // Files the body's features that sweep through `region` in the body grids.
+  void file_body(double gap, const Box& region);
+  // A body pair whose cloth feature starts the substep on the body's
+  // inside: crossed already, which
+  // continuous detection cannot undo; left to the proximity passes.
+  bool starts_inside(const std::array<int, 4>& v, bool edge_edge) const;
+  bool touched(const int* v, int n) const {
+    for (int k = 0; k < n; ++k)
+      if (dirty_[v[k]]) return true;
+    return false;
+  }
+
+  // Everything indexed globally: cloth vertices first (cloth by cloth),
+  // then the body's.
+  int cloth_vertices_ = 0;
+  std::vector<int> offset_;  // per cloth, its first global vertex
+  std::vector<int> owner_;   // per global vertex: its cloth, or -1 for the body
+  std::vector<char> self_;   // per cloth: self-contact on
+  std::vector<std::array<int, 2>> edges_;
+  std::vector<std::array<int, 3>> faces_;
+  int cloth_edges_ = 0, cloth_faces_ = 0;  // edges_ and faces_ hold the cloths' first, then the body's
+  std::vector<long> revisions_;
+  const std::vector<std::array<int, 3>>* body_faces_ = nullptr;
+  const geometry::Edges* body_edges_ = nullptr;
+  int body_vertices_ = -1;
+
+  Vec3s x0_, x1_;                 // start and end of every global vertex
+  std::vector<double> inv_mass_;  // 0 for the body and pinned vertices
+  std::vector<std::uint8_t> back_;
+  std::vector<std::uint8_t> dirty_;  // moved since the last detection
+  std::vector<Hit> hits_;            // the pairs of the last detection
+  Vec3s body_normals_;               // the body's vertex normals at the start of the substep (area-weighted)
+  std::vector<Box> vertex_boxes_, edge_boxes_, face_boxes_;
+  BoxGrid vertex_grid_, edge_grid_, face_grid_;
+  std::vector<Box> body_vertex_boxes_, body_edge_boxes_, body_face_boxes_;  // NaN: outside the filed region
+  BoxGrid body_vertex_grid_, body_edge_grid_, body_face_grid_;
+  Box body_region_{Vec3::Zero(), Vec3::Zero()};
+  double cell_ = 0.01, body_cell_ = 0.01;
+};
+
+}  // namespace layers::sim::detail
