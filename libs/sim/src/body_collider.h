@@ -64,6 +64,9 @@ class BodyCollider {
   // at its end, the faces and the unique edges.
   const Vec3s& pose_before() const { return previous_; }
   const Vec3s& pose_now() const { return current_; }
+  // The frame's sweep: its start and end poses.
+  const Vec3s& frame_start() const { return start_; }
+  const Vec3s& frame_end() const { return end_; }
   const ContactTopology& topology() const { return topology_; }
   const geometry::Edges& edges() const { return edges_; }
   int num_vertices() const { return static_cast<int>(start_.size()); }

@@ -139,6 +139,21 @@ bool sweep_hits(const Sweep& sweep, double xi, double& toi) {
   }
   if (!(bound > 0)) return false;  // rigidly moving together: the distance cannot change
   if (!std::isfinite(bound)) return true;
+  // A cheap lower bound of the starting distance first (bounding spheres
+  // of the two features): most candidates of the broad phase end here.
+  Vec3 ca, cb;
+  double ra = 0, rb = 0;
+  if (sweep.edge_edge) {
+    ca = 0.5 * (x[0] + x[1]);
+    cb = 0.5 * (x[2] + x[3]);
+    ra = 0.5 * (x[1] - x[0]).norm();
+    rb = 0.5 * (x[3] - x[2]).norm();
+  } else {
+    ca = x[0];
+    cb = (x[1] + x[2] + x[3]) / 3;
+    rb = std::sqrt(std::max({(x[1] - cb).squaredNorm(), (x[2] - cb).squaredNorm(), (x[3] - cb).squaredNorm()}));
+  }
+  if ((ca - cb).norm() - ra - rb - bound > xi) return false;
   double d = distance_of(x, sweep.edge_edge);
   if (!(d > 0)) return true;  // touching at the start and moving
   const double sep = std::min(xi, 0.5 * d);

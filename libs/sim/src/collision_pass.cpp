@@ -102,7 +102,6 @@ bool CollisionPass::starts_inside(const std::array<int, 4>& v, bool edge_edge) c
 }
 
 bool CollisionPass::test(const std::array<int, 4>& v, bool edge_edge, double gap, std::vector<Hit>& hits) const {
-  if ((owner_[v[0]] < 0 || owner_[v[3]] < 0) && starts_inside(v, edge_edge)) return false;
   Sweep sweep;
   sweep.edge_edge = edge_edge;
   for (int k = 0; k < 4; ++k) {
@@ -111,6 +110,7 @@ bool CollisionPass::test(const std::array<int, 4>& v, bool edge_edge, double gap
   }
   double toi = 0;
   if (!sweep_hits(sweep, gap, toi)) return false;
+  if ((owner_[v[0]] < 0 || owner_[v[3]] < 0) && starts_inside(v, edge_edge)) return false;
   hits.push_back({v, edge_edge, toi});
   return true;
 }
@@ -148,10 +148,10 @@ void CollisionPass::detect(double gap, std::vector<Hit>& hits, bool incremental)
     }
     const bool inside =
         (region.lo.array() >= body_region_.lo.array()).all() && (region.hi.array() <= body_region_.hi.array()).all();
-    if (!incremental || !inside) {
-      region.lo.array() -= cell_;
-      region.hi.array() += cell_;
-      file_body(gap, region);
+    if (!inside || body_.frame != body_frame_ || body_.frame < 0) {
+      region.lo.array() -= 2 * cell_;
+      region.hi.array() += 2 * cell_;
+      file_body(gap, region, body_);
     }
   }
   const int off = cloth_vertices_;
@@ -202,10 +202,19 @@ void CollisionPass::detect(double gap, std::vector<Hit>& hits, bool incremental)
   }
 }
 
-void CollisionPass::file_body(double gap, const Box& region) {
-  // The body's features that sweep through `region`, in their own grids
-  // (the body does not move during the pass: filed once per run).
+void CollisionPass::file_body(double gap, const Box& region, const SweptBody& body) {
+  // The body's features that sweep through `region` during the frame (or,
+  // without a frame sweep, the substep), in their own grids.
   const double grow = 0.5 * gap;
+  const bool frame = body.frame_start != nullptr && body.frame_end != nullptr;
+  Vec3s& from = frame_from_;
+  Vec3s& to = frame_to_;
+  from.assign(x0_.size(), Vec3::Zero());
+  to.assign(x0_.size(), Vec3::Zero());
+  for (int i = 0; i < body_vertices_; ++i) {
+    from[cloth_vertices_ + i] = frame ? (*body.frame_start)[i] : x0_[cloth_vertices_ + i];
+    to[cloth_vertices_ + i] = frame ? (*body.frame_end)[i] : x1_[cloth_vertices_ + i];
+  }
   const Box none{Vec3::Constant(std::nan("")), Vec3::Constant(std::nan(""))};
   const int nv = static_cast<int>(x0_.size()) - cloth_vertices_;
   const int ne = static_cast<int>(edges_.size()) - cloth_edges_;
@@ -215,21 +224,22 @@ void CollisionPass::file_body(double gap, const Box& region) {
   body_face_boxes_.assign(static_cast<std::size_t>(nf), none);
   for (int i = 0; i < nv; ++i) {
     const int v = cloth_vertices_ + i;
-    const Box b = swept_box(x0_, x1_, &v, 1, grow);
+    const Box b = swept_box(from, to, &v, 1, grow);
     if (b.overlaps(region)) body_vertex_boxes_[i] = b;
   }
   for (int i = 0; i < ne; ++i) {
-    const Box b = swept_box(x0_, x1_, edges_[cloth_edges_ + i].data(), 2, grow);
+    const Box b = swept_box(from, to, edges_[cloth_edges_ + i].data(), 2, grow);
     if (b.overlaps(region)) body_edge_boxes_[i] = b;
   }
   for (int i = 0; i < nf; ++i) {
-    const Box b = swept_box(x0_, x1_, faces_[cloth_faces_ + i].data(), 3, grow);
+    const Box b = swept_box(from, to, faces_[cloth_faces_ + i].data(), 3, grow);
     if (b.overlaps(region)) body_face_boxes_[i] = b;
   }
   body_vertex_grid_.build(body_vertex_boxes_, body_cell_);
   body_edge_grid_.build(body_edge_boxes_, body_cell_);
   body_face_grid_.build(body_face_boxes_, body_cell_);
   body_region_ = region;
+  body_frame_ = body.frame;
 }
 
 bool CollisionPass::correct(const Hit& hit, double gap) {
@@ -294,6 +304,7 @@ CollisionPassStats CollisionPass::run(const std::vector<Cloth>& cloths, const st
                                       const std::vector<std::vector<std::uint8_t>>* moved) {
   if (moved != nullptr) return resume(cloths, states, gap, rounds, pushes, reverted, *moved);
   layout(cloths, body);
+  body_ = body;
   const std::size_t total = owner_.size();
   x0_.resize(total);
   x1_.resize(total);

@@ -16,9 +16,9 @@
 //    by the body's vertex normals) are left to the proximity passes.
 // Broad phase: swept boxes of the cloths' vertices, edges and faces, grown
 // by half the gap, in BoxGrids rebuilt for each detection; the body's
-// features that sweep through the cloths' region in grids of their own,
-// filed once per pass (the body does not move during it). Cloth features
-// query both.
+// features that sweep through the cloths' region (grown by two cells)
+// over the whole frame in grids of their own, filed once per frame (again
+// when a cloth leaves the region). Cloth features query both.
 //
 // Response, in rounds (at most `rounds`): each pair found is pushed apart
 // along the direction between its closest points at the time CCD stopped,
@@ -58,6 +58,11 @@ struct SweptBody {
   const Vec3s* end = nullptr;    // pose at its end
   const std::vector<std::array<int, 3>>* faces = nullptr;
   const geometry::Edges* edges = nullptr;
+  // The whole frame's sweep (the body moves linearly across it) and the
+  // frame's number: the body's features are filed once per frame.
+  const Vec3s* frame_start = nullptr;
+  const Vec3s* frame_end = nullptr;
+  long frame = -1;
 };
 
 class CollisionPass {
@@ -96,7 +101,7 @@ class CollisionPass {
   bool correct(const Hit& hit, double gap);
   bool test(const std::array<int, 4>& v, bool edge_edge, double gap, std::vector<Hit>& hits) const;
   // Files the body's features that sweep through `region` in the body grids.
-  void file_body(double gap, const Box& region);
+  void file_body(double gap, const Box& region, const SweptBody& body);
   // A body pair whose cloth feature starts the substep on the body's
   // inside: crossed already, which
   // continuous detection cannot undo; left to the proximity passes.
@@ -132,6 +137,9 @@ class CollisionPass {
   std::vector<Box> body_vertex_boxes_, body_edge_boxes_, body_face_boxes_;  // NaN: outside the filed region
   BoxGrid body_vertex_grid_, body_edge_grid_, body_face_grid_;
   Box body_region_{Vec3::Zero(), Vec3::Zero()};
+  long body_frame_ = -2;         // the frame whose sweep the body grids hold
+  Vec3s frame_from_, frame_to_;  // scratch: the body's frame sweep, globally indexed
+  SweptBody body_;               // this run's body
   double cell_ = 0.01, body_cell_ = 0.01;
 };
 

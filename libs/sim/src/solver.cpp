@@ -317,6 +317,9 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
         swept.end = &m.body.pose_now();
         swept.faces = &m.body.topology().faces;
         swept.edges = &m.body.edges();
+        swept.frame_start = &m.body.frame_start();
+        swept.frame_end = &m.body.frame_end();
+        swept.frame = frame_;
       }
       for (std::size_t ci = 0; ci < cloths_.size(); ++ci) m.before_pass[ci] = cloths_[ci].state_.x;
       const detail::CollisionPassStats ps =
