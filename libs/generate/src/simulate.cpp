@@ -146,11 +146,22 @@ SceneSimulation::SceneSimulation(const GeneratorConfig& config, const SceneSpec&
   solver_.set_body(body);
   // The collision pass keeps garments from crossing, but cannot untangle
   // garments that start crossed: such a scene is refused here.
-  const std::int64_t crossed = sim::measure_frame(solver_).cloth_crossing_pairs;
-  if (crossed > 0) {
-    problem_ = "the garments cross each other as fitted, before any simulation (" + std::to_string(crossed) +
-               " crossing face pairs)";
+  std::string crossings;
+  for (int a = 0; a < solver_.num_cloths(); ++a) {
+    const sim::Cloth& ca = solver_.cloth(a);
+    const sim::MeasuredGarment ga{ca.positions(), ca.faces(), {}, {}, false, ca.self_contact()};
+    for (int b = 0; b <= a; ++b) {
+      const sim::Cloth& cb = solver_.cloth(b);
+      const std::int64_t n =
+          a == b ? sim::cloth_crossings({ga})
+                 : sim::cloth_crossings({ga, sim::MeasuredGarment{cb.positions(), cb.faces(), {}, {}, false, false}}) -
+                       sim::cloth_crossings({ga});
+      if (n == 0) continue;
+      crossings += (crossings.empty() ? "" : ", ") + std::to_string(n) + " face pairs of " + ca.name() +
+                   (a == b ? " with itself" : " with " + cb.name());
+    }
   }
+  if (!crossings.empty()) problem_ = "the garments cross as fitted, before any simulation (" + crossings + ")";
 }
 
 void SceneSimulation::add_garments() {
