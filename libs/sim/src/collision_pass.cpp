@@ -371,13 +371,18 @@ CollisionPassStats CollisionPass::resolve(const std::vector<Cloth::State*>& stat
     ++stats.rounds;
     again();
   }
-  // Fail-safe: undo the substep's motion of every cloth vertex of a pair
-  // still failing, until the pairs left have no cloth vertex that moves.
+  // Fail-safe: undo the substep's motion of every cloth vertex of a
+  // cloth-cloth pair still failing, until those pairs have no cloth vertex
+  // that moves. Body pairs never stop cloth (stopped cloth in front of a
+  // moving limb is swept through and torn): where they still fail, the
+  // body yields, and they are counted.
+  const auto with_body = [&](const Hit& h) { return owner_[h.v[0]] < 0 || owner_[h.v[3]] < 0; };
   while (!hits.empty()) {
     bool changed = false;
     for (const Hit& h : hits) {
+      if (with_body(h)) continue;
       for (int v : h.v) {
-        if (owner_[v] < 0 || back_[v] || inv_mass_[v] == 0.0) continue;
+        if (back_[v] || inv_mass_[v] == 0.0) continue;
         x1_[v] = x0_[v];
         back_[v] = 1;
         dirty_[v] = 1;
@@ -388,7 +393,7 @@ CollisionPassStats CollisionPass::resolve(const std::vector<Cloth::State*>& stat
     if (!changed) break;
     again();
   }
-  stats.yielded = static_cast<long>(hits.size());
+  stats.yielded = static_cast<long>(std::count_if(hits.begin(), hits.end(), with_body));
 
   for (std::size_t c = 0; c < states.size(); ++c) {
     Cloth::State& s = *states[c];

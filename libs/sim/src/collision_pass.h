@@ -24,13 +24,15 @@
 // along the direction between its closest points at the time CCD stopped,
 // until the end positions are 2 x gap apart along it, split by inverse mass
 // (the body does not move), Gauss-Seidel in the order found. Then the
-// fail-safe: every cloth vertex of a pair still failing is put back where
-// it was at the start of the substep (its motion for this substep undone),
-// until no failing pair has a moving cloth vertex. Start positions free of
-// crossings therefore give end positions free of crossings between cloths,
-// always. Against the body the guarantee needs the body not to sweep into
-// cloth that has been put back: where it does (the body pinches the cloth
-// between two of its parts) the body yields and the pair is counted.
+// fail-safe: every cloth vertex of a cloth-cloth pair still failing is put
+// back where it was at the start of the substep (its motion for this
+// substep undone), until no failing cloth-cloth pair has a moving vertex.
+// Start positions free of crossings therefore give end positions free of
+// crossings between cloths, always. Body pairs never stop cloth (cloth
+// stopped in front of a moving limb would be swept through and torn):
+// where they still fail after the rounds (the body pinches the cloth
+// between two of its parts, or sweeps into cloth stopped by the fail-safe)
+// the body yields and the pairs are counted.
 //
 // All corrections are returned as pushes (the solver adds no velocity for
 // them); vertices put back are flagged (the solver stops them).

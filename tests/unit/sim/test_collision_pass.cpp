@@ -148,6 +148,7 @@ SolverConfig pass_config(int substeps) {
   c.gravity = {0, 0, 0};
   c.air_damping = 0;
   c.max_speed = 0;
+  c.collision_pass = true;
   return c;
 }
 

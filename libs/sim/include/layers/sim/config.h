@@ -61,7 +61,7 @@ struct SolverConfig {
   double support_stiffness = 1;   // body-contact support weight / the vertex's own stiffness (docs/sim.md)
   bool self_contact = true;       // master switch; each cloth also opts in (ClothOptions)
   double wind_pressure = 0.004;   // Pa per unit of Blender wind strength (docs/sim.md)
-  bool collision_pass = true;     // the continuous-collision safety pass at the end of every substep
+  bool collision_pass = false;    // the continuous-collision safety pass at the end of every substep (docs/sim.md)
   double collision_gap = 0.0005;  // m: the pass keeps every pair of features at least about this far apart
   int collision_rounds = 16;      // rounds of corrections before the fail-safe puts vertices back
   ValidationConfig validation;
