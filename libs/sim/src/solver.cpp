@@ -307,55 +307,10 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
     timings_.strain_cap += seconds_since(t);
 
     // The continuous-collision safety pass, after every position edit.
-    for (auto& r : m.reverted) std::fill(r.begin(), r.end(), 0);
     if (c.collision_pass) {
-      m.states.clear();
-      for (Cloth& cloth : cloths_) m.states.push_back(&cloth.state_);
-      detail::SweptBody swept;
-      if (body) {
-        swept.start = &m.body.pose_before();
-        swept.end = &m.body.pose_now();
-        swept.faces = &m.body.topology().faces;
-        swept.edges = &m.body.edges();
-        swept.frame_start = &m.body.frame_start();
-        swept.frame_end = &m.body.frame_end();
-        swept.frame = frame_;
-      }
-      for (std::size_t ci = 0; ci < cloths_.size(); ++ci) m.before_pass[ci] = cloths_[ci].state_.x;
-      const detail::CollisionPassStats ps =
-          m.pass.run(cloths_, m.states, swept, c.collision_gap, c.collision_rounds, m.push, m.reverted);
-      timings_.pass_pairs += ps.pairs;
-      timings_.pass_reverted += ps.reverted;
-      long yielded = ps.yielded;
-      // The pass's pushes can stretch edges next to the vertices it moved:
-      // the strain cap once more with those vertices held, then the pass
-      // again on what the cap moved (kCapAfterPass times at most).
-      bool again = c.max_strain > 0 && ps.pairs > 0;
-      for (int round = 0; again && round < kCapAfterPass; ++round) {
-        again = false;
-        for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
-          Cloth::State& s = cloths_[ci].state_;
-          m.before_cap[ci] = s.x;
-          m.held.assign(s.x.size(), 0);
-          for (std::size_t i = 0; i < s.x.size(); ++i) m.held[i] = m.reverted[ci][i] || s.x[i] != m.before_pass[ci][i];
-          m.limiters[ci].apply(cloths_[ci], s, c.max_strain, c.strain_sweeps, &m.held);
-          m.moved[ci].assign(s.x.size(), 0);
-          for (std::size_t i = 0; i < s.x.size(); ++i) {
-            if (s.x[i] == m.before_cap[ci][i]) continue;
-            m.moved[ci][i] = 1;
-            again = true;
-          }
-          m.before_pass[ci] = s.x;
-        }
-        if (!again) break;
-        const detail::CollisionPassStats more =
-            m.pass.run(cloths_, m.states, swept, c.collision_gap, c.collision_rounds, m.push, m.reverted, &m.moved);
-        timings_.pass_pairs += more.pairs;
-        timings_.pass_reverted += more.reverted;
-        yielded = more.yielded;
-        again = more.pairs > 0;
-      }
-      timings_.pass_yielded += yielded;
+      collision_pass(body);
+    } else {
+      for (auto& r : m.reverted) std::fill(r.begin(), r.end(), 0);
     }
     timings_.collision_pass += seconds_since(t);
 
@@ -391,6 +346,62 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
   ++frame_;
   ++timings_.frames;
   timings_.total += std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+void Solver::collision_pass(bool body) {
+  // The pass (collision_pass.h), then up to kCapAfterPass rounds of the
+  // strain cap with the vertices the pass moved held and the pass again on
+  // what the cap moved: the pass always has the last word.
+  Impl& m = *impl_;
+  const SolverConfig& c = config_;
+  for (auto& r : m.reverted) std::fill(r.begin(), r.end(), 0);
+  m.states.clear();
+  for (Cloth& cloth : cloths_) m.states.push_back(&cloth.state_);
+  detail::SweptBody swept;
+  if (body) {
+    swept.start = &m.body.pose_before();
+    swept.end = &m.body.pose_now();
+    swept.faces = &m.body.topology().faces;
+    swept.edges = &m.body.edges();
+    swept.frame_start = &m.body.frame_start();
+    swept.frame_end = &m.body.frame_end();
+    swept.frame = frame_;
+  }
+  for (std::size_t ci = 0; ci < cloths_.size(); ++ci) m.before_pass[ci] = cloths_[ci].state_.x;
+  const detail::CollisionPassStats ps =
+      m.pass.run(cloths_, m.states, swept, c.collision_gap, c.collision_rounds, m.push, m.reverted);
+  timings_.pass_pairs += ps.pairs;
+  timings_.pass_reverted += ps.reverted;
+  long yielded = ps.yielded;
+  // The pass's pushes can stretch edges next to the vertices it moved:
+  // the strain cap once more with those vertices held, then the pass
+  // again on what the cap moved (kCapAfterPass times at most).
+  bool again = c.max_strain > 0 && ps.pairs > 0;
+  for (int round = 0; again && round < kCapAfterPass; ++round) {
+    again = false;
+    for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
+      Cloth::State& s = cloths_[ci].state_;
+      m.before_cap[ci] = s.x;
+      m.held.assign(s.x.size(), 0);
+      for (std::size_t i = 0; i < s.x.size(); ++i) m.held[i] = m.reverted[ci][i] || s.x[i] != m.before_pass[ci][i];
+      m.limiters[ci].apply(cloths_[ci], s, c.max_strain, c.strain_sweeps, &m.held);
+      m.moved[ci].assign(s.x.size(), 0);
+      for (std::size_t i = 0; i < s.x.size(); ++i) {
+        if (s.x[i] == m.before_cap[ci][i]) continue;
+        m.moved[ci][i] = 1;
+        again = true;
+      }
+      m.before_pass[ci] = s.x;
+    }
+    if (!again) break;
+    const detail::CollisionPassStats more =
+        m.pass.run(cloths_, m.states, swept, c.collision_gap, c.collision_rounds, m.push, m.reverted, &m.moved);
+    timings_.pass_pairs += more.pairs;
+    timings_.pass_reverted += more.reverted;
+    yielded = more.yielded;
+    again = more.pairs > 0;
+  }
+  timings_.pass_yielded += yielded;
 }
 
 }  // namespace layers::sim

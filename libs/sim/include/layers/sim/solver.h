@@ -97,6 +97,8 @@ class Solver {
  private:
   struct Impl;
   void advance(const geometry::Points* body_next, const Wind& wind);
+  // The end of a substep: the collision pass and the strain cap after it.
+  void collision_pass(bool body);
   template <class F>
   void for_each_layer_pair(F&& f);
 
