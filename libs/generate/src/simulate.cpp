@@ -146,19 +146,20 @@ SceneSimulation::SceneSimulation(const GeneratorConfig& config, const SceneSpec&
   solver_.set_body(body);
   // The collision pass keeps garments from crossing, but cannot untangle
   // garments that start crossed: such a scene is refused here.
+  // Each garment with itself (where it has self-contact), then each pair
+  // (self-contact off, so that only the pair counts).
   std::string crossings;
+  const auto garment = [&](int i, bool self) {
+    const sim::Cloth& c = solver_.cloth(i);
+    return sim::MeasuredGarment{c.positions(), c.faces(), {}, {}, false, self};
+  };
   for (int a = 0; a < solver_.num_cloths(); ++a) {
-    const sim::Cloth& ca = solver_.cloth(a);
-    const sim::MeasuredGarment ga{ca.positions(), ca.faces(), {}, {}, false, ca.self_contact()};
     for (int b = 0; b <= a; ++b) {
-      const sim::Cloth& cb = solver_.cloth(b);
-      const std::int64_t n =
-          a == b ? sim::cloth_crossings({ga})
-                 : sim::cloth_crossings({ga, sim::MeasuredGarment{cb.positions(), cb.faces(), {}, {}, false, false}}) -
-                       sim::cloth_crossings({ga});
+      const std::int64_t n = a == b ? sim::cloth_crossings({garment(a, solver_.cloth(a).self_contact())})
+                                    : sim::cloth_crossings({garment(a, false), garment(b, false)});
       if (n == 0) continue;
-      crossings += (crossings.empty() ? "" : ", ") + std::to_string(n) + " face pairs of " + ca.name() +
-                   (a == b ? " with itself" : " with " + cb.name());
+      crossings += (crossings.empty() ? "" : ", ") + std::to_string(n) + " face pairs of " + solver_.cloth(a).name() +
+                   (a == b ? " with itself" : " with " + solver_.cloth(b).name());
     }
   }
   if (!crossings.empty()) problem_ = "the garments cross as fitted, before any simulation (" + crossings + ")";
