@@ -3,7 +3,9 @@
 // substep) filed under every cell of a uniform grid they overlap, the
 // cells hashed into a table (cell_slot, as every grid of the solver).
 // A box spanning more than kMaxSpan cells along an axis (a wild motion) is
-// kept on a list that every query scans. Queries report each filed box
+// kept on a list that every query scans. A grid may file a range of a box
+// array (one cloth's features); a query outside the bounds of what it
+// filed costs one box test. Queries report each filed box
 // that overlaps theirs once, in a fixed order: the same inputs give the
 // same pairs in the same order.
 #pragma once
@@ -24,27 +26,29 @@ struct Box {
 
 class BoxGrid {
  public:
-  // Files boxes[i] for every i (non-finite boxes are left out).
-  void build(const std::vector<Box>& boxes, double cell);
+  // Files boxes[i] for every i in [first, first + count) (all of them
+  // when count < 0); non-finite boxes are left out. Queries report the
+  // indices into `boxes`.
+  void build(const std::vector<Box>& boxes, double cell, int first = 0, int count = -1);
   // Calls f(i) once for every filed box i that overlaps `query`.
   template <class F>
   void visit(const Box& query, F&& f) const {
-    if (boxes_ == nullptr || !query.lo.allFinite() || !query.hi.allFinite()) return;
+    if (boxes_ == nullptr || !query.lo.allFinite() || !query.hi.allFinite() || !bounds_.overlaps(query)) return;
     if (++stamp_ == 0) {
       std::fill(seen_.begin(), seen_.end(), 0u);
       stamp_ = 1;
     }
     const auto take = [&](int i) {
-      if (seen_[i] == stamp_) return;
-      seen_[i] = stamp_;
+      if (seen_[i - first_] == stamp_) return;
+      seen_[i - first_] = stamp_;
       if ((*boxes_)[i].overlaps(query)) f(i);
     };
     for (int i : wide_) take(i);
     std::int64_t lo[3], hi[3];
     if (!cells_of(query, lo, hi)) {
       // A query wider than the grid's span: every filed box.
-      for (std::size_t i = 0; i < boxes_->size(); ++i) {
-        if (filed_[i]) take(static_cast<int>(i));
+      for (int i = first_; i < end_; ++i) {
+        if (filed_[i - first_]) take(i);
       }
       return;
     }
@@ -63,6 +67,8 @@ class BoxGrid {
   bool cells_of(const Box& b, std::int64_t lo[3], std::int64_t hi[3]) const;
 
   const std::vector<Box>* boxes_ = nullptr;
+  int first_ = 0, end_ = 0;  // the filed range of *boxes_
+  Box bounds_{Vec3::Zero(), Vec3::Zero()};  // of every filed box (empty: inverted)
   double inv_cell_ = 1;
   std::uint64_t mask_ = 0;
   std::vector<int> start_, entries_, wide_;

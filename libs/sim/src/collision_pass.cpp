@@ -38,6 +38,8 @@ void CollisionPass::layout(const std::vector<Cloth>& cloths, const SweptBody& bo
   body_edges_ = body.edges;
   body_vertices_ = nb;
   offset_.clear();
+  edge_offset_.clear();
+  face_offset_.clear();
   owner_.clear();
   self_.clear();
   edges_.clear();
@@ -48,6 +50,8 @@ void CollisionPass::layout(const std::vector<Cloth>& cloths, const SweptBody& bo
     const Cloth& cloth = cloths[c];
     const int off = static_cast<int>(owner_.size());
     offset_.push_back(off);
+    edge_offset_.push_back(static_cast<int>(edges_.size()));
+    face_offset_.push_back(static_cast<int>(faces_.size()));
     owner_.insert(owner_.end(), static_cast<std::size_t>(cloth.num_vertices()), static_cast<int>(c));
     self_.push_back(cloth.self_contact() ? 1 : 0);
     const geometry::Edges& e = cloth.edges();
@@ -59,6 +63,12 @@ void CollisionPass::layout(const std::vector<Cloth>& cloths, const SweptBody& bo
   cloth_vertices_ = static_cast<int>(owner_.size());
   cloth_edges_ = static_cast<int>(edges_.size());
   cloth_faces_ = static_cast<int>(faces_.size());
+  offset_.push_back(cloth_vertices_);
+  edge_offset_.push_back(cloth_edges_);
+  face_offset_.push_back(cloth_faces_);
+  vertex_grids_.resize(cloths.size());
+  edge_grids_.resize(cloths.size());
+  face_grids_.resize(cloths.size());
   owner_.insert(owner_.end(), static_cast<std::size_t>(nb), -1);
   if (nb > 0 && body.faces != nullptr && body.edges != nullptr) {
     const int off = cloth_vertices_;
@@ -129,10 +139,19 @@ void CollisionPass::detect(double gap, std::vector<Hit>& hits, bool incremental)
   for (int v = 0; v < cloth_vertices_; ++v) vertex_boxes_[v] = swept_box(x0_, x1_, &v, 1, grow);
   for (int e = 0; e < cloth_edges_; ++e) edge_boxes_[e] = swept_box(x0_, x1_, edges_[e].data(), 2, grow);
   for (int f = 0; f < cloth_faces_; ++f) face_boxes_[f] = swept_box(x0_, x1_, faces_[f].data(), 3, grow);
-  vertex_grid_.build(vertex_boxes_, cell_);
-  edge_grid_.build(edge_boxes_, cell_);
-  face_grid_.build(face_boxes_, cell_);
-  const auto same_cloth_allowed = [&](int a, int b) { return owner_[a] != owner_[b] || self_[owner_[a]]; };
+  // One grid per cloth: a cloth without self-contact never meets its own
+  // features.
+  const int nc = static_cast<int>(self_.size());
+  for (int c = 0; c < nc; ++c) {
+    vertex_grids_[c].build(vertex_boxes_, cell_, offset_[c], offset_[c + 1] - offset_[c]);
+    edge_grids_[c].build(edge_boxes_, cell_, edge_offset_[c], edge_offset_[c + 1] - edge_offset_[c]);
+    face_grids_[c].build(face_boxes_, cell_, face_offset_[c], face_offset_[c + 1] - face_offset_[c]);
+  }
+  // The cloths a feature of cloth c can meet.
+  const auto partners = [&](int c, auto&& f) {
+    for (int d = 0; d < nc; ++d)
+      if (d != c || self_[c]) f(d);
+  };
   // Which features to query, and which pairs to test: everything, or (when
   // incremental) the features with a moved vertex, each pair once.
   const auto moved = [&](const int* v, int n) { return !incremental || touched(v, n); };
@@ -159,10 +178,12 @@ void CollisionPass::detect(double gap, std::vector<Hit>& hits, bool incremental)
   // Cloth vertices against cloth faces.
   for (int v = 0; v < cloth_vertices_; ++v) {
     if (!moved(&v, 1)) continue;
-    face_grid_.visit(vertex_boxes_[v], [&](int f) {
-      const auto& t = faces_[f];
-      if (t[0] == v || t[1] == v || t[2] == v || !same_cloth_allowed(v, t[0])) return;
-      test({v, t[0], t[1], t[2]}, false, gap, hits);
+    partners(owner_[v], [&](int d) {
+      face_grids_[d].visit(vertex_boxes_[v], [&](int f) {
+        const auto& t = faces_[f];
+        if (t[0] == v || t[1] == v || t[2] == v) return;
+        test({v, t[0], t[1], t[2]}, false, gap, hits);
+      });
     });
     if (!body) continue;
     body_face_grid_.visit(vertex_boxes_[v], [&](int f) {
@@ -175,9 +196,11 @@ void CollisionPass::detect(double gap, std::vector<Hit>& hits, bool incremental)
     if (!moved(t.data(), 3)) continue;
     // Moved faces against the cloth vertices that did not move ...
     if (incremental) {
-      vertex_grid_.visit(face_boxes_[f], [&](int v) {
-        if (dirty_[v] || t[0] == v || t[1] == v || t[2] == v || !same_cloth_allowed(v, t[0])) return;
-        test({v, t[0], t[1], t[2]}, false, gap, hits);
+      partners(owner_[t[0]], [&](int d) {
+        vertex_grids_[d].visit(face_boxes_[f], [&](int v) {
+          if (dirty_[v] || t[0] == v || t[1] == v || t[2] == v) return;
+          test({v, t[0], t[1], t[2]}, false, gap, hits);
+        });
       });
     }
     // ... and against the body's vertices.
@@ -188,11 +211,13 @@ void CollisionPass::detect(double gap, std::vector<Hit>& hits, bool incremental)
   for (int e = 0; e < cloth_edges_; ++e) {
     const auto& a = edges_[e];
     if (!moved(a.data(), 2)) continue;
-    edge_grid_.visit(edge_boxes_[e], [&](int o) {
-      const auto& b = edges_[o];
-      if (o <= e && moved(b.data(), 2)) return;
-      if (shares_vertex(a.data(), 2, b.data(), 2) || !same_cloth_allowed(a[0], b[0])) return;
-      test({a[0], a[1], b[0], b[1]}, true, gap, hits);
+    partners(owner_[a[0]], [&](int d) {
+      edge_grids_[d].visit(edge_boxes_[e], [&](int o) {
+        const auto& b = edges_[o];
+        if (o <= e && moved(b.data(), 2)) return;
+        if (shares_vertex(a.data(), 2, b.data(), 2)) return;
+        test({a[0], a[1], b[0], b[1]}, true, gap, hits);
+      });
     });
     if (!body) continue;
     body_edge_grid_.visit(edge_boxes_[e], [&](int i) {

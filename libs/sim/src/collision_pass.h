@@ -15,7 +15,7 @@
 //    face's plane; the cloth on the inner side of a body vertex or edge,
 //    by the body's vertex normals) are left to the proximity passes.
 // Broad phase: swept boxes of the cloths' vertices, edges and faces, grown
-// by half the gap, in BoxGrids rebuilt for each detection; the body's
+// by half the gap, in BoxGrids (one per cloth) rebuilt for each detection; the body's
 // features that sweep through the cloths' region (grown by two cells)
 // over the whole frame in grids of their own, filed once per frame (again
 // when a cloth leaves the region). Cloth features query both.
@@ -117,7 +117,8 @@ class CollisionPass {
   // Everything indexed globally: cloth vertices first (cloth by cloth),
   // then the body's.
   int cloth_vertices_ = 0;
-  std::vector<int> offset_;  // per cloth, its first global vertex
+  std::vector<int> offset_;  // per cloth, its first global vertex (and one past the last cloth's)
+  std::vector<int> edge_offset_, face_offset_;  // the same for edges_ and faces_
   std::vector<int> owner_;   // per global vertex: its cloth, or -1 for the body
   std::vector<char> self_;   // per cloth: self-contact on
   std::vector<std::array<int, 2>> edges_;
@@ -135,7 +136,7 @@ class CollisionPass {
   std::vector<Hit> hits_;            // the pairs of the last detection
   Vec3s body_normals_;               // the body's vertex normals at the start of the substep (area-weighted)
   std::vector<Box> vertex_boxes_, edge_boxes_, face_boxes_;
-  BoxGrid vertex_grid_, edge_grid_, face_grid_;
+  std::vector<BoxGrid> vertex_grids_, edge_grids_, face_grids_;  // per cloth
   std::vector<Box> body_vertex_boxes_, body_edge_boxes_, body_face_boxes_;  // NaN: outside the filed region
   BoxGrid body_vertex_grid_, body_edge_grid_, body_face_grid_;
   Box body_region_{Vec3::Zero(), Vec3::Zero()};
