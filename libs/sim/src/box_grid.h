@@ -67,7 +67,7 @@ class BoxGrid {
   bool cells_of(const Box& b, std::int64_t lo[3], std::int64_t hi[3]) const;
 
   const std::vector<Box>* boxes_ = nullptr;
-  int first_ = 0, end_ = 0;  // the filed range of *boxes_
+  int first_ = 0, end_ = 0;                 // the filed range of *boxes_
   Box bounds_{Vec3::Zero(), Vec3::Zero()};  // of every filed box (empty: inverted)
   double inv_cell_ = 1;
   std::uint64_t mask_ = 0;

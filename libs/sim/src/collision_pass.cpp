@@ -100,9 +100,21 @@ bool CollisionPass::starts_inside(const std::array<int, 4>& v, bool edge_edge) c
     return d.dot(out) < 0;
   }
   if (body(v[1])) {
-    // Cloth vertex behind a body face's plane.
-    const Vec3 n = (x0_[v[2]] - x0_[v[1]]).cross(x0_[v[3]] - x0_[v[1]]);
-    return (x0_[v[0]] - x0_[v[1]]).dot(n) < 0;
+    // Cloth vertex on the inside of a body face: behind its plane where its
+    // closest point is inside the face, by the body's vertex normals
+    // (interpolated) where it is on the face's rim (behind the plane
+    // alone is not inside near a convex edge: the vertex could slip
+    // through the face from there).
+    std::array<double, 3> b;
+    point_triangle_distance2(x0_[v[0]], x0_[v[1]], x0_[v[2]], x0_[v[3]], &b);
+    const Vec3 c = b[0] * x0_[v[1]] + b[1] * x0_[v[2]] + b[2] * x0_[v[3]];
+    constexpr double kRim = 1e-9;
+    Vec3 n = (x0_[v[2]] - x0_[v[1]]).cross(x0_[v[3]] - x0_[v[1]]);
+    if (b[0] <= kRim || b[1] <= kRim || b[2] <= kRim) {
+      n = Vec3::Zero();
+      for (int k = 0; k < 3; ++k) n += b[k] * body_normals_[v[1 + k] - cloth_vertices_];
+    }
+    return (x0_[v[0]] - c).dot(n) < 0;
   }
   // Body vertex whose closest cloth point lies on the body's inside.
   std::array<double, 3> b;

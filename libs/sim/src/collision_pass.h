@@ -117,10 +117,10 @@ class CollisionPass {
   // Everything indexed globally: cloth vertices first (cloth by cloth),
   // then the body's.
   int cloth_vertices_ = 0;
-  std::vector<int> offset_;  // per cloth, its first global vertex (and one past the last cloth's)
+  std::vector<int> offset_;                     // per cloth, its first global vertex (and one past the last cloth's)
   std::vector<int> edge_offset_, face_offset_;  // the same for edges_ and faces_
-  std::vector<int> owner_;   // per global vertex: its cloth, or -1 for the body
-  std::vector<char> self_;   // per cloth: self-contact on
+  std::vector<int> owner_;                      // per global vertex: its cloth, or -1 for the body
+  std::vector<char> self_;                      // per cloth: self-contact on
   std::vector<std::array<int, 2>> edges_;
   std::vector<std::array<int, 3>> faces_;
   int cloth_edges_ = 0, cloth_faces_ = 0;  // edges_ and faces_ hold the cloths' first, then the body's
@@ -136,7 +136,7 @@ class CollisionPass {
   std::vector<Hit> hits_;            // the pairs of the last detection
   Vec3s body_normals_;               // the body's vertex normals at the start of the substep (area-weighted)
   std::vector<Box> vertex_boxes_, edge_boxes_, face_boxes_;
-  std::vector<BoxGrid> vertex_grids_, edge_grids_, face_grids_;  // per cloth
+  std::vector<BoxGrid> vertex_grids_, edge_grids_, face_grids_;             // per cloth
   std::vector<Box> body_vertex_boxes_, body_edge_boxes_, body_face_boxes_;  // NaN: outside the filed region
   BoxGrid body_vertex_grid_, body_edge_grid_, body_face_grid_;
   Box body_region_{Vec3::Zero(), Vec3::Zero()};

@@ -201,9 +201,11 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
     }
     timings_.predict += seconds_since(t);
 
+    // The body's edge-edge pass on every body_edge_every-th substep.
+    const double body_edges = k % c.body_edge_every == 0 ? c.body_edge_thickness : 0.0;
     if (body) {
       m.body.begin_substep(static_cast<double>(k + 1) / n, 2 * std::sqrt(step2) + c.body_thickness, c.body_thickness,
-                           c.body_edge_thickness);
+                           body_edges);
       for (std::size_t ci = 0; ci < cloths_.size(); ++ci) m.body.locate_supports(cloths_[ci].state_, m.body_memory[ci]);
     }
     timings_.body_contact += seconds_since(t);
@@ -276,8 +278,7 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
       for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
         Cloth::State& s = cloths_[ci].state_;
         body_push[ci] = m.body.collide(s, m.body_memory[ci], c.body_thickness, cloths_[ci].material().friction, h);
-        body_push[ci] =
-            std::max(body_push[ci], m.body.collide_edges(cloths_[ci], s, c.body_edge_thickness, m.push[ci]));
+        body_push[ci] = std::max(body_push[ci], m.body.collide_edges(cloths_[ci], s, body_edges, m.push[ci]));
       }
     }
     timings_.body_contact += seconds_since(t);

@@ -54,6 +54,7 @@ struct SolverConfig {
   double layer_thickness = 0.004;                   // m kept between an inner and an outer garment
   double layer_edge_thickness = 0.006;              // m kept between inner and outer edges (0: no edge-edge contact)
   double body_edge_thickness = 0.002;               // m kept between garment and body edges (0: off)
+  int body_edge_every = 1;                          // the body edge-edge pass on every n-th substep (1: all)
   double self_thickness = 0.004;                    // m kept between two parts of one garment
   double max_strain = 0.08;       // strain limiting: edges are capped at (1 + max_strain) x rest (0: off)
   int strain_sweeps = 1000;       // most Gauss-Seidel sweeps of the cap after the contacts (stops when none moves)
@@ -80,6 +81,10 @@ struct SolverConfig {
       cfg::opt().range(0, 0.1).help("inner-outer edge-edge distance (m; 0: vertex-triangle contact only)"));
     v("body_edge_thickness", body_edge_thickness,
       cfg::opt().range(0, 0.1).help("garment-body edge-edge distance (m; 0: vertex-face body contact only)"));
+    v("body_edge_every", body_edge_every,
+      cfg::opt().range(1, 1000).help("run the garment-body edge-edge pass on every n-th substep of a frame, from "
+                                     "the first (1: every substep; with the collision pass it only repairs "
+                                     "crossings the pass did not prevent)"));
     v("self_thickness", self_thickness, cfg::opt().range(0, 0.1).help("distance within one garment (m)"));
     v("max_strain", max_strain, cfg::opt().range(0, 10).help("edge strain cap after the elastic solve (0: off)"));
     v("strain_sweeps", strain_sweeps,
