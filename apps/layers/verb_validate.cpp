@@ -2,8 +2,9 @@
 // exit 1 if there is any. With --physics, also the generator's validation
 // measures recomputed from the stored frames of every sequence (H- and
 // L-penetration, exact H- and L-crossings, stretch, non-finite values)
-// beside the evaluation's two L-collisions, the body's own crossings and the
-// H-crossing clear of them, then their spread over the sequences and how
+// beside the evaluation's two L-collisions, the body's own crossings, its
+// pinch zones and the H-crossing outside and inside them (docs/metrics.md),
+// then their spread over the sequences and how
 // many frames and sequences meet the crossing target; exit 1 if a
 // sequence is over the generator's thresholds. --frames-csv also writes
 // every frame's measures, to find where in a sequence they rise;
@@ -73,15 +74,16 @@ class FramesCsv {
  public:
   FramesCsv() {
     text_ << "sequence,frame,h_penetration_pct,l_penetration_pct,h_crossing_pct,l_crossing_pct,h_crossing_pairs,"
-             "l_crossing_pairs,cloth_crossing_pairs,body_self_crossing_pct,h_crossing_clear_pct,max_stretch_pct,l_"
-             "collision_paper_pct,"
-             "l_collision_ours_pct\n";
+             "l_crossing_pairs,cloth_crossing_pairs,body_self_crossing_pct,body_pinch_pct,h_crossing_clear_pct,h_"
+             "crossing_pinch_pct,max_stretch_pct,l_collision_paper_pct,l_collision_ours_pct\n";
   }
   void add(const std::string& id, std::int64_t frame, const sim::FrameMeasures& m, const EvalLCollision& l) {
     text_ << id << ',' << frame;
     for (double v : {m.h_penetration, m.l_penetration, m.h_crossing, m.l_crossing}) percent(v);
     text_ << ',' << m.h_crossing_pairs << ',' << m.l_crossing_pairs << ',' << m.cloth_crossing_pairs;
-    for (double v : {m.body_self_crossing, m.h_crossing_clear, m.max_stretch, l.plain, l.ours}) percent(v);
+    for (double v :
+         {m.body_self_crossing, m.body_pinch, m.h_crossing_clear, m.h_crossing_pinch, m.max_stretch, l.plain, l.ours})
+      percent(v);
     text_ << '\n';
   }
   std::string text() const { return text_.str(); }
@@ -107,9 +109,9 @@ int check_physics(const std::string& path, const sim::ValidationConfig& limits, 
   sim::SequenceMeasures all;
   MeanOfFinite all_ours, all_plain;
   int over = 0;
-  std::printf("%-14s %6s %9s %9s %13s %12s %9s %9s %9s %9s %8s %9s %9s %9s  %s\n", "sequence", "frames", "H-pen",
-              "L-pen", "L-coll(paper)", "L-coll(ours)", "H-x mean", "H-x max", "L-x mean", "L-x max", "cloth-x",
-              "body-self", "H-x clear", "stretch", "verdict");
+  std::printf("%-14s %6s %9s %9s %13s %12s %9s %9s %9s %9s %8s %9s %9s %9s %9s %9s  %s\n", "sequence", "frames",
+              "H-pen", "L-pen", "L-coll(paper)", "L-coll(ours)", "H-x mean", "H-x max", "L-x mean", "L-x max",
+              "cloth-x", "body-self", "pinch", "H-x clear", "H-x pinch", "stretch", "verdict");
   // Sequences are measured `threads` at a time (the Dataset serialises its
   // HDF5 reads) and reported in the dataset's order after each such batch.
   const std::vector<std::string> ids = dataset.ids();
@@ -123,7 +125,8 @@ int check_physics(const std::string& path, const sim::ValidationConfig& limits, 
         const data::SequenceData seq = dataset.read_sequence(ids[first + j]);
         generate::for_each_stored_frame(seq, [&](std::int64_t index, const generate::StoredFrame& f) {
           batch_results[j].frames.push_back(
-              {index, sim::measure_frame(f.body, f.garments, limits.l_reach), eval_l_collision(f)});
+              {index, sim::measure_frame(f.body, f.garments, limits.l_reach, true, limits.pinch_distance),
+               eval_l_collision(f)});
         });
       });
     }
@@ -145,12 +148,13 @@ int check_physics(const std::string& path, const sim::ValidationConfig& limits, 
     for (const std::string& v : violations) verdict += (verdict.empty() ? "" : "; ") + v;
     over += !violations.empty();
     std::printf(
-        "%-14s %6d %8.3f%% %8.3f%% %12.2f%% %11.2f%% %8.3f%% %8.3f%% %8.3f%% %8.3f%% %8lld %8.3f%% %8.3f%% %8.2f%%  "
-        "%s\n",
+        "%-14s %6d %8.3f%% %8.3f%% %12.2f%% %11.2f%% %8.3f%% %8.3f%% %8.3f%% %8.3f%% %8lld %8.3f%% %8.3f%% %8.3f%% "
+        "%8.3f%% %8.2f%%  %s\n",
         id.c_str(), m.frames(), 100 * m.mean_h_penetration(), 100 * m.mean_l_penetration(), 100 * plain.mean(),
         100 * ours.mean(), 100 * m.mean_h_crossing(), 100 * m.max_h_crossing(), 100 * m.mean_l_crossing(),
         100 * m.max_l_crossing(), static_cast<long long>(m.max_cloth_crossings()), 100 * m.mean_body_self_crossing(),
-        100 * m.mean_h_crossing_clear(), 100 * m.max_stretch(), verdict.c_str());
+        100 * m.mean_body_pinch(), 100 * m.mean_h_crossing_clear(), 100 * m.mean_h_crossing_pinch(),
+        100 * m.max_stretch(), verdict.c_str());
     // A sequence without a measurable frame is left out of the spread
     // (SequenceMeasures reads 0 there).
     const auto measured = [&m](double v) { return m.measured() > 0 ? v : std::nan(""); };
@@ -163,7 +167,9 @@ int check_physics(const std::string& path, const sim::ValidationConfig& limits, 
                           {"L-x mean", measured(m.mean_l_crossing())},
                           {"L-x max", measured(m.max_l_crossing())},
                           {"body-self", m.mean_body_self_crossing()},
+                          {"pinch", m.mean_body_pinch()},
                           {"H-x clear", m.mean_h_crossing_clear()},
+                          {"H-x pinch", m.mean_h_crossing_pinch()},
                           {"stretch", measured(m.max_stretch())}});
   }
   std::printf("%s", summary.text().c_str());
@@ -172,16 +178,19 @@ int check_physics(const std::string& path, const sim::ValidationConfig& limits, 
       "mm), mean L-collision %.2f%% (evaluation, paper's rule) and %.2f%% (evaluation, ours: open-edge rule), "
       "H-crossing mean %.3f%% worst frame %.3f%%, L-crossing mean "
       "%.3f%% worst frame %.3f%%, crossing face pairs between garments (all pairs, and self) worst frame %lld, body "
-      "faces crossing the body %.3f%% mean, H-crossing clear of them mean %.3f%% "
-      "worst frame %.3f%%, max stretch %.2f%%, %lld non-finite values; %d over the thresholds (H %.2f%%, L "
-      "%.2f%%, H-crossing %.2f%%, L-crossing %.2f%%, stretch %.0f%%)\n",
+      "faces crossing the body %.3f%% mean, body faces in pinch zones %.3f%% mean (pinch distance %.0f mm), "
+      "H-crossing outside them mean %.3f%% worst frame %.3f%%, inside them mean %.3f%% worst frame %.3f%%, max "
+      "stretch %.2f%%, %lld non-finite values; %d over the thresholds (H %.2f%%, L "
+      "%.2f%%, H-crossing %.2f%%, H-crossing outside pinch zones %.2f%%, L-crossing %.2f%%, stretch %.0f%%)\n",
       path.c_str(), ids.size(), all.frames(), 100 * all.mean_h_penetration(), 100 * all.mean_l_penetration(),
       1000 * limits.l_reach, 100 * all_plain.mean(), 100 * all_ours.mean(), 100 * all.mean_h_crossing(),
       100 * all.max_h_crossing(), 100 * all.mean_l_crossing(), 100 * all.max_l_crossing(),
       static_cast<long long>(all.max_cloth_crossings()), 100 * all.mean_body_self_crossing(),
-      100 * all.mean_h_crossing_clear(), 100 * all.max_h_crossing_clear(), 100 * all.max_stretch(),
-      static_cast<long long>(all.nonfinite()), over, 100 * limits.max_h_penetration, 100 * limits.max_l_penetration,
-      100 * limits.max_h_crossing, 100 * limits.max_l_crossing, 100 * limits.max_stretch);
+      100 * all.mean_body_pinch(), 1000 * limits.pinch_distance, 100 * all.mean_h_crossing_clear(),
+      100 * all.max_h_crossing_clear(), 100 * all.mean_h_crossing_pinch(), 100 * all.max_h_crossing_pinch(),
+      100 * all.max_stretch(), static_cast<long long>(all.nonfinite()), over, 100 * limits.max_h_penetration,
+      100 * limits.max_l_penetration, 100 * limits.max_h_crossing, 100 * limits.max_h_crossing_clear,
+      100 * limits.max_l_crossing, 100 * limits.max_stretch);
   if (frames) {
     write_new_text_file(frames_csv, frames->text(), kFramesCsvExists);
     std::printf("per-frame measures: %s\n", frames_csv.c_str());
@@ -205,6 +214,10 @@ VerbRun register_validate(CLI::App& app, const Global&) {
                 "also recompute the generator's validation measures from the stored frames (H/L-penetration, "
                 "stretch; slow: every frame of every sequence)");
   cmd->add_option("--l-reach", limits->l_reach, "L-penetration reach in metres (generator default 0.03)");
+  cmd->add_option("--pinch-distance", limits->pinch_distance,
+                  "pinch zones: body vertices closer than this (metres) to a body vertex that is not their neighbour "
+                  "along the mesh (default 0.018)")
+      ->check(CLI::Range(0.0, 0.2));
   cmd->add_option("--crossing-target", *target,
                   "with --physics: count the frames whose H- and L-crossing are at most this percentage")
       ->check(CLI::Range(0.0, 100.0));

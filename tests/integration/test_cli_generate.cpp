@@ -30,7 +30,7 @@ std::string generate(const std::string& out, const std::string& extra = "") {
          " --quiet --set sequences=3 --set frames=6 --set drape_frames=3 --set body.transition_frames=3"
          " --set sequences_per_shard=2 --set garments.fit.edge_length=0.08"
          " --set sim.validation.max_l_penetration=1 --set sim.validation.max_h_penetration=1"
-         " --set sim.validation.max_stretch=100 " +
+         " --set sim.validation.max_stretch=100 --set sim.validation.max_h_crossing_clear=1 " +
          extra;
 }
 
@@ -108,7 +108,7 @@ TEST(CliGenerate, ShardsThenCompleteDatasetThatValidates) {
   std::vector<std::string> seen;
   while (std::getline(in, line)) {
     ++count;
-    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 13) << line;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 15) << line;
     const std::string id = line.substr(0, line.find(','));
     // Column 8, cloth_crossing_pairs: the collision pass leaves none.
     std::string field = line;
@@ -166,9 +166,11 @@ TEST(CliGenerate, SameSeedSameBytesAndResumeRedoesOnlyWhatIsMissing) {
   ASSERT_EQ(stiffer.exit_code, 0) << stiffer.output;
   const auto positions = [&](const std::string& folder) {
     const data::Dataset ds = data::Dataset::open(dir.file(folder));
+    if (ds.ids().empty()) return std::vector<float>{};
     return ds.read_sequence(ds.ids().front()).garments.front().positions;
   };
   const std::vector<float> as_shipped = positions("a"), stiffer_frames = positions("c");
+  ASSERT_FALSE(as_shipped.empty());
   ASSERT_EQ(as_shipped.size(), stiffer_frames.size());
   EXPECT_NE(as_shipped, stiffer_frames);
 }
@@ -368,7 +370,8 @@ TEST(CliRun, StudyGeneratesItsDatasetOnceThenReusesIt) {
           "/configs/data/tiny.yaml\n  folder: " + dir.file("data") +
           "\n  set: [sequences=3, frames=4, drape_frames=2, body.transition_frames=2, sequences_per_shard=3,"
           " garments.fit.edge_length=0.1, sim.validation.max_l_penetration=1, sim.validation.max_h_penetration=1,"
-          " sim.validation.max_stretch=100]\nsteps: [train, eval]\nexperiments:\n  - {name: static, file: " +
+          " sim.validation.max_stretch=100, sim.validation.max_h_crossing_clear=1]\nsteps: [train, "
+          "eval]\nexperiments:\n  - {name: static, file: " +
           src + "/configs/experiments/static_tiny.yaml}\n");
   auto first = run_command(test::layers_bin() + " run " + study);
   ASSERT_EQ(first.exit_code, 0) << first.output;
@@ -388,7 +391,8 @@ TEST(CliRun, StudyGeneratesItsDatasetOnceThenReusesIt) {
                         "/configs/data/tiny.yaml\n  folder: " + dir.file("data") +
                         "\n  set: [sequences=3, frames=4, drape_frames=2, body.transition_frames=2, "
                         "sequences_per_shard=3, garments.fit.edge_length=0.1, sim.validation.max_l_penetration=1, "
-                        "sim.validation.max_h_penetration=1, sim.validation.max_stretch=100]\nsteps: [train, eval, "
+                        "sim.validation.max_h_penetration=1, sim.validation.max_stretch=100, "
+                        "sim.validation.max_h_crossing_clear=1]\nsteps: [train, eval, "
                         "report]\nexperiments:\n  - {name: static, file: " +
                         src + "/configs/experiments/static_tiny.yaml}\n  - {name: skinned, file: " + src +
                         "/configs/experiments/skinned_tiny.yaml}\n");

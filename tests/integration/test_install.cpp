@@ -51,7 +51,7 @@ TEST(Install, PrefixIsSelfContainedAndRelocatable) {
                            " --quiet --set sequences=3 --set frames=4 --set drape_frames=2"
                            " --set body.transition_frames=2 --set garments.fit.edge_length=0.1"
                            " --set sim.validation.max_l_penetration=1 --set sim.validation.max_h_penetration=1"
-                           " --set sim.validation.max_stretch=100";
+                           " --set sim.validation.max_stretch=100 --set sim.validation.max_h_crossing_clear=1";
   auto gen = run_command("cd " + dir.path() + " && env -u LAYERS_PLUGIN_PATH -u LAYERS_ASSETS " + prefix +
                          "/bin/layers " + args + " --out " + dir.file("ds"));
   ASSERT_EQ(gen.exit_code, 0) << gen.output;

@@ -7,6 +7,8 @@
 #include <limits>
 
 #include "layers/geometry/intersect.h"
+#include "layers/geometry/nearest.h"
+#include "layers/geometry/pinch.h"
 #include "layers/sim/contact_topology.h"
 #include "layers/sim/solver.h"
 #include "surface_query.h"
@@ -192,9 +194,11 @@ std::int64_t cloth_crossings(const std::vector<MeasuredGarment>& garments) {
 }
 
 FrameMeasures measure_frame(const geometry::TriMesh& body, const std::vector<MeasuredGarment>& garments, double l_reach,
-                            bool body_self) {
+                            bool body_self, double pinch_distance) {
   FrameMeasures out;
-  if (!body_self || body.num_faces() == 0) out.body_self_crossing = out.h_crossing_clear = kNaN;
+  if (!body_self || body.num_faces() == 0) {
+    out.body_self_crossing = out.body_pinch = out.h_crossing_clear = out.h_crossing_pinch = kNaN;
+  }
   std::vector<geometry::Points> all, outer;
   std::vector<geometry::TriMesh> meshes, inner, outer_meshes;
   for (const MeasuredGarment& g : garments) {
@@ -211,6 +215,7 @@ FrameMeasures measure_frame(const geometry::TriMesh& body, const std::vector<Mea
   if (out.nonfinite > 0) {
     out.h_penetration = out.l_penetration = out.max_stretch = kNaN;
     out.h_crossing = out.l_crossing = out.body_self_crossing = out.h_crossing_clear = kNaN;
+    out.body_pinch = out.h_crossing_pinch = kNaN;
     return out;
   }
   if (body.num_faces() > 0) {
@@ -221,11 +226,43 @@ FrameMeasures measure_frame(const geometry::TriMesh& body, const std::vector<Mea
     if (body_self) {
       const geometry::MeshCrossings self = geometry::self_crossings(body_tree);
       out.body_self_crossing = static_cast<double>(self.a_faces_crossing()) / body.num_faces();
-      out.h_crossing_clear =
-          self.pairs == 0 || h.pairs == 0
-              ? out.h_crossing
-              : geometry::body_crossings(meshes, body_tree, geometry::grow_faces(body, self.a_faces, 1))
-                    .a_vertex_share();
+      // Pinch zones among the body vertices under the garments (a garment
+      // vertex within twice the pinch distance plus half the garments'
+      // longest edge: every point of a garment face is within half its
+      // longest edge of one of its vertices, roughly); their share of the
+      // body faces under the garments.
+      double longest = 0;
+      for (const MeasuredGarment& g : garments) {
+        for (Eigen::Index f = 0; f < g.faces.rows(); ++f) {
+          for (int k = 0; k < 3; ++k) {
+            const float l = (g.positions.row(g.faces(f, k)) - g.positions.row(g.faces(f, (k + 1) % 3))).norm();
+            longest = std::max(longest, static_cast<double>(l));
+          }
+        }
+      }
+      const geometry::PointIndex cloth(stack(all));
+      std::vector<char> covered(static_cast<std::size_t>(body.num_vertices()), 0);
+      for (int v = 0; v < body.num_vertices(); ++v)
+        covered[v] = cloth.nearest(body.vertices.row(v)).distance <= 2 * pinch_distance + 0.5 * longest ? 1 : 0;
+      const std::vector<char> pinch =
+          geometry::pinch_faces(body, self.pairs > 0 ? self.a_faces : std::vector<char>{}, pinch_distance, &covered);
+      const auto in_pinch = std::count(pinch.begin(), pinch.end(), 1);
+      long under = 0, under_pinched = 0;
+      for (int f = 0; f < body.num_faces(); ++f) {
+        if (!covered[body.faces(f, 0)] && !covered[body.faces(f, 1)] && !covered[body.faces(f, 2)]) continue;
+        ++under;
+        under_pinched += pinch[f];
+      }
+      out.body_pinch = under > 0 ? static_cast<double>(under_pinched) / under : 0.0;
+      if (h.pairs == 0 || in_pinch == 0) {
+        out.h_crossing_clear = out.h_crossing;
+        out.h_crossing_pinch = 0;
+      } else {
+        std::vector<char> clear(pinch.size());
+        for (std::size_t f = 0; f < pinch.size(); ++f) clear[f] = pinch[f] ? 0 : 1;
+        out.h_crossing_clear = geometry::body_crossings(meshes, body_tree, pinch).a_vertex_share();
+        out.h_crossing_pinch = geometry::body_crossings(meshes, body_tree, clear).a_vertex_share();
+      }
     }
   }
   if (!outer_meshes.empty() && !inner.empty()) {
@@ -258,7 +295,8 @@ FrameMeasures measure_frame(const Solver& solver) {
     garments.push_back(
         {c.positions(), c.faces(), c.edges(), c.rest_lengths(), top != bottom && c.layer() == top, c.self_contact()});
   }
-  return measure_frame(solver.body(), garments, solver.config().validation.l_reach, false);
+  const ValidationConfig& v = solver.config().validation;
+  return measure_frame(solver.body(), garments, v.l_reach, v.max_h_crossing_clear < 1, v.pinch_distance);
 }
 
 void SequenceMeasures::add(const FrameMeasures& f) {
@@ -279,6 +317,9 @@ void SequenceMeasures::add(const FrameMeasures& f) {
   sum_self_ += f.body_self_crossing;
   sum_hx_clear_ += f.h_crossing_clear;
   max_h_crossing_clear_ = std::max(max_h_crossing_clear_, f.h_crossing_clear);
+  sum_pinch_ += f.body_pinch;
+  sum_hx_pinch_ += f.h_crossing_pinch;
+  max_h_crossing_pinch_ = std::max(max_h_crossing_pinch_, f.h_crossing_pinch);
 }
 
 double SequenceMeasures::mean_h_penetration() const { return measured_ ? sum_h_ / measured_ : 0.0; }
@@ -288,6 +329,10 @@ double SequenceMeasures::mean_l_crossing() const { return measured_ ? sum_lx_ / 
 double SequenceMeasures::mean_body_self_crossing() const { return measured_self_ ? sum_self_ / measured_self_ : kNaN; }
 double SequenceMeasures::mean_h_crossing_clear() const {
   return measured_self_ ? sum_hx_clear_ / measured_self_ : kNaN;
+}
+double SequenceMeasures::mean_body_pinch() const { return measured_self_ ? sum_pinch_ / measured_self_ : kNaN; }
+double SequenceMeasures::mean_h_crossing_pinch() const {
+  return measured_self_ ? sum_hx_pinch_ / measured_self_ : kNaN;
 }
 
 std::vector<std::string> SequenceMeasures::violations(const ValidationConfig& limits) const {
@@ -303,6 +348,10 @@ std::vector<std::string> SequenceMeasures::violations(const ValidationConfig& li
   }
   if (max_h_crossing_ > limits.max_h_crossing) {
     out.push_back("H-crossing " + percent(max_h_crossing_) + " in a frame exceeds " + percent(limits.max_h_crossing));
+  }
+  if (measured_self_ > 0 && max_h_crossing_clear_ > limits.max_h_crossing_clear) {
+    out.push_back("H-crossing outside pinch zones " + percent(max_h_crossing_clear_) + " in a frame exceeds " +
+                  percent(limits.max_h_crossing_clear));
   }
   if (max_l_crossing_ > limits.max_l_crossing) {
     out.push_back("L-crossing " + percent(max_l_crossing_) + " in a frame exceeds " + percent(limits.max_l_crossing));

@@ -2,6 +2,8 @@
 // per-sequence verdict and measure_frame() on a solver.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -181,6 +183,35 @@ TEST(Measures, CrossingsOfAFrame) {
   EXPECT_TRUE(std::isnan(unasked.body_self_crossing));
   EXPECT_TRUE(std::isnan(unasked.h_crossing_clear));
   EXPECT_DOUBLE_EQ(unasked.h_crossing, through_body.h_crossing);
+
+  // A second body part 12 mm over the floor, away from the crossing: a
+  // pinch zone, and the crossing is outside it; over the crossing: inside.
+  const auto with_plate = [&](double x, double z) {
+    // The floor and the plate with 1 cm edges (pinch zones are found
+    // between vertices).
+    return geometry::concatenate({test::grid(V3(0, 0, 1), V3(1, 0, 0), V3(0, 0, -1), 100, 100),
+                                  test::grid(V3(x, 0.012, z), V3(0.3, 0, 0), V3(0, 0, -0.3), 30, 30)});
+  };
+  const FrameMeasures apart = measure_frame(with_plate(0.7, 0.3), garments(outer));
+  EXPECT_GT(apart.body_pinch, 0.0);
+  EXPECT_DOUBLE_EQ(apart.h_crossing_clear, apart.h_crossing);
+  EXPECT_EQ(apart.h_crossing_pinch, 0.0);
+  const FrameMeasures over = measure_frame(with_plate(0.3, 0.7), garments(outer));
+  EXPECT_GT(over.h_crossing, 0.0);
+  EXPECT_EQ(over.h_crossing_clear, 0.0);
+  EXPECT_DOUBLE_EQ(over.h_crossing_pinch, over.h_crossing);
+  // The clear part has its own threshold.
+  SequenceMeasures seen;
+  seen.add(apart);
+  ValidationConfig strict;
+  strict.max_h_crossing_clear = 0;
+  const std::vector<std::string> said = seen.violations(strict);
+  EXPECT_TRUE(std::any_of(said.begin(), said.end(), [](const std::string& s) {
+    return s.find("H-crossing outside pinch zones") != std::string::npos;
+  }));
+  SequenceMeasures pinched_only;
+  pinched_only.add(over);
+  for (const std::string& p : pinched_only.violations(strict)) EXPECT_EQ(p.find("outside pinch"), std::string::npos);
 
   SequenceMeasures seq;
   seq.add(clean);

@@ -20,6 +20,9 @@ struct ValidationConfig {
   double max_h_crossing = 1.0;       // largest share, in any frame, of garment vertices on faces through the body
   double max_l_crossing = 1.0;       // largest share, in any frame, of outer vertices on faces through the inner layer
   int max_cloth_crossings = 0;       // most crossing face pairs between garments (all pairs, and self) in any frame
+  double pinch_distance = 0.018;     // m: two body parts closer than this pinch the cloth between them
+  double max_h_crossing_clear =
+      1.0;  // largest share, in any frame, of garment vertices crossing the body outside pinch zones
 
   template <class V>
   void visit(V& v) {
@@ -37,6 +40,12 @@ struct ValidationConfig {
     v("max_l_crossing", max_l_crossing,
       cfg::opt().range(0, 1).help(
           "largest share, in any frame, of outer vertices on faces passing through an inner garment"));
+    v("pinch_distance", pinch_distance,
+      cfg::opt().range(0, 0.2).help("pinch zones: body vertices closer than this (m) to a body vertex that is not "
+                                    "their neighbour along the mesh (twice a two-layer cloth stack: 2 x (5 + 4) mm)"));
+    v("max_h_crossing_clear", max_h_crossing_clear,
+      cfg::opt().range(0, 1).help("largest share, in any frame, of garment vertices on faces passing through the body "
+                                  "outside pinch zones (below 1, the generator measures pinch zones in every frame)"));
     v("max_cloth_crossings", max_cloth_crossings,
       cfg::opt().min(0).help("most crossing face pairs, in any frame, between two garments or within a garment with "
                              "self-contact (the collision pass keeps them at 0)"));

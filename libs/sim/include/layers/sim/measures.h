@@ -26,11 +26,12 @@
 //    (docs/sim.md "Contact").
 //  - body self-crossing: share of body faces that pass through another
 //    body face (geometry::self_crossings; a posed arm sunk into the torso).
-//    A garment laid over such a seam must cross the body there, so
-//    H-crossing clear of it is reported too: the H-crossing that leaves
-//    out body faces within one ring of a self-crossing body face. It is
-//    for reading the H-crossing, never a threshold: thresholds apply to
-//    the H-crossing itself.
+//  - pinch zones (geometry/pinch.h): share of body faces where two parts
+//    of the body cross or come closer than ValidationConfig::pinch_distance
+//    (no room for the cloth stack between them). The H-crossing is split
+//    into the part inside pinch zones (only crossings with pinch-zone body
+//    faces) and the part clear of them (all other body faces); the clear
+//    part has its own threshold (max_h_crossing_clear).
 // A sequence passes when the mean H- and L-penetration over its frames,
 // the largest H- and L-crossing and cloth crossings of any frame and its
 // maximum stretch stay under the ValidationConfig thresholds and no value
@@ -85,7 +86,9 @@ struct FrameMeasures {
   std::int64_t h_crossing_pairs = 0, l_crossing_pairs = 0;
   std::int64_t cloth_crossing_pairs = 0;  // any two garments, and self where the garment has self-contact
   double body_self_crossing = 0;          // share of body faces; NaN when not measured
-  double h_crossing_clear = 0;            // NaN when not measured
+  double body_pinch = 0;        // share of the body faces under the garments in pinch zones; NaN when not measured
+  double h_crossing_clear = 0;  // H-crossing outside pinch zones; NaN when not measured
+  double h_crossing_pinch = 0;  // H-crossing inside pinch zones; NaN when not measured
 };
 
 // One garment as measured: its positions, its edges with rest lengths and
@@ -99,15 +102,19 @@ struct MeasuredGarment {
   bool self_contact = false;  // its own crossings count among the cloth crossings
 };
 
-// `body_self`: also measure the body's own crossings and the H-crossing
-// clear of them (about 30 ms for a 27k-face body; NaN when not asked).
+// `body_self`: also measure the body's own crossings, its pinch zones
+// (vertices within `pinch_distance` of a body part; 0: crossings only) and
+// the H-crossing inside and clear of them (about 60 ms for a 27k-face
+// body; NaN when not asked).
 FrameMeasures measure_frame(const geometry::TriMesh& body, const std::vector<MeasuredGarment>& garments,
-                            double l_reach = ValidationConfig{}.l_reach, bool body_self = true);
+                            double l_reach = ValidationConfig{}.l_reach, bool body_self = true,
+                            double pinch_distance = ValidationConfig{}.pinch_distance);
 // The solver's current frame: its body and cloths; the cloths of the
-// highest layer are the outer garments, all others inner; the L reach is
-// the solver's config().validation.l_reach. The generator's per-frame
-// check: no body self-crossings (they judge the motion, not the cloth, and
-// `layers validate --physics` reports them from the stored frames).
+// highest layer are the outer garments, all others inner; the L reach and
+// pinch distance are the solver's config().validation's. The generator's
+// per-frame check: body self-crossings and pinch zones only where
+// validation.max_h_crossing_clear asks for them (below 1); `layers validate
+// --physics` reports them from the stored frames.
 FrameMeasures measure_frame(const Solver& solver);
 
 // Running totals over the frames of a sequence.
@@ -126,6 +133,9 @@ class SequenceMeasures {
   double mean_body_self_crossing() const;
   double mean_h_crossing_clear() const;
   double max_h_crossing_clear() const { return max_h_crossing_clear_; }
+  double mean_body_pinch() const;
+  double mean_h_crossing_pinch() const;
+  double max_h_crossing_pinch() const { return max_h_crossing_pinch_; }
   double max_stretch() const { return max_stretch_; }
   std::int64_t max_cloth_crossings() const { return max_cloth_crossings_; }  // worst frame's pairs
   std::int64_t nonfinite() const { return nonfinite_; }
@@ -139,6 +149,7 @@ class SequenceMeasures {
   double sum_hx_ = 0, sum_lx_ = 0, max_h_crossing_ = 0, max_l_crossing_ = 0;
   int measured_self_ = 0;
   double sum_self_ = 0, sum_hx_clear_ = 0, max_h_crossing_clear_ = 0;
+  double sum_pinch_ = 0, sum_hx_pinch_ = 0, max_h_crossing_pinch_ = 0;
   std::int64_t nonfinite_ = 0, max_cloth_crossings_ = 0;
 };
 
