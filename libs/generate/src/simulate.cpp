@@ -39,12 +39,6 @@ Eigen::Isometry3d rigid_fit(const geometry::Points& from, const geometry::Points
 // Air damping (1/s) while the garments settle in the T-pose (not recorded).
 constexpr double kDrapeDamping = 5.0;
 
-double thread_cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
 motion::GeneratedBody make_body(const GeneratorConfig& config, const SceneSpec& spec) {
   motion::BodyMotionConfig body;
   body.shape = spec.shape;
@@ -247,6 +241,12 @@ void SceneSimulation::warm_up(const FrameObserver& observer) {
 void SceneSimulation::record(int r) {
   if (!usable()) throw Error("SceneSimulation::record: " + problem_);
   solver_.step(body_frame(config_.body.transition_frames + r), wind_.at(r));
+}
+
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 SceneResult simulate_scene(const GeneratorConfig& config, const SceneSpec& spec, const FrameObserver& observer) {

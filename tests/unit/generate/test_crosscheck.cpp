@@ -3,17 +3,21 @@
 // behind a normal plane at known distances, the table, crosscheck.json,
 // and Blender's results read back, including the PC2 that the Python
 // writer of scripts/blender/crosscheck_sim.py makes (run with python3,
-// without Blender).
+// without Blender); and our solver simulating a generated scene again.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
 
+#include "layers/core/config.h"
 #include "layers/core/error.h"
+#include "layers/data/dataset.h"
 #include "layers/data/pc2.h"
 #include "layers/generate/crosscheck.h"
 #include "layers/generate/crosscheck_scene.h"
+#include "layers/generate/generator.h"
+#include "layers/generate/generator_config.h"
 #include "run_command.h"
 #include "temp_dir.h"
 #include "test_paths.h"
@@ -254,4 +258,42 @@ TEST(Crosscheck, PythonPc2WriterRoundTrip) {
   EXPECT_EQ(cache.header.start_frame, 0.0f);
   EXPECT_EQ(cache.header.sample_rate, 1.0f);
   EXPECT_EQ(cache.positions, (std::vector<float>{0.5f, -1, 2, 3, 4, 5.25f, 6, 7, 8, 9, 10, -11.125f}));
+}
+
+TEST(Crosscheck, OursSimulatedAgainEqualsTheStoredFramesAndIsTimed) {
+  // One short, coarse scene of configs/data/tiny.yaml made by the
+  // generator, then simulated again from the folder's generator.yaml.
+  test::TempDir dir;
+  cfg::Node tree = cfg::load_file(test::source_dir() + "/configs/data/tiny.yaml");
+  for (const char* set :
+       {"sequences=1", "frames=3", "drape_frames=2", "body.transition_frames=2", "garments.fit.edge_length=0.1",
+        "sim.validation.max_h_penetration=1", "sim.validation.max_l_penetration=1", "sim.validation.max_stretch=100",
+        "sim.validation.max_h_crossing_clear=1", "splits.val=0", "splits.test=0"})
+    cfg::apply_set(tree, set);
+  const auto config = cfg::read<generate::GeneratorConfig>(tree);
+  generate::GenerateOptions options;
+  options.out = dir.file("ds");
+  options.progress = false;
+  const generate::GenerateReport report =
+      generate::generate_dataset(config, cfg::to_yaml(cfg::to_node(config)), options);
+  ASSERT_EQ(report.written, 1);
+  const data::Dataset ds = data::Dataset::open(options.out);
+  const data::SequenceData stored = ds.read_sequence("seq-000000");
+  const CrosscheckRun again = generate::resimulate_ours(options.out, "seq-000000", 3);
+  EXPECT_GT(again.ms_per_frame, 0.0);
+  ASSERT_EQ(again.garments.size(), stored.garments.size());
+  for (std::size_t g = 0; g < stored.garments.size(); ++g) EXPECT_EQ(again.garments[g], stored.garments[g].positions);
+  // Not a sequence the generator made, more frames than it recorded, no
+  // generator.yaml: one line each.
+  const auto message = [&](const std::string& folder, const std::string& id, std::int64_t frames) {
+    try {
+      generate::resimulate_ours(folder, id, frames);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message(options.out, "a", 3).find("seq-NNNNNN"), std::string::npos);
+  EXPECT_NE(message(options.out, "seq-000000", 4).find("frames"), std::string::npos);
+  EXPECT_NE(message(dir.file("none"), "seq-000000", 3).find("generator.yaml"), std::string::npos);
 }

@@ -92,6 +92,9 @@ class SceneSimulation {
   sim::Solver solver_;
 };
 
+// CPU seconds used by the calling thread so far (how scenes are timed).
+double thread_cpu_seconds();
+
 // Never writes anything; a scene over its thresholds comes back with
 // ok = false and the reasons.
 SceneResult simulate_scene(const GeneratorConfig& config, const SceneSpec& spec, const FrameObserver& observer = {});
