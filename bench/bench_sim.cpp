@@ -9,9 +9,10 @@
 // short drape and blend) are not timed; each iteration is one recorded
 // frame (1/30 s of motion). Arguments: edge length in tenths of a mm,
 // substeps, contact passes as bits: 1 layer edge-edge (6 mm), 2 body
-// edge-edge (2 mm), 4 the continuous-collision pass (7: the defaults; each
-// resolution runs with and without the pass, the 25 mm scene also without
-// body edges to price them).
+// edge-edge (2 mm), 4 the continuous-collision pass, 8 body edges on every
+// 4th substep only (7: the defaults; 15: tiny.yaml's recipe; each
+// resolution runs with and without the pass and with 15, the 25 mm scene
+// also without body edges to price them).
 // Counters: garment vertices, the solver's own split of the time per frame
 // (per thread), the strain cap's sweeps per frame, and the generator's
 // validation measures over the timed frames (measured outside the timing):
@@ -50,6 +51,7 @@ gen::SceneSimulation make_scene(double edge_mm, int substeps, int frames, int ed
   if ((edge_contact & 1) == 0) config.sim.layer_edge_thickness = 0;
   if ((edge_contact & 2) == 0) config.sim.body_edge_thickness = 0;
   config.sim.collision_pass = (edge_contact & 4) != 0;
+  if ((edge_contact & 8) != 0) config.sim.body_edge_every = 4;
   gen::SceneSpec spec = gen::sample_scene(config, 0);
   spec.shape = {};  // the average body
   return gen::SceneSimulation(config, spec);
@@ -58,7 +60,8 @@ gen::SceneSimulation make_scene(double edge_mm, int substeps, int frames, int ed
 void BM_GeneratorFrame(benchmark::State& state) {
   const double edge_mm = 0.1 * static_cast<double>(state.range(0));
   const int frames = static_cast<int>(state.max_iterations);
-  // Third argument: bit 0 layer edges, bit 1 body edges, bit 2 the collision pass.
+  // Third argument: bit 0 layer edges, bit 1 body edges, bit 2 the collision
+  // pass, bit 3 body edges every 4th substep.
   const int edge_contact = static_cast<int>(state.range(2));
   gen::SceneSimulation scene = make_scene(edge_mm, static_cast<int>(state.range(1)), frames, edge_contact);
   if (!scene.usable()) {
@@ -105,6 +108,7 @@ void BM_GeneratorFrame(benchmark::State& state) {
 // threads run at once.
 BENCHMARK(BM_GeneratorFrame)
     ->Args({500, 16, 7})
+    ->Args({500, 16, 15})
     ->Args({500, 16, 3})
     ->Iterations(30)
     ->Threads(1)
@@ -113,6 +117,7 @@ BENCHMARK(BM_GeneratorFrame)
     ->UseRealTime();
 BENCHMARK(BM_GeneratorFrame)
     ->Args({250, 16, 7})
+    ->Args({250, 16, 15})
     ->Args({250, 16, 3})
     ->Iterations(20)
     ->Threads(1)
@@ -121,6 +126,7 @@ BENCHMARK(BM_GeneratorFrame)
     ->UseRealTime();
 BENCHMARK(BM_GeneratorFrame)
     ->Args({125, 16, 7})
+    ->Args({125, 16, 15})
     ->Args({125, 16, 3})
     ->Iterations(8)
     ->Threads(1)
