@@ -2,10 +2,14 @@
 // tables and gnuplot charts made from finished run folders (see
 // libs/report/include/layers/report/report.h). Missing pieces are listed
 // on stderr and in report.md; the exit code is 1 only when no run had an
-// evaluation to report.
+// evaluation to report. A --out folder that holds a report is replaced
+// only with --force, which moves it aside first (nothing is overwritten).
 #include <cstdio>
+#include <filesystem>
 
+#include "layers/core/error.h"
 #include "layers/report/report.h"
+#include "output_folder.h"
 #include "verbs.h"
 
 namespace layers::app {
@@ -15,7 +19,7 @@ VerbRun register_report(CLI::App& app, const Global&) {
   struct Args {
     report::ReportInputs inputs;
     std::string out = "report";
-    bool no_charts = false;
+    bool no_charts = false, force = false;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--runs", a->inputs.runs,
@@ -33,8 +37,21 @@ VerbRun register_report(CLI::App& app, const Global&) {
       ->check(CLI::Range(1, 12));
   cmd->add_option("--gnuplot", a->inputs.gnuplot, "gnuplot program")->capture_default_str();
   cmd->add_flag("--no-charts", a->no_charts, "tables and report.md only");
+  cmd->add_flag("--force", a->force,
+                "replace a report in --out: the old folder is moved aside to <out>.replaced-<time>, never deleted");
   return [a]() {
     a->inputs.charts = !a->no_charts;
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const bool holds_report =
+        fs::exists(fs::path(a->out) / "report.md", ec) || fs::exists(fs::path(a->out) / "summary.csv", ec);
+    if (holds_report && !a->force)
+      throw InputError(a->out, "--out", "a new folder, or --force to move the report there aside",
+                       "a folder holding a report (report.md)");
+    if (holds_report) {
+      const fs::path aside = move_aside(a->out, "--out");
+      std::printf("moved the old report %s aside to %s\n", a->out.c_str(), aside.string().c_str());
+    }
     const report::ReportResult r = report::write_report(a->inputs, a->out);
     for (const std::string& p : r.problems) std::fprintf(stderr, "layers report: warning: %s\n", p.c_str());
     for (const std::string& f : r.selection_flags)

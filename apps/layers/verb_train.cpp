@@ -20,6 +20,7 @@
 #include "layers/data/run_layout.h"
 #include "layers/train/trainer.h"
 #include "layers/zoo/model_config.h"
+#include "output_folder.h"
 #include "plugins.h"
 #include "verbs.h"
 
@@ -40,18 +41,6 @@ std::vector<std::string> run_results_in(const fs::path& dir) {
   }
   std::sort(found.begin(), found.end());
   return found;
-}
-
-// A free name beside `dir`: <dir>.replaced-<UTC time>[-N].
-fs::path aside_name(const fs::path& dir) {
-  char stamp[32];
-  const std::time_t now = std::time(nullptr);
-  std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::gmtime(&now));
-  const std::string base = dir.lexically_normal().string();
-  const std::string trimmed = (!base.empty() && base.back() == '/') ? base.substr(0, base.size() - 1) : base;
-  fs::path candidate = trimmed + ".replaced-" + stamp;
-  for (int n = 2; fs::exists(candidate); ++n) candidate = trimmed + ".replaced-" + stamp + "-" + std::to_string(n);
-  return candidate;
 }
 
 }  // namespace
@@ -92,8 +81,7 @@ VerbRun register_train(CLI::App& app, const Global&) {
                        "a folder holding a run (" + held.front() + (held.size() > 1 ? ", ..." : "") + ")");
     if (group) group->barrier();  // every rank has looked at the folder before rank 0 changes it
     if (root && !held.empty() && a->force) {
-      const fs::path aside = aside_name(out);
-      fs::rename(out, aside);
+      const fs::path aside = move_aside(out, "run.output");
       std::printf("moved the old run %s aside to %s\n", out.string().c_str(), aside.string().c_str());
     }
     if (root) {

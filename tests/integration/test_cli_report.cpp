@@ -1,0 +1,57 @@
+// `layers report --out` onto a folder that holds a report: refused with
+// one line and nothing changed; with --force the old folder is moved
+// aside, never deleted; the folder the command runs in is never moved.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "run_command.h"
+#include "temp_dir.h"
+
+namespace fs = std::filesystem;
+using namespace layers;
+using test::run_command;
+
+namespace {
+
+std::string text_of(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+TEST(CliReport, AFolderHoldingAReportIsReplacedOnlyWithForceAndMovedAside) {
+  test::TempDir dir;
+  const fs::path out = dir.file("out");
+  fs::create_directories(out);
+  std::ofstream(out / "report.md") << "my notes\n";
+  const std::string report = test::layers_bin() + " report --no-charts --runs " + dir.file("no-run") + " --out ";
+
+  auto refused = run_command(report + out.string());
+  EXPECT_EQ(refused.exit_code, 1) << refused.output;
+  EXPECT_NE(refused.output.find("--out: expected a new folder, or --force"), std::string::npos) << refused.output;
+  EXPECT_EQ(text_of(out / "report.md"), "my notes\n");
+  EXPECT_FALSE(fs::exists(out / "summary.csv"));
+
+  // --force: the old folder moved aside, a new report written (exit 1: no
+  // run had an evaluation).
+  auto forced = run_command(report + out.string() + " --force");
+  EXPECT_NE(forced.output.find("moved the old report"), std::string::npos) << forced.output;
+  std::vector<fs::path> aside;
+  for (const auto& e : fs::directory_iterator(dir.path()))
+    if (e.path().filename().string().rfind("out.replaced-", 0) == 0) aside.push_back(e.path());
+  ASSERT_EQ(aside.size(), 1u) << forced.output;
+  EXPECT_EQ(text_of(aside[0] / "report.md"), "my notes\n");
+  EXPECT_TRUE(fs::exists(out / "summary.csv"));
+
+  // The folder the command runs in is not moved.
+  auto here = run_command("cd " + out.string() + " && " + report + ". --force");
+  EXPECT_EQ(here.exit_code, 1) << here.output;
+  EXPECT_NE(here.output.find("a folder other than the current one"), std::string::npos) << here.output;
+  EXPECT_TRUE(fs::exists(out / "summary.csv"));
+}
