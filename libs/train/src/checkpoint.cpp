@@ -46,7 +46,37 @@ std::string torch_message(const std::exception& e) {
 
 // The verified torch archive bytes of a checkpoint file; `checksum` gets
 // the verified hash ("" for a file written before checksums).
+// What a header line may echo: printable ASCII as it is, other bytes as
+// \xNN (a damaged or foreign file prints no raw bytes).
+std::string printable(const std::string& text) {
+  std::string out;
+  for (unsigned char c : text) {
+    if (c >= 0x20 && c < 0x7f) {
+      out.push_back(static_cast<char>(c));
+    } else {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02x", c);
+      out += hex;
+    }
+  }
+  return out;
+}
+
 std::string checked_payload(const std::string& path, std::string& checksum) {
+  // A regular file no larger than kMaxCheckpointBytes, checked before a
+  // byte is read (a folder, a device such as /dev/zero or a huge file is
+  // one line, not a read until memory runs out).
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (std::filesystem::is_directory(status))
+    throw InputError(path, "checkpoint", "a checkpoint file (checkpoint-best.pt or checkpoint-last.pt)", "a folder");
+  if (!std::filesystem::is_regular_file(status))
+    throw InputError(path, "checkpoint", "a regular file", "a device, pipe or other special file");
+  const auto size_on_disk = std::filesystem::file_size(path, ec);
+  if (ec) throw InputError(path, "checkpoint", "a readable file", "cannot read its size: " + ec.message());
+  if (size_on_disk > kMaxCheckpointBytes)
+    throw InputError(path, "checkpoint", "at most " + std::to_string(kMaxCheckpointBytes >> 20) + " MiB",
+                     std::to_string(size_on_disk >> 20) + " MiB");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "checkpoint", "a readable file", "cannot open it");
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -62,7 +92,8 @@ std::string checked_payload(const std::string& path, std::string& checksum) {
   char hex[17] = {};
   unsigned long long size = 0;
   if (std::sscanf(bytes.c_str() + magic.size(), "%16[0-9a-f] %llu", hex, &size) != 2)
-    throw InputError(path, "checkpoint", "'" + magic + "<16 hex digits> <size>'", "'" + bytes.substr(0, eol) + "'");
+    throw InputError(path, "checkpoint", "'" + magic + "<16 hex digits> <size>'",
+                     "'" + printable(bytes.substr(0, eol)) + "'");
   const std::string payload = bytes.substr(eol + 1);
   if (payload.size() != size)
     throw InputError(path, "checkpoint", std::to_string(size) + " bytes after the header",

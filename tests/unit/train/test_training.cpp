@@ -213,6 +213,14 @@ TEST_F(Fixture, DamagedCheckpointIsRefusedWithOneLine) {
   EXPECT_EQ(message(b).rfind(b + ": checkpoint: expected a layers checkpoint (torch archive), got unreadable: ", 0), 0u)
       << message(b);
   EXPECT_EQ(message(b).find('\n'), std::string::npos) << message(b);
+  // A folder, a device that never ends, a header of raw bytes: one line
+  // each, before any read (no bytes echoed as they are).
+  EXPECT_EQ(message(dir.path()), dir.path() +
+                                     ": checkpoint: expected a checkpoint file (checkpoint-best.pt or "
+                                     "checkpoint-last.pt), got a folder");
+  EXPECT_NE(message("/dev/zero").find("expected a regular file"), std::string::npos) << message("/dev/zero");
+  const std::string raw = write("raw.pt", std::string("layers-checkpoint 1 fnv1a64 \xff\x01 7\n") + "payload");
+  EXPECT_NE(message(raw).find("\\xff\\x01"), std::string::npos) << message(raw);
 }
 
 TEST_F(Fixture, DivergenceIsRecordedNotThrown) {

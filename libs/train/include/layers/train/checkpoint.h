@@ -22,6 +22,10 @@ class Model;
 
 namespace layers::train {
 
+// The largest checkpoint file read (1 GiB; ours are tens of MB): a larger
+// file, a folder or a device is refused before anything is read.
+constexpr std::uintmax_t kMaxCheckpointBytes = std::uintmax_t{1} << 30;
+
 struct CheckpointState {
   int epochs_done = 0;
   std::int64_t steps = 0;
@@ -47,7 +51,8 @@ void save_checkpoint(const std::string& path, zoo::Model& model, const torch::op
                      const CheckpointState& state);
 // Restores into `model` (and `optimizer` when given). InputError naming the
 // file, on one line, for a missing, damaged (checksum), unreadable
-// checkpoint or one made for another model. A bare torch archive (written
+// checkpoint, one made for another model, a folder, a special file or one
+// over kMaxCheckpointBytes. A bare torch archive (written
 // before checksums) is read unchecked, with a warning.
 CheckpointState load_checkpoint(const std::string& path, zoo::Model& model, torch::optim::Optimizer* optimizer);
 
