@@ -81,6 +81,7 @@ const Scene& scene() {
     config.sim.validation.max_l_penetration = 1;
     config.sim.validation.max_h_penetration = 1;
     config.sim.validation.max_stretch = 100;
+    config.sim.validation.max_h_crossing_clear = 1;
     const generate::SceneResult result = generate::simulate_scene(config, generate::sample_scene(config, 0));
     EXPECT_TRUE(result.ok);
     Scene out;
