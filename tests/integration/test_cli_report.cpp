@@ -5,25 +5,14 @@
 
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
+#include "layers/core/text_file.h"
 #include "run_command.h"
 #include "temp_dir.h"
 
 namespace fs = std::filesystem;
 using namespace layers;
 using test::run_command;
-
-namespace {
-
-std::string text_of(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-}  // namespace
 
 TEST(CliReport, AFolderHoldingAReportIsReplacedOnlyWithForceAndMovedAside) {
   test::TempDir dir;
@@ -35,7 +24,7 @@ TEST(CliReport, AFolderHoldingAReportIsReplacedOnlyWithForceAndMovedAside) {
   auto refused = run_command(report + out.string());
   EXPECT_EQ(refused.exit_code, 1) << refused.output;
   EXPECT_NE(refused.output.find("--out: expected a new folder, or --force"), std::string::npos) << refused.output;
-  EXPECT_EQ(text_of(out / "report.md"), "my notes\n");
+  EXPECT_EQ(read_text_file((out / "report.md").string()), "my notes\n");
   EXPECT_FALSE(fs::exists(out / "summary.csv"));
 
   // --force: the old folder moved aside, a new report written (exit 1: no
@@ -46,7 +35,7 @@ TEST(CliReport, AFolderHoldingAReportIsReplacedOnlyWithForceAndMovedAside) {
   for (const auto& e : fs::directory_iterator(dir.path()))
     if (e.path().filename().string().rfind("out.replaced-", 0) == 0) aside.push_back(e.path());
   ASSERT_EQ(aside.size(), 1u) << forced.output;
-  EXPECT_EQ(text_of(aside[0] / "report.md"), "my notes\n");
+  EXPECT_EQ(read_text_file((aside[0] / "report.md").string()), "my notes\n");
   EXPECT_TRUE(fs::exists(out / "summary.csv"));
 
   // The folder the command runs in is not moved.
