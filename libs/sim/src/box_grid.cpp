@@ -3,27 +3,16 @@
 #include "box_grid.h"
 
 #include <algorithm>
-#include <cmath>
 
 namespace layers::sim::detail {
-
-namespace {
-
-// floor(y) for |y| < 2^53, without a call into libm.
-std::int64_t floor_index(double y) {
-  const auto i = static_cast<std::int64_t>(y);
-  return i - (y < static_cast<double>(i) ? 1 : 0);
-}
-
-}  // namespace
 
 bool BoxGrid::cells_of(const Box& b, std::int64_t lo[3], std::int64_t hi[3]) const {
   for (int k = 0; k < 3; ++k) {
     const double a = b.lo[k] * inv_cell_, z = b.hi[k] * inv_cell_;
     // Beyond any scene (or NaN): treated as wider than the span.
     if (!(a > -1e15 && z < 1e15 && z - a < kMaxSpan + 1)) return false;
-    lo[k] = floor_index(a);
-    hi[k] = floor_index(z);
+    lo[k] = cell_coord(b.lo[k], inv_cell_);
+    hi[k] = cell_coord(b.hi[k], inv_cell_);
     if (hi[k] - lo[k] >= kMaxSpan) return false;
   }
   return true;

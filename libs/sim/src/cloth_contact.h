@@ -53,7 +53,7 @@ class EdgeContact {
     void build(const geometry::Edges& edges, const Vec3s& x, double grow, double cell);
     template <class F>
     void for_cells(const Vec3& lo, const Vec3& hi, F&& f) const {
-      const auto c = [&](double v) { return static_cast<std::int64_t>(std::floor(v * inv_cell)); };
+      const auto c = [&](double v) { return cell_coord(v, inv_cell); };
       for (std::int64_t ix = c(lo.x()); ix <= c(hi.x()); ++ix)
         for (std::int64_t iy = c(lo.y()); iy <= c(hi.y()); ++iy)
           for (std::int64_t iz = c(lo.z()); iz <= c(hi.z()); ++iz) f(cell_slot(ix, iy, iz, mask));

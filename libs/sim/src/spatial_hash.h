@@ -13,6 +13,15 @@
 
 namespace layers::sim::detail {
 
+// The cell index floor(v * inv_cell) of a coordinate (|v * inv_cell| below
+// 2^53), without a call into libm; every grid of the solver finds its
+// cells with this.
+inline std::int64_t cell_coord(double v, double inv_cell) {
+  const double y = v * inv_cell;
+  const auto i = static_cast<std::int64_t>(y);
+  return i - (y < static_cast<double>(i) ? 1 : 0);
+}
+
 // The table slot of grid cell (ix, iy, iz) in a table of mask + 1 slots (a
 // power of two); every grid of the solver hashes its cells with this.
 inline std::uint32_t cell_slot(std::int64_t ix, std::int64_t iy, std::int64_t iz, std::uint64_t mask) {
@@ -45,7 +54,7 @@ class SpatialHash {
   }
 
  private:
-  std::int64_t coord(double v) const { return static_cast<std::int64_t>(std::floor(v * inv_cell_)); }
+  std::int64_t coord(double v) const { return cell_coord(v, inv_cell_); }
   std::uint32_t slot(std::int64_t ix, std::int64_t iy, std::int64_t iz) const { return cell_slot(ix, iy, iz, mask_); }
 
   double cell_ = 1, inv_cell_ = 1;
