@@ -1,6 +1,6 @@
 // `layers crosscheck`: one stored sequence re-simulated by Blender's cloth
 // solver from its frame 0 (scripts/blender/crosscheck_sim.py, one run per
-// setup) and by ours from the dataset's generator.yaml (timed), and a
+// setup) and by ours from the generator config in its dataset.yaml (timed), and a
 // markdown table of the same measures on our stored ground truth, our run
 // and each Blender result (docs/sim.md "Cross-check against Blender").
 #include <algorithm>
@@ -92,12 +92,12 @@ int run(const Args& a) {
   for (const auto& g : seq.garments) ours.garments.push_back(g.positions);
   runs.push_back(std::move(ours));
   // Our solver timed on the same scene: simulated again from the
-  // dataset's generator.yaml, on one thread (a dataset made otherwise has
-  // none: our time is n/a then).
-  const bool made_here = fs::exists(fs::path(a.dataset) / "generator.yaml");
+  // generator config the dataset's manifest records, on one thread (a
+  // dataset made otherwise has none: our time is n/a then).
+  const bool made_here = !dataset.manifest().generator_yaml.empty();
   float drift = 0;  // largest difference from the stored positions
   if (made_here) {
-    std::fprintf(stderr, "crosscheck: ours, %lld frames simulated again from generator.yaml\n",
+    std::fprintf(stderr, "crosscheck: ours, %lld frames simulated again from the dataset's generator config\n",
                  static_cast<long long>(frames));
     generate::CrosscheckRun again = generate::resimulate_ours(a.dataset, a.sequence, frames);
     for (std::size_t g = 0; g < again.garments.size() && g < runs[0].garments.size(); ++g) {
@@ -131,12 +131,12 @@ int run(const Args& a) {
   table += "\nms per frame: Blender's is the wall time of each frame's step (frames 1..n-1, " +
            std::to_string(a.threads) + " Blender thread(s)); " +
            (made_here ? std::string("ours is the CPU time of each frame's step of the same scene simulated again "
-                                    "from the dataset's generator.yaml on one thread (frames 1..n-1; drape and "
-                                    "blend untimed). The frames simulated again differ from the stored ones by at "
-                                    "most ") +
+                                    "from the generator config in the dataset's dataset.yaml on one thread (frames "
+                                    "1..n-1; drape and blend untimed). The frames simulated again differ from the "
+                                    "stored ones by at most ") +
                             drift_text + " mm (0: the solver is the one that made the dataset).\n"
-                      : std::string("ours is n/a: the dataset has no generator.yaml to simulate the scene "
-                                    "again from.\n"));
+                      : std::string("ours is n/a: the dataset's dataset.yaml records no generator config to "
+                                    "simulate the scene again from.\n"));
   std::ofstream(fs::path(work) / "table.md") << table;
   std::fputs(table.c_str(), stdout);
   return kOk;

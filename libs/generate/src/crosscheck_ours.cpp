@@ -1,11 +1,14 @@
 // crosscheck_ours.cpp -- our side of `layers crosscheck`'s timing: the
-// stored sequence's scene simulated again from the dataset's generator.yaml
-// and timed frame by frame on one thread (see crosscheck.h).
+// stored sequence's scene simulated again from the generator config in the
+// dataset's manifest and timed frame by frame on one thread (see
+// crosscheck.h).
 #include <cstdio>
 #include <filesystem>
 
 #include "layers/core/config.h"
+#include "layers/core/config_node.h"
 #include "layers/core/error.h"
+#include "layers/data/manifest.h"
 #include "layers/generate/crosscheck.h"
 #include "layers/generate/generator_config.h"
 #include "layers/generate/scene_spec.h"
@@ -14,10 +17,17 @@
 namespace layers::generate {
 
 CrosscheckRun resimulate_ours(const std::string& dataset_dir, const std::string& sequence_id, std::int64_t frames) {
-  const std::string path = (std::filesystem::path(dataset_dir) / "generator.yaml").string();
+  // The config the dataset was made with, as its manifest records it.
+  const std::string path = (std::filesystem::path(dataset_dir) / "dataset.yaml").string();
   if (!std::filesystem::exists(path))
-    throw InputError::message(path, "", "not found: the scene cannot be simulated again to time our solver");
-  const GeneratorConfig config = cfg::read<GeneratorConfig>(cfg::load_file(path));
+    throw InputError::message(path, "",
+                              "not found: a finished dataset's manifest carries the generator config (generator.yaml) "
+                              "the scene is simulated again from");
+  const data::DatasetManifest manifest = data::read_manifest(path);
+  if (manifest.generator_yaml.empty())
+    throw InputError(path, "generator", "the generator config the dataset was made with",
+                     "none (a dataset not made by `layers generate`)");
+  const GeneratorConfig config = cfg::read<GeneratorConfig>(cfg::parse(manifest.generator_yaml, path), "generator");
   int index = -1;
   char tail = 0;
   if (std::sscanf(sequence_id.c_str(), "seq-%d%c", &index, &tail) != 1 || index < 0 || scene_id(index) != sequence_id)

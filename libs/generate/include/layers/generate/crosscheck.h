@@ -62,11 +62,12 @@ struct CrosscheckColumn {
 CrosscheckColumn measure_crosscheck(const data::SequenceData& seq, const CrosscheckRun& run);
 
 // Our solver timed on the scene: sequence `sequence_id` of the dataset
-// folder `dataset_dir` simulated again from its generator.yaml (drape and
-// blend untimed), frames 0..frames-1 recorded; ms_per_frame is the CPU
-// time of frames 1..n-1 on this thread. The positions equal the stored
-// ones when the solver has not changed since the dataset was made.
-// InputError when generator.yaml is missing or the scene cannot be made.
+// folder `dataset_dir` simulated again from the generator config its
+// dataset.yaml records (drape and blend untimed), frames 0..frames-1
+// recorded; ms_per_frame is the CPU time of frames 1..n-1 on this thread.
+// The positions equal the stored ones when the solver has not changed
+// since the dataset was made. InputError when the manifest or its
+// generator config is missing or the scene cannot be made.
 CrosscheckRun resimulate_ours(const std::string& dataset_dir, const std::string& sequence_id, std::int64_t frames);
 
 // The generator's measures (with the exact crossings) of the stored frame
