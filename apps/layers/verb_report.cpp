@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "layers/core/error.h"
+#include "layers/data/run_layout.h"
 #include "layers/report/report.h"
 #include "output_folder.h"
 #include "verbs.h"
@@ -43,11 +44,10 @@ VerbRun register_report(CLI::App& app, const Global&) {
     a->inputs.charts = !a->no_charts;
     namespace fs = std::filesystem;
     std::error_code ec;
-    const bool holds_report =
-        fs::exists(fs::path(a->out) / "report.md", ec) || fs::exists(fs::path(a->out) / "summary.csv", ec);
+    const bool holds_report = fs::exists(fs::path(a->out) / data::run_layout::kReport, ec);
     if (holds_report && !a->force)
       throw InputError(a->out, "--out", "a new folder, or --force to move the report there aside",
-                       "a folder holding a report (report.md)");
+                       std::string("a folder holding a report (") + data::run_layout::kReport + ")");
     if (holds_report) {
       const fs::path aside = move_aside(a->out, "--out");
       std::printf("moved the old report %s aside to %s\n", a->out.c_str(), aside.string().c_str());
