@@ -9,6 +9,7 @@
 #include "layers/geometry/intersect.h"
 #include "layers/geometry/nearest.h"
 #include "layers/geometry/pinch.h"
+#include "layers/geometry/topology.h"
 #include "layers/sim/contact_topology.h"
 #include "layers/sim/solver.h"
 #include "surface_query.h"
@@ -233,12 +234,8 @@ FrameMeasures measure_frame(const geometry::TriMesh& body, const std::vector<Mea
       // body faces under the garments.
       double longest = 0;
       for (const MeasuredGarment& g : garments) {
-        for (Eigen::Index f = 0; f < g.faces.rows(); ++f) {
-          for (int k = 0; k < 3; ++k) {
-            const float l = (g.positions.row(g.faces(f, k)) - g.positions.row(g.faces(f, (k + 1) % 3))).norm();
-            longest = std::max(longest, static_cast<double>(l));
-          }
-        }
+        const Eigen::VectorXd lengths = geometry::edge_lengths(g.positions, geometry::unique_edges(g.faces));
+        if (lengths.size() > 0) longest = std::max(longest, lengths.maxCoeff());
       }
       const geometry::PointIndex cloth(stack(all));
       std::vector<char> covered(static_cast<std::size_t>(body.num_vertices()), 0);
