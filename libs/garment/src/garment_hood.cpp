@@ -5,7 +5,9 @@
 // bending through a waypoint beside the head (behind it for the back
 // columns, beside the cheek for the front one: the free face opening);
 // their radius leaves the neckline and settles on the head's support
-// function plus the ease, so the hood clears the head.
+// function plus the ease, so the hood clears the head. Each column first
+// climbs straight up from the neckline, so the hood's first rows stay
+// clear of the body panels' collar rows.
 #include <algorithm>
 #include <cmath>
 
@@ -43,6 +45,13 @@ body::Vec3 slerp_dir(const body::Vec3& a, const body::Vec3& b, double t) {
   if (angle < 1e-6) return a;
   return (std::sin((1 - t) * angle) * a + std::sin(t * angle) * b) / std::sin(angle);
 }
+
+// How a column leaves the neckline. The head centre lies 10-25 cm above
+// a front neckline, so a column that turned about it from the start would
+// run out sideways along the collar rows of the body panels below and
+// cross them (120-180 face pairs per jacket before these three rules).
+constexpr double kClimb = 0.3;  // the first 30% of a column blends in from a straight climb
+constexpr double kRise = 0.6;   // rad: its direction turns up by at least this before heading for the waypoint
 
 // Left hood panel on the back and front necklines (each from the centre
 // line to the side); `split` is the grid column of the side point.
@@ -82,13 +91,25 @@ PanelGrid hood_panel(const FitContext& ctx, const HeadShape& head, const std::ve
         0.5 * (std::asin(std::clamp(d0.y(), -1.0, 1.0)) + std::asin(std::clamp(d1.y(), -1.0, 1.0)));
     const body::Vec3 w(std::cos(elevation) * std::sin(azimuth), std::sin(elevation),
                        std::cos(elevation) * std::cos(azimuth));
+    // u: d0 turned up (same azimuth) by kRise, or to the waypoint's
+    // elevation if that is higher; the direction runs d0 -> u -> w -> d1.
+    const double a0 = std::atan2(d0.x(), d0.z());
+    const double rise = std::max(elevation, std::asin(std::clamp(d0.y(), -1.0, 1.0)) + kRise);
+    const body::Vec3 u(std::cos(rise) * std::sin(a0), std::sin(rise), std::cos(rise) * std::cos(a0));
     const double r0 = (neck[j] - h).norm();
+    const double climb = (seam[j] - neck[j]).norm();
     for (int k = 0; k <= 48; ++k) {
       const double t = k / 48.0;
-      const body::Vec3 d = slerp_dir(slerp_dir(d0, w, t), slerp_dir(w, d1, t), t).normalized();
-      const double settle = smooth01(t / 0.3);
-      const double r = k == 48 ? (seam[j] - h).norm() : (1 - settle) * r0 + settle * (head.support(d) + spec.ease);
-      columns[j].push_back(h + r * d);
+      const body::Vec3 a = slerp_dir(d0, u, t), b = slerp_dir(u, w, t), c = slerp_dir(w, d1, t);
+      const body::Vec3 d = slerp_dir(slerp_dir(a, b, t), slerp_dir(b, c, t), t).normalized();
+      const double target = head.support(d) + spec.ease;
+      // The radius shrinks towards the head's outline from the start but
+      // grows only once the column has turned upwards.
+      const double settle = target < r0 ? smooth01(t / 0.3) : smooth01((t - 0.15) / 0.35);
+      const double r = k == 48 ? (seam[j] - h).norm() : (1 - settle) * r0 + settle * target;
+      const body::Vec3 up = neck[j] + body::Vec3(0, t * climb, 0);
+      const double blend = smooth01(t / kClimb);
+      columns[j].push_back((1 - blend) * up + blend * (h + r * d));
     }
     n = std::max(n, static_cast<int>(std::ceil(length(columns[j]) / ctx.step)));
   }
