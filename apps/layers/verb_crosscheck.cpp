@@ -1,8 +1,10 @@
-// `layers crosscheck`: one stored sequence re-simulated by Blender's cloth
-// solver from its frame 0 (scripts/blender/crosscheck_sim.py, one run per
-// setup) and by ours from the generator config in its dataset.yaml (timed), and a
-// markdown table of the same measures on our stored ground truth, our run
-// and each Blender result (docs/sim.md "Cross-check against Blender").
+// `layers crosscheck`: stored sequences re-simulated by Blender's cloth
+// solver from their frame 0 (scripts/blender/crosscheck_sim.py, one run
+// per setup) and by ours from the generator config in the dataset.yaml
+// (timed), and per scene a markdown table of the same measures on our
+// stored ground truth, our run and each Blender result; over several
+// scenes, a summary with 95% intervals that resumes where it stopped
+// (docs/sim.md "Cross-check against Blender").
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -13,9 +15,12 @@
 
 #include "blender_runner.h"
 #include "layers/core/error.h"
+#include "layers/core/text_file.h"
 #include "layers/data/dataset.h"
 #include "layers/generate/crosscheck.h"
 #include "layers/generate/crosscheck_scene.h"
+#include "layers/generate/crosscheck_summary.h"
+#include "output_folder.h"
 #include "verbs.h"
 
 namespace layers::app {
@@ -60,32 +65,37 @@ std::string title_of(const data::SequenceInfo& info, std::int64_t frames) {
 }
 
 struct Args {
-  std::string dataset, sequence, blender, setups = "merged,separate", work;
+  std::string dataset, blender, setups = "merged,separate", work;
+  std::vector<std::string> sequences;
   std::int64_t frames = 0;
   int threads = 1;
 };
 
-int run(const Args& a) {
-  const std::vector<std::string> setups = parse_setups(a.setups);
-  if (a.frames < 0 || a.frames == 1) throw UsageError("--frames: expected at least 2 (0 = the whole sequence)");
-  const std::string blender = find_blender(a.blender);
-  const data::Dataset dataset = data::Dataset::open(a.dataset);
-  if (!dataset.contains(a.sequence))
-    throw InputError::message(a.dataset, a.sequence, "no such sequence (`layers info " + a.dataset + "` lists them)");
-  const data::SequenceInfo& info = dataset.info(a.sequence);
+constexpr const char* kColumnsFile = "columns.tsv";
+constexpr const char* kScenesFile = "scenes.txt";  // marks a work folder of several scenes
+
+// Frames to compare for one sequence (checked against it).
+std::int64_t frames_of(const Args& a, const data::SequenceInfo& info) {
   const std::int64_t frames = a.frames == 0 ? info.n_frames : a.frames;
   if (frames > info.n_frames || frames < 2)
-    throw InputError("--frames", a.sequence, "2.." + std::to_string(info.n_frames), std::to_string(frames));
-  if (info.garments.empty()) throw InputError::message(a.dataset, a.sequence, "has no garment to simulate");
+    throw InputError("--frames", info.id, "2.." + std::to_string(info.n_frames), std::to_string(frames));
+  if (info.garments.empty()) throw InputError::message(a.dataset, info.id, "has no garment to simulate");
+  return frames;
+}
 
-  const std::string work = make_work_dir(a.work);
-  std::fprintf(stderr, "crosscheck: work folder %s\n", work.c_str());
+// One scene into the new folder `work`: table.md and columns.tsv; returns
+// the table and fills `columns`.
+std::string run_scene(const Args& a, const std::vector<std::string>& setups, const std::string& blender,
+                      const data::Dataset& dataset, const std::string& sequence, const std::string& work,
+                      std::vector<generate::CrosscheckColumn>& columns) {
+  const data::SequenceInfo& info = dataset.info(sequence);
+  const std::int64_t frames = frames_of(a, info);
   const generate::CrosscheckScene scene =
-      generate::write_crosscheck_scene(dataset, a.sequence, frames, (fs::path(work) / "export").string());
+      generate::write_crosscheck_scene(dataset, sequence, frames, (fs::path(work) / "export").string());
   const std::string script = (fs::path(work) / "crosscheck_sim.py").string();
   std::ofstream(script) << kCrosscheckScript;
 
-  data::SequenceData seq = dataset.read_sequence(a.sequence);
+  data::SequenceData seq = dataset.read_sequence(sequence);
   seq.n_frames = frames;
   std::vector<generate::CrosscheckRun> runs;
   generate::CrosscheckRun ours{"ours (stored)", std::nan(""), {}};
@@ -99,7 +109,7 @@ int run(const Args& a) {
   if (made_here) {
     std::fprintf(stderr, "crosscheck: ours, %lld frames simulated again from the dataset's generator config\n",
                  static_cast<long long>(frames));
-    generate::CrosscheckRun again = generate::resimulate_ours(a.dataset, a.sequence, frames);
+    generate::CrosscheckRun again = generate::resimulate_ours(a.dataset, sequence, frames);
     for (std::size_t g = 0; g < again.garments.size() && g < runs[0].garments.size(); ++g) {
       const std::vector<float>& x = again.garments[g];
       const std::vector<float>& y = runs[0].garments[g];
@@ -122,7 +132,7 @@ int run(const Args& a) {
     runs.push_back(generate::read_crosscheck_run("Blender, " + setup, out, scene, seq));
   }
 
-  std::vector<generate::CrosscheckColumn> columns;
+  columns.clear();
   for (const auto& r : runs) columns.push_back(generate::measure_crosscheck(seq, r));
   const sim::FrameMeasures start = generate::measure_start(seq);
   std::string table = generate::crosscheck_table(title_of(info, frames), columns, &start);
@@ -137,8 +147,93 @@ int run(const Args& a) {
                             drift_text + " mm (0: the solver is the one that made the dataset).\n"
                       : std::string("ours is n/a: the dataset's dataset.yaml records no generator config to "
                                     "simulate the scene again from.\n"));
+  const generate::CrosscheckGaps gaps = generate::crosscheck_gaps(dataset.manifest(), dataset.path());
+  char gap_text[160];
+  std::snprintf(gap_text, sizeof gap_text,
+                "Gaps handed to Blender (its effective gaps equal these): garment-body %.1f mm, between layers %.1f "
+                "mm, within a garment %.1f mm (%s).\n",
+                1e3 * gaps.body, 1e3 * gaps.layer, 1e3 * gaps.self,
+                gaps.recorded ? "the dataset's generator config" : "the solver's defaults");
+  table += gap_text;
   std::ofstream(fs::path(work) / "table.md") << table;
-  std::fputs(table.c_str(), stdout);
+  std::ofstream(fs::path(work) / kColumnsFile) << generate::crosscheck_columns_tsv(columns);
+  return table;
+}
+
+// The work folder of a run over several scenes: new, or one such run made
+// before (it holds scenes.txt naming the same dataset), to resume.
+std::string open_multi_work(const std::string& requested, const std::string& dataset) {
+  const std::string line = "dataset " + fs::absolute(dataset).lexically_normal().string() + "\n";
+  std::error_code ec;
+  if (!requested.empty() && fs::exists(requested, ec)) {
+    const fs::path marker = fs::path(requested) / kScenesFile;
+    std::ifstream in(marker);
+    std::string first;
+    if (!in || !std::getline(in, first) || first + "\n" != line)
+      throw InputError::message(requested, "",
+                                "exists and is not a cross-check of several scenes of this dataset (no " +
+                                    std::string(kScenesFile) + " naming it); --work must name a new folder or one "
+                                    "to resume (nothing is overwritten)");
+    return requested;
+  }
+  const std::string work = make_work_dir(requested);
+  std::ofstream(fs::path(work) / kScenesFile) << line;
+  return work;
+}
+
+int run(const Args& a) {
+  const std::vector<std::string> setups = parse_setups(a.setups);
+  if (a.frames < 0 || a.frames == 1) throw UsageError("--frames: expected at least 2 (0 = the whole sequence)");
+  const std::string blender = find_blender(a.blender);
+  const data::Dataset dataset = data::Dataset::open(a.dataset);
+  std::vector<std::string> sequences;
+  for (const std::string& s : a.sequences) {
+    if (s == "all") {
+      for (const std::string& id : dataset.ids()) sequences.push_back(id);
+      continue;
+    }
+    if (!dataset.contains(s))
+      throw InputError::message(a.dataset, s, "no such sequence (`layers info " + a.dataset + "` lists them)");
+    sequences.push_back(s);
+  }
+  for (const std::string& s : sequences) frames_of(a, dataset.info(s));
+  if (sequences.empty()) throw InputError::message(a.dataset, "", "holds no sequence");
+
+  if (sequences.size() == 1) {
+    const std::string work = make_work_dir(a.work);
+    std::fprintf(stderr, "crosscheck: work folder %s\n", work.c_str());
+    std::vector<generate::CrosscheckColumn> columns;
+    const std::string table = run_scene(a, setups, blender, dataset, sequences[0], work, columns);
+    std::fputs(table.c_str(), stdout);
+    return kOk;
+  }
+
+  // Several scenes: one folder each under the work folder; a scene whose
+  // columns.tsv exists is read back (a resumed run), a scene folder
+  // without it (an interrupted scene) is moved aside and run again.
+  const std::string work = open_multi_work(a.work, a.dataset);
+  std::fprintf(stderr, "crosscheck: work folder %s, %zu scenes\n", work.c_str(), sequences.size());
+  std::vector<generate::CrosscheckSceneColumns> scenes;
+  for (std::size_t i = 0; i < sequences.size(); ++i) {
+    const std::string& id = sequences[i];
+    const fs::path dir = fs::path(work) / id, tsv = dir / kColumnsFile;
+    generate::CrosscheckSceneColumns scene;
+    scene.title = title_of(dataset.info(id), frames_of(a, dataset.info(id)));
+    if (fs::exists(tsv)) {
+      std::fprintf(stderr, "crosscheck: %s (%zu of %zu) read back from %s\n", id.c_str(), i + 1, sequences.size(),
+                   tsv.c_str());
+      scene.columns = generate::parse_crosscheck_columns(read_text_file(tsv.string()), tsv.string());
+    } else {
+      if (fs::exists(dir)) move_aside(dir, "--work");
+      fs::create_directories(dir);
+      std::fprintf(stderr, "crosscheck: %s (%zu of %zu)\n", id.c_str(), i + 1, sequences.size());
+      run_scene(a, setups, blender, dataset, id, dir.string(), scene.columns);
+    }
+    scenes.push_back(std::move(scene));
+  }
+  const std::string summary = generate::crosscheck_summary(scenes);
+  std::ofstream(fs::path(work) / "summary.md") << summary;
+  std::fputs(summary.c_str(), stdout);
   return kOk;
 }
 
@@ -149,7 +244,9 @@ VerbRun register_crosscheck(CLI::App& app, const Global&) {
       "crosscheck", "Re-simulate a stored sequence with Blender's cloth from its frame 0 and compare the measures");
   auto args = std::make_shared<Args>();
   cmd->add_option("dataset", args->dataset, "dataset folder or shard .h5 file")->required();
-  cmd->add_option("sequence", args->sequence, "sequence id")->required();
+  cmd->add_option("sequences", args->sequences,
+                  "sequence ids, or all; with several, a summary with 95% intervals over them")
+      ->required();
   cmd->add_option("--blender", args->blender, "Blender executable (default: $LAYERS_BLENDER, else blender on PATH)");
   cmd->add_option("--setups", args->setups, "merged (all layers one cloth, self-collision), separate, or both")
       ->capture_default_str();
@@ -157,7 +254,8 @@ VerbRun register_crosscheck(CLI::App& app, const Global&) {
       ->capture_default_str();
   cmd->add_option("--work", args->work,
                   "new folder for the export, Blender's results and table.md (default: a new "
-                  "folder under the temporary directory)");
+                  "folder under the temporary directory); with several sequences, one folder per scene "
+                  "and summary.md, and a folder of such a run resumes it");
   cmd->add_option("--blender-threads", args->threads, "threads Blender may use")
       ->check(CLI::Range(1, 256))
       ->capture_default_str();

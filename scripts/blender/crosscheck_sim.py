@@ -9,7 +9,9 @@
 # DIR is a folder written by `layers export --format pc2` plus the
 # crosscheck.json that `layers crosscheck` writes beside it: the body's
 # <seq>_body.obj/.pc2, each garment's frame-0 <seq>_<mesh>.obj, its rest
-# shape <seq>_<mesh>_rest.obj, layer and attributes, and the per-frame wind.
+# shape <seq>_<mesh>_rest.obj, layer and attributes, the per-frame wind
+# and the gaps our solver keeps (mapped to Blender's distances so that its
+# effective gaps equal ours: blender_distances()).
 # Without crosscheck.json (a plain export), garments get the middle of the
 # paper's attribute ranges, layers from their names and no wind.
 #
@@ -40,13 +42,30 @@ SELF_COLLISION_NAMES = ("skirt", "dress", "jacket_hood")  # as the generator's s
 DEFAULT_ATTRIBUTES = {"mass": 0.5, "tension": 57.5, "compression": 57.5, "shear": 57.5,
                       "bending": 107.5, "friction": 60.0, "self_friction": 60.0}
 
-# Distances of our solver (sim::SolverConfig): garment-body 5 mm, between
-# layers and within a garment 4 mm. Blender keeps a cloth at its own
-# distance_min plus the collider's thickness_outer from a collider.
-CLOTH_DISTANCE = 0.003
-BODY_THICKNESS_OUTER = 0.002   # 3 + 2 = 5 mm from the body
-LAYER_THICKNESS_OUTER = 0.001  # 3 + 1 = 4 mm from an inner garment
-SELF_DISTANCE = 0.004
+# The gaps our solver keeps (m; crosscheck.json "gaps", else the solver's
+# defaults): garment-body, inner-outer garment, within one garment.
+DEFAULT_GAPS = {"body": 0.005, "layer": 0.004, "self": 0.004}
+# Blender 3.4.1 (source/blender/blenkernel/intern/collision.cc) pushes a
+# cloth to (distance_min + the collider's thickness_outer) * 8/9 from a
+# collider, and two self-colliding parts to 2 * self_distance_min * 8/9
+# from each other. blender_distances() inverts that, so that Blender's
+# effective gaps equal ours.
+EFFECTIVE = 8.0 / 9.0
+
+
+def blender_distances(gaps, merged):
+    """Blender's cloth distance_min, the body's and an inner garment's
+    thickness_outer, and self_distance_min for our gaps. In the merged
+    setup the layers meet through self-collision: the self distance then
+    keeps the larger of the layer and self gaps."""
+    cloth = 0.75 * min(gaps["body"], gaps["layer"]) / EFFECTIVE
+    self_gap = max(gaps["layer"], gaps["self"]) if merged else gaps["self"]
+    return {"cloth_distance": cloth,
+            "body_thickness_outer": gaps["body"] / EFFECTIVE - cloth,
+            "layer_thickness_outer": gaps["layer"] / EFFECTIVE - cloth,
+            "self_distance": self_gap / (2.0 * EFFECTIVE)}
+
+
 QUALITY = 5                    # solver steps per frame
 
 
@@ -148,7 +167,7 @@ def add_collider(obj, thickness_outer, friction):
     c.damping = 0.0
 
 
-def add_cloth(obj, attrs, rest_key, colliders, self_collision):
+def add_cloth(obj, attrs, rest_key, colliders, self_collision, dist):
     """Blender cloth with the garment's attributes as its settings (docs/sim.md)."""
     mod = obj.modifiers.new("cloth", "CLOTH")
     s = mod.settings
@@ -161,12 +180,12 @@ def add_cloth(obj, attrs, rest_key, colliders, self_collision):
     s.rest_shape_key = obj.data.shape_keys.key_blocks[rest_key]
     c = mod.collision_settings
     c.use_collision = True
-    c.distance_min = CLOTH_DISTANCE
+    c.distance_min = dist["cloth_distance"]
     c.collision_quality = 2
     c.friction = attrs["friction"]
     c.collection = colliders
     c.use_self_collision = self_collision
-    c.self_distance_min = SELF_DISTANCE
+    c.self_distance_min = dist["self_distance"]
     c.self_friction = attrs["self_friction"]
     return mod
 
@@ -243,7 +262,8 @@ def main():
     cache.frame_start = 1.0  # Blender frame 1 reads sample 0
     garments = scene_desc["garments"]
     frictions = [g["attributes"]["friction"] for g in garments]
-    add_collider(body, BODY_THICKNESS_OUTER, sum(frictions) / max(1, len(frictions)))
+    dist = blender_distances(dict(DEFAULT_GAPS, **scene_desc.get("gaps", {})), args.setup == "merged")
+    add_collider(body, dist["body_thickness_outer"], sum(frictions) / max(1, len(frictions)))
     body_only = bpy.data.collections.new("body_only")
     body_only.objects.link(body)
     with_inner = bpy.data.collections.new("body_and_inner")
@@ -273,7 +293,7 @@ def main():
         attrs = [g["attributes"] for g in garments]
         n = [p[1] for p in parts]
         merged = {a: sum(x[a] * c for x, c in zip(attrs, n)) / sum(n) for a in attrs[0]}
-        mod = add_cloth(obj, merged, key, body_only, self_collision=True)
+        mod = add_cloth(obj, merged, key, body_only, self_collision=True, dist=dist)
         range_groups(obj, parts, attrs, mod)
         cloths.append((obj, [(k, p[0], p[1]) for k, p in enumerate(parts)]))
     else:
@@ -282,9 +302,9 @@ def main():
             key = add_rest_shape(obj, r)
             outer = g["layer"] >= 1
             add_cloth(obj, g["attributes"], key, with_inner if outer else body_only,
-                      self_collision=bool(g.get("self_collision", True)))
+                      self_collision=bool(g.get("self_collision", True)), dist=dist)
             if not outer:  # a collider for the outer garments, after its cloth modifier
-                add_collider(obj, LAYER_THICKNESS_OUTER, g["attributes"]["self_friction"])
+                add_collider(obj, dist["layer_thickness_outer"], g["attributes"]["self_friction"])
                 with_inner.objects.link(obj)
             cloths.append((obj, [(k, 0, len(v))]))
     for obj, _ in cloths:

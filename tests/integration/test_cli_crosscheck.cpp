@@ -1,7 +1,8 @@
 // `layers crosscheck` on a small synthetic dataset, without Blender: bad
 // usage (exit 2), a missing Blender, an unknown sequence, a work folder
 // that exists, a Blender that fails or writes nothing (exit 1, one line
-// saying why, nothing of the user's overwritten).
+// saying why, nothing of the user's overwritten); several scenes with a
+// stand-in Blender: the summary, and a second run that resumes.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -24,8 +25,27 @@ std::string write_dataset(const test::TempDir& dir) {
   data::testing::SyntheticSize size;
   size.frames = 4;
   writer.add(data::testing::make_sequence("a", 3, size));
+  writer.add(data::testing::make_sequence("b", 4, size));
   writer.finish();
   return folder;
+}
+
+// A stand-in for Blender that "simulates" by copying the exported garment
+// frames (so every Blender column equals our stored one) and reports 7 ms
+// per frame.
+std::string fake_blender(const test::TempDir& dir) {
+  const std::string path = dir.write("fake-blender",
+                                     "#!/bin/sh\n"
+                                     "while [ \"$1\" != -- ]; do shift; done; shift\n"
+                                     "while [ $# -gt 0 ]; do case \"$1\" in --scene) scene=$2; shift 2;; --out) "
+                                     "out=$2; shift 2;; *) shift;; esac; done\n"
+                                     "dir=$(dirname \"$scene\")\n"
+                                     "prefix=$(sed -n 's/.*\"prefix\": \"\\([^\"]*\\)\".*/\\1/p' \"$scene\")\n"
+                                     "for f in \"$dir/$prefix\"*.pc2; do m=$(basename \"$f\" .pc2); m=${m#$prefix}; "
+                                     "[ \"$m\" = body ] || cp \"$f\" \"$out/$m.pc2\"; done\n"
+                                     "echo 'ms_per_frame 7' > \"$out/timing.txt\"\n");
+  std::filesystem::permissions(path, std::filesystem::perms::owner_all);
+  return path;
 }
 
 std::string crosscheck(const std::string& args) { return test::layers_bin() + " crosscheck " + args; }
@@ -96,4 +116,42 @@ TEST(CliCrosscheck, FailingOrSilentBlenderIsOneLine) {
   auto silent = run_command(crosscheck(ds + " a --blender /bin/true --setups separate --work " + dir.file("w2")));
   EXPECT_EQ(silent.exit_code, 1) << silent.output;
   EXPECT_NE(error_line(silent.output).find("Blender wrote no result"), std::string::npos) << silent.output;
+}
+
+TEST(CliCrosscheck, SeveralScenesGiveASummaryAndResume) {
+  test::TempDir dir;
+  const std::string ds = write_dataset(dir);
+  const std::string blender = fake_blender(dir), work = dir.file("many");
+  auto r = run_command(crosscheck(ds + " all --frames 4 --blender " + blender + " --work " + work));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("Cross-check over 2 scenes"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("| ms per frame | n/a | 7 ± 0 | 7 ± 0 |"), std::string::npos) << r.output;
+  // Blender's frames are our stored ones: every paired difference is 0.
+  EXPECT_NE(r.output.find("| layer crossings, mean over frames | 0.00 ± 0.00% | 0.00 ± 0.00% |"), std::string::npos)
+      << r.output;
+  for (const char* id : {"a", "b"}) {
+    EXPECT_TRUE(std::filesystem::exists(work + "/" + id + "/columns.tsv")) << id;
+    EXPECT_TRUE(std::filesystem::exists(work + "/" + id + "/table.md")) << id;
+  }
+  const std::string summary = data::testing::read_text(work + "/summary.md");
+
+  // Scene b interrupted (no columns.tsv): a second run reads a back, runs
+  // b again (its old folder moved aside, not deleted) and gives the same
+  // summary.
+  std::filesystem::remove(work + "/b/columns.tsv");
+  auto again = run_command(crosscheck(ds + " a b --frames 4 --blender " + blender + " --work " + work));
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_NE(again.output.find("a (1 of 2) read back"), std::string::npos) << again.output;
+  EXPECT_EQ(data::testing::read_text(work + "/summary.md"), summary);
+  int aside = 0;
+  for (const auto& e : std::filesystem::directory_iterator(work))
+    aside += e.path().filename().string().rfind("b.replaced-", 0) == 0;
+  EXPECT_EQ(aside, 1);
+
+  // A folder of another dataset's run is refused.
+  const std::string other = dir.write("other/scenes.txt", "dataset /elsewhere\n");
+  auto refused = run_command(crosscheck(ds + " a b --blender " + blender + " --work " + dir.file("other")));
+  EXPECT_EQ(refused.exit_code, 1) << refused.output;
+  EXPECT_NE(error_line(refused.output).find("not a cross-check of several scenes of this dataset"), std::string::npos)
+      << refused.output;
 }

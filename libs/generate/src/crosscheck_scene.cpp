@@ -8,11 +8,15 @@
 #include <fstream>
 #include <sstream>
 
+#include "layers/core/config.h"
+#include "layers/core/config_node.h"
 #include "layers/core/error.h"
 #include "layers/data/dataset.h"
 #include "layers/data/export.h"
+#include "layers/data/manifest.h"
 #include "layers/data/obj.h"
 #include "layers/data/pc2.h"
+#include "layers/generate/generator_config.h"
 #include "layers/generate/simulate.h"
 
 namespace layers::generate {
@@ -46,9 +50,22 @@ std::string json_numbers(const std::vector<float>& values, std::size_t count) {
 
 }  // namespace
 
+CrosscheckGaps crosscheck_gaps(const data::DatasetManifest& manifest, const std::string& file) {
+  sim::SolverConfig solver;
+  CrosscheckGaps gaps;
+  if (!manifest.generator_yaml.empty()) {
+    solver = cfg::read<GeneratorConfig>(cfg::parse(manifest.generator_yaml, file), "generator").sim;
+    gaps.recorded = true;
+  }
+  gaps.body = solver.body_thickness;
+  gaps.layer = solver.layer_thickness;
+  gaps.self = solver.self_thickness;
+  return gaps;
+}
+
 std::string crosscheck_manifest(const std::string& prefix, const std::vector<std::string>& meshes,
                                 const std::vector<data::GarmentStatic>& garments, const data::WindData& wind,
-                                std::int64_t frames) {
+                                std::int64_t frames, const CrosscheckGaps& gaps) {
   if (meshes.size() != garments.size())
     throw Error("crosscheck_manifest: " + std::to_string(meshes.size()) + " mesh names for " +
                 std::to_string(garments.size()) + " garments");
@@ -69,7 +86,9 @@ std::string crosscheck_manifest(const std::string& prefix, const std::vector<std
   }
   const auto n = static_cast<std::size_t>(frames);
   out << "\n  ],\n  \"wind\": {\"rotation\": " << json_numbers(wind.rotation, 4 * n)
-      << ", \"strength\": " << json_numbers(wind.strength, n) << "}\n}\n";
+      << ", \"strength\": " << json_numbers(wind.strength, n) << "},\n  \"gaps\": {\"body\": "
+      << json_number(gaps.body) << ", \"layer\": " << json_number(gaps.layer) << ", \"self\": " << json_number(gaps.self)
+      << "}\n}\n";
   return out.str();
 }
 
@@ -100,7 +119,9 @@ CrosscheckScene write_crosscheck_scene(const data::Dataset& dataset, const std::
   }
   const data::Window w = dataset.read_frames(id, 0, frames);
   scene.manifest = (fs::path(folder) / "crosscheck.json").string();
-  std::ofstream(scene.manifest) << crosscheck_manifest(scene.prefix, scene.meshes, statics->garments, w.wind, frames);
+  const CrosscheckGaps gaps = crosscheck_gaps(dataset.manifest(), dataset.path());
+  std::ofstream(scene.manifest) << crosscheck_manifest(scene.prefix, scene.meshes, statics->garments, w.wind, frames,
+                                                       gaps);
   return scene;
 }
 

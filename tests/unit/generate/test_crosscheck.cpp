@@ -13,9 +13,11 @@
 #include "layers/core/config.h"
 #include "layers/core/error.h"
 #include "layers/data/dataset.h"
+#include "layers/data/manifest.h"
 #include "layers/data/pc2.h"
 #include "layers/generate/crosscheck.h"
 #include "layers/generate/crosscheck_scene.h"
+#include "layers/generate/crosscheck_summary.h"
 #include "layers/generate/generator.h"
 #include "layers/generate/generator_config.h"
 #include "run_command.h"
@@ -199,7 +201,7 @@ TEST(Crosscheck, TableHasOneColumnPerRunAndMarksWhatIsMissing) {
       << table;
 }
 
-TEST(Crosscheck, ManifestNamesMeshesLayersAttributesAndWind) {
+TEST(Crosscheck, ManifestNamesMeshesLayersAttributesWindAndGaps) {
   const data::SequenceData seq = scene();
   std::vector<data::GarmentStatic> garments(seq.garments.begin(), seq.garments.end());
   garments[0].attributes = {{"mass", 0.25}};
@@ -207,7 +209,8 @@ TEST(Crosscheck, ManifestNamesMeshesLayersAttributesAndWind) {
   data::WindData wind;
   wind.rotation = {1, 0, 0, 0, 0.5f, 0.5f, 0.5f, 0.5f, 9, 9, 9, 9};
   wind.strength = {0, 300, 9};
-  const std::string json = generate::crosscheck_manifest("s_", {"tshirt", "jacket_hood"}, garments, wind, 2);
+  const generate::CrosscheckGaps gaps{0.005, 0.004, 0.003, true};
+  const std::string json = generate::crosscheck_manifest("s_", {"tshirt", "jacket_hood"}, garments, wind, 2, gaps);
   EXPECT_NE(json.find("\"prefix\": \"s_\""), std::string::npos) << json;
   EXPECT_NE(json.find("{\"mesh\": \"tshirt\", \"type\": \"tshirt\", \"layer\": 0, \"self_collision\": false, "
                       "\"attributes\": {\"mass\": 0.25}}"),
@@ -215,7 +218,41 @@ TEST(Crosscheck, ManifestNamesMeshesLayersAttributesAndWind) {
       << json;
   EXPECT_NE(json.find("\"layer\": 1, \"self_collision\": true"), std::string::npos) << json;
   EXPECT_NE(json.find("\"rotation\": [1,0,0,0,0.5,0.5,0.5,0.5], \"strength\": [0,300]"), std::string::npos) << json;
-  EXPECT_THROW(generate::crosscheck_manifest("s_", {"one"}, garments, wind, 2), Error);
+  EXPECT_NE(json.find("\"gaps\": {\"body\": 0.005, \"layer\": 0.004, \"self\": 0.003}"), std::string::npos) << json;
+  EXPECT_THROW(generate::crosscheck_manifest("s_", {"one"}, garments, wind, 2, gaps), Error);
+}
+
+// A manifest without a generator config gives the solver's defaults.
+TEST(Crosscheck, GapsAreTheRecordedSolverConfigsOrTheDefaults) {
+  data::DatasetManifest manifest;
+  const generate::CrosscheckGaps defaults = generate::crosscheck_gaps(manifest, "dataset.yaml");
+  EXPECT_FALSE(defaults.recorded);
+  EXPECT_DOUBLE_EQ(defaults.body, sim::SolverConfig().body_thickness);
+  manifest.generator_yaml = "sim:\n  body_thickness: 0.007\n  self_thickness: 0.002\n";
+  const generate::CrosscheckGaps recorded = generate::crosscheck_gaps(manifest, "dataset.yaml");
+  EXPECT_TRUE(recorded.recorded);
+  EXPECT_DOUBLE_EQ(recorded.body, 0.007);
+  EXPECT_DOUBLE_EQ(recorded.layer, sim::SolverConfig().layer_thickness);
+  EXPECT_DOUBLE_EQ(recorded.self, 0.002);
+}
+
+// crosscheck_sim.py's blender_distances inverts Blender 3.4.1's 8/9 rule:
+// (distance_min + thickness_outer) * 8/9 and 2 * self_distance_min * 8/9
+// give our gaps back.
+TEST(Crosscheck, PythonMapsOurGapsToBlendersDistances) {
+  if (std::system("python3 -c 'import struct' > /dev/null 2>&1") != 0) GTEST_SKIP() << "no python3";
+  const std::string script = test::source_dir() + "/scripts/blender/crosscheck_sim.py";
+  const std::string code =
+      "import importlib.util as u; s = u.spec_from_file_location('c', '" + script +
+      "'); m = u.module_from_spec(s); s.loader.exec_module(m); g = {'body': 0.005, 'layer': 0.004, 'self': 0.003}; "
+      "e = 8.0 / 9; "
+      "d = m.blender_distances(g, False); "
+      "print('%.6f %.6f %.6f' % ((d['cloth_distance'] + d['body_thickness_outer']) * e, "
+      "(d['cloth_distance'] + d['layer_thickness_outer']) * e, 2 * d['self_distance'] * e)); "
+      "print('%.6f' % (2 * m.blender_distances(g, True)['self_distance'] * e))";
+  const auto r = test::run_command("python3 -c \"" + code + "\"");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output, "0.005000 0.004000 0.003000\n0.004000\n");
 }
 
 TEST(Crosscheck, ReadsBlenderResultsAndRefusesWrongSizes) {
@@ -296,4 +333,40 @@ TEST(Crosscheck, OursSimulatedAgainEqualsTheStoredFramesAndIsTimed) {
   EXPECT_NE(message(options.out, "a", 3).find("seq-NNNNNN"), std::string::npos);
   EXPECT_NE(message(options.out, "seq-000000", 4).find("frames"), std::string::npos);
   EXPECT_NE(message(dir.file("none"), "seq-000000", 3).find("generator.yaml"), std::string::npos);
+}
+
+// Several scenes: the columns written to columns.tsv read back equal
+// (NaN included), and the summary's means, intervals and paired
+// differences are the hand-worked ones.
+TEST(CrosscheckSummary, ColumnsRoundTripAndPairedIntervals) {
+  std::vector<generate::CrosscheckSceneColumns> scenes;
+  for (double blender : {0.020, 0.021, 0.022}) {
+    generate::CrosscheckColumn ours, other;
+    ours.label = "ours (stored)";
+    ours.frames = other.frames = 3;
+    other.label = "Blender, merged";
+    other.ms_per_frame = 500;
+    other.l_crossing = blender;
+    ours.stretch_p99 = 0.08;
+    other.stretch_p99 = 0.08;
+    scenes.push_back({"scene", {ours, other}});
+  }
+  const std::string tsv = generate::crosscheck_columns_tsv(scenes[1].columns);
+  const auto back = generate::parse_crosscheck_columns(tsv, "columns.tsv");
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_EQ(back[1].label, "Blender, merged");
+  EXPECT_EQ(back[1].frames, 3);
+  EXPECT_DOUBLE_EQ(back[1].l_crossing, 0.021);
+  EXPECT_TRUE(std::isnan(back[0].ms_per_frame));
+  EXPECT_THROW(generate::parse_crosscheck_columns("label\tframes\nx\t1\n", "columns.tsv"), InputError);
+  EXPECT_THROW(generate::parse_crosscheck_columns("nonsense", "columns.tsv"), InputError);
+
+  const std::string md = generate::crosscheck_summary(scenes);
+  // Blender's mean 2.10%, half-width 4.303 * 0.1% / sqrt(3) = 0.25%.
+  EXPECT_NE(md.find("| layer crossings, mean over frames | 0.00 ± 0.00% | 2.10 ± 0.25% |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| ms per frame | n/a | 500 ± 0 |"), std::string::npos) << md;
+  // Paired: ours minus Blender -2.10 ± 0.25%, the interval below zero (*);
+  // equal stretch: 0, no star.
+  EXPECT_NE(md.find("| layer crossings, mean over frames | -2.10 ± 0.25% * |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| edge stretch vs rest, p99 | 0.00 ± 0.00% |"), std::string::npos) << md;
 }

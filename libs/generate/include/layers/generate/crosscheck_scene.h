@@ -3,7 +3,7 @@
 // scripts/blender/crosscheck_sim.py (a `layers export --format pc2` of the
 // sequence, each garment's rest shape as <seq>_<mesh>_rest.obj and
 // crosscheck.json: mesh names, layers, attributes, self-collision and the
-// per-frame wind) and the results read back (<mesh>.pc2 per garment,
+// per-frame wind, and the gaps our solver keeps) and the results read back (<mesh>.pc2 per garment,
 // timing.txt).
 #pragma once
 
@@ -16,6 +16,7 @@
 
 namespace layers::data {
 class Dataset;
+struct DatasetManifest;
 }
 
 namespace layers::generate {
@@ -28,14 +29,27 @@ struct CrosscheckScene {
   std::int64_t frames = 0;
 };
 
-// crosscheck.json for garments `garments` named `meshes` (same order) and
-// frames [0, frames) of `wind`.
+// The gaps our solver keeps (m): garment-body, inner-outer garment, and
+// within one garment (sim::SolverConfig body_thickness, layer_thickness,
+// self_thickness). The Blender script maps them to its distances so that
+// Blender's effective gaps equal these.
+struct CrosscheckGaps {
+  double body = 0, layer = 0, self = 0;
+  bool recorded = false;  // from the dataset's generator config (else the solver's defaults)
+};
+// The gaps of the generator config the manifest records, else the solver's
+// defaults (recorded = false).
+CrosscheckGaps crosscheck_gaps(const data::DatasetManifest& manifest, const std::string& file);
+
+// crosscheck.json for garments `garments` named `meshes` (same order),
+// frames [0, frames) of `wind` and `gaps`.
 std::string crosscheck_manifest(const std::string& prefix, const std::vector<std::string>& meshes,
                                 const std::vector<data::GarmentStatic>& garments, const data::WindData& wind,
-                                std::int64_t frames);
+                                std::int64_t frames, const CrosscheckGaps& gaps);
 
 // Exports frames [0, frames) of sequence `id` into `folder` (created) with
-// the rest shapes and crosscheck.json.
+// the rest shapes and crosscheck.json (with crosscheck_gaps of the
+// dataset's manifest).
 CrosscheckScene write_crosscheck_scene(const data::Dataset& dataset, const std::string& id, std::int64_t frames,
                                        const std::string& folder);
 
