@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
+
+#include <Eigen/Dense>
 
 namespace layers::sim::detail {
 
@@ -279,7 +282,38 @@ void CollisionPass::file_body(double gap, const Box& region, const SweptBody& bo
   body_frame_ = body.frame;
 }
 
+Vec3 CollisionPass::body_normal(const Hit& h) const {
+  Vec3 n = Vec3::Zero();
+  for (int v : h.v)
+    if (owner_[v] < 0) n += body_normals_[v - cloth_vertices_];
+  const double len = n.norm();
+  return len > 0 ? Vec3(n / len) : n;
+}
+
+void CollisionPass::mark_pinched(const std::vector<Hit>& hits) {
+  for (const Hit& h : hits) {
+    if (owner_[h.v[0]] >= 0 && owner_[h.v[3]] >= 0) continue;
+    const Vec3 n = body_normal(h);
+    if (n.squaredNorm() == 0) continue;
+    for (int v : h.v) {
+      if (owner_[v] < 0) continue;
+      if (pinch_dir_[v].squaredNorm() == 0) {
+        pinch_dir_[v] = n;
+      } else if (pinch_dir_[v].dot(n) < kPinchCos) {
+        pinched_[v] = 1;
+      }
+    }
+  }
+}
+
 bool CollisionPass::correct(const Hit& hit, double gap) {
+  // A body pair with a cloth vertex the body presses from two opposite
+  // sides: the body yields there (pushing it out of one side pushes it
+  // into the other, and stretches the cloth round it).
+  if (owner_[hit.v[0]] < 0 || owner_[hit.v[3]] < 0) {
+    for (int v : hit.v)
+      if (owner_[v] >= 0 && pinched_[v]) return true;
+  }
   // The pair where CCD stopped, and weights w with sum_k w_k x_k = the
   // vector between its closest points (first feature minus second).
   std::array<Vec3, 4> x;
@@ -348,6 +382,8 @@ CollisionPassStats CollisionPass::run(const std::vector<Cloth>& cloths, const st
   inv_mass_.resize(total);
   back_.assign(total, 0);
   dirty_.assign(total, 0);
+  pinched_.assign(total, 0);
+  pinch_dir_.assign(total, Vec3::Zero());
   for (std::size_t c = 0; c < states.size(); ++c) {
     const Cloth::State& s = *states[c];
     for (std::size_t i = 0; i < s.x.size(); ++i) {
@@ -393,6 +429,68 @@ CollisionPassStats CollisionPass::resume(const std::vector<Cloth>& cloths, const
   return resolve(states, gap, rounds, pushes, reverted);
 }
 
+template <class Find>
+void CollisionPass::move_zones(std::vector<int>& parent, Find&& find, CollisionPassStats& stats) {
+  // Per zone root: mass, mass-weighted start and end sums.
+  struct Zone {
+    double mass = 0;
+    Vec3 c0 = Vec3::Zero(), c1 = Vec3::Zero();
+    Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+    Vec3 spin = Vec3::Zero();
+    bool pinned = false;
+  };
+  std::vector<int> members;
+  for (int v = 0; v < cloth_vertices_; ++v)
+    if (parent[v] >= 0) members.push_back(v);
+  std::unordered_map<int, Zone> zones;
+  for (int v : members) {
+    Zone& z = zones[find(v)];
+    if (inv_mass_[v] == 0.0 || back_[v]) {
+      z.pinned = true;
+      continue;
+    }
+    const double m = 1.0 / inv_mass_[v];
+    z.mass += m;
+    z.c0 += m * x0_[v];
+    z.c1 += m * x1_[v];
+  }
+  for (auto& [root, z] : zones) {
+    if (z.mass > 0) {
+      z.c0 /= z.mass;
+      z.c1 /= z.mass;
+    }
+  }
+  for (int v : members) {
+    Zone& z = zones[find(v)];
+    if (z.pinned) continue;
+    const double m = 1.0 / inv_mass_[v];
+    const Vec3 r = x0_[v] - z.c0, u = (x1_[v] - x0_[v]) - (z.c1 - z.c0);
+    z.spin += m * r.cross(u);
+    z.inertia += m * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
+  }
+  std::unordered_map<int, Eigen::Matrix3d> rotation;
+  for (auto& [root, z] : zones) {
+    if (z.pinned || z.mass <= 0) continue;
+    // Angular velocity (per substep) from the spin; a degenerate zone (a
+    // line of vertices) keeps only the spin its inertia can carry.
+    const Vec3 w = z.inertia.completeOrthogonalDecomposition().solve(z.spin);
+    const double angle = w.norm();
+    rotation[root] = angle > 1e-12 ? Eigen::AngleAxisd(angle, w / angle).toRotationMatrix()
+                                   : Eigen::Matrix3d::Identity();
+  }
+  for (int v : members) {
+    const int root = find(v);
+    const Zone& z = zones[root];
+    if (z.pinned || z.mass <= 0) continue;  // left to the fail-safe below
+    const Vec3 moved = z.c1 + rotation[root] * (x0_[v] - z.c0);
+    if (moved != x1_[v]) {
+      x1_[v] = moved;
+      dirty_[v] = 1;
+    }
+    ++stats.zoned;
+  }
+}
+
 CollisionPassStats CollisionPass::resolve(const std::vector<Cloth::State*>& states, double gap, int rounds,
                                           std::vector<Vec3s>& pushes,
                                           std::vector<std::vector<std::uint8_t>>& reverted) {
@@ -403,17 +501,50 @@ CollisionPassStats CollisionPass::resolve(const std::vector<Cloth::State*>& stat
     std::fill(dirty_.begin(), dirty_.end(), 0);
   };
   stats.pairs = static_cast<long>(hits.size());
+  mark_pinched(hits);
   while (!hits.empty() && stats.rounds < rounds) {
     for (const Hit& h : hits) correct(h, gap);
     ++stats.rounds;
     again();
+    mark_pinched(hits);
   }
+  // Impact zones: the cloth vertices of cloth-cloth pairs still failing,
+  // merged (union-find) with every zone they touch, each moved rigidly
+  // with its mass's mean motion and spin (Harmon et al. 2008), which keeps
+  // a zone's own pairs as far apart as they started; zones grow while new
+  // pairs fail, for at most kZoneRounds rounds.
+  const auto with_body = [&](const Hit& h) { return owner_[h.v[0]] < 0 || owner_[h.v[3]] < 0; };
+  std::vector<int> parent;
+  for (int round = 0; round < kZoneRounds; ++round) {
+    bool any = false;
+    for (const Hit& h : hits) any = any || !with_body(h);
+    if (!any) break;
+    if (parent.empty()) {
+      parent.resize(static_cast<std::size_t>(cloth_vertices_));
+      for (int v = 0; v < cloth_vertices_; ++v) parent[v] = -1;  // -1: in no zone
+    }
+    const auto find = [&](int v) {
+      while (parent[v] != v) v = parent[v] = parent[parent[v]];
+      return v;
+    };
+    for (const Hit& h : hits) {
+      if (with_body(h)) continue;
+      for (int v : h.v)
+        if (parent[v] < 0) parent[v] = v;
+      for (int k = 1; k < 4; ++k) {
+        const int a = find(h.v[0]), b = find(h.v[k]);
+        if (a != b) parent[b] = a;
+      }
+    }
+    move_zones(parent, find, stats);
+    again();
+  }
+
   // Fail-safe: undo the substep's motion of every cloth vertex of a
   // cloth-cloth pair still failing, until those pairs have no cloth vertex
   // that moves. Body pairs never stop cloth (stopped cloth in front of a
   // moving limb is swept through and torn): where they still fail, the
   // body yields, and they are counted.
-  const auto with_body = [&](const Hit& h) { return owner_[h.v[0]] < 0 || owner_[h.v[3]] < 0; };
   while (!hits.empty()) {
     bool changed = false;
     for (const Hit& h : hits) {

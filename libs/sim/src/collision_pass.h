@@ -23,7 +23,10 @@
 // Response, in rounds (at most `rounds`): each pair found is pushed apart
 // along the direction between its closest points at the time CCD stopped,
 // until the end positions are 2 x gap apart along it, split by inverse mass
-// (the body does not move), Gauss-Seidel in the order found. Then the
+// (the body does not move), Gauss-Seidel in the order found. Then impact
+// zones: the cloth vertices of cloth-cloth pairs still failing, merged
+// with the zones they touch (union-find), each moved rigidly with its
+// mass's mean motion and spin, up to kZoneRounds times. Then the
 // fail-safe: every cloth vertex of a cloth-cloth pair still failing is put
 // back where it was at the start of the substep (its motion for this
 // substep undone), until no failing cloth-cloth pair has a moving vertex.
@@ -32,7 +35,10 @@
 // stopped in front of a moving limb would be swept through and torn):
 // where they still fail after the rounds (the body pinches the cloth
 // between two of its parts, or sweeps into cloth stopped by the fail-safe)
-// the body yields and the pairs are counted.
+// the body yields and the pairs are counted. A cloth vertex met by body
+// pairs whose normals oppose is pinched: its body pairs are not corrected
+// at all (the body yields there from the start; pushing it out of one
+// side pushes it into the other and stretches the cloth round it).
 //
 // All corrections are returned as pushes (the solver adds no velocity for
 // them); vertices put back are flagged (the solver stops them).
@@ -47,9 +53,13 @@
 
 namespace layers::sim::detail {
 
+constexpr int kZoneRounds = 8;      // rounds of impact zones before the fail-safe
+constexpr double kPinchCos = -0.3;  // body normals this far apart at one cloth vertex: a pinch
+
 struct CollisionPassStats {
   long pairs = 0;     // colliding pairs found in the first round
   long rounds = 0;    // rounds of corrections run
+  long zoned = 0;     // cloth vertices moved rigidly with an impact zone (counted per zone round)
   long reverted = 0;  // cloth vertices put back at their start
   long yielded = 0;   // body pairs the body swept through cloth it could not move
 };
@@ -99,8 +109,21 @@ class CollisionPass {
   // All pairs (incremental false), or only those with a feature that has a
   // vertex moved since the last detection, plus the last hits with none.
   void detect(double gap, std::vector<Hit>& hits, bool incremental);
-  // Pushes the pair apart; false when no vertex of it can move.
+  // Pushes the pair apart; false when no vertex of it can move. A body
+  // pair with a pinched cloth vertex is left alone (the body yields).
   bool correct(const Hit& hit, double gap);
+  // The body's outward normal at a body pair (its body vertices' normals).
+  Vec3 body_normal(const Hit& h) const;
+  // Flags the cloth vertices met by body pairs whose normals oppose
+  // (cosine below kPinchCos) within this substep: pinched between two
+  // parts of the body.
+  void mark_pinched(const std::vector<Hit>& hits);
+  // Moves each impact zone (the cloth vertices with parent >= 0, grouped by
+  // find()) rigidly: its centre of mass as the zone's mean motion, its
+  // spin from the zone's angular momentum about the start centre. A zone
+  // with a pinned or put-back vertex is left as it is.
+  template <class Find>
+  void move_zones(std::vector<int>& parent, Find&& find, CollisionPassStats& stats);
   bool test(const std::array<int, 4>& v, bool edge_edge, double gap, std::vector<Hit>& hits) const;
   // Files the body's features that sweep through `region` in the body grids.
   void file_body(double gap, const Box& region, const SweptBody& body);
@@ -132,6 +155,8 @@ class CollisionPass {
   Vec3s x0_, x1_;                 // start and end of every global vertex
   std::vector<double> inv_mass_;  // 0 for the body and pinned vertices
   std::vector<std::uint8_t> back_;
+  std::vector<std::uint8_t> pinched_;  // cloth vertex the body presses from opposite sides this substep
+  Vec3s pinch_dir_;                    // the body's normal at the first body pair of each cloth vertex
   std::vector<std::uint8_t> dirty_;  // moved since the last detection
   std::vector<Hit> hits_;            // the pairs of the last detection
   Vec3s body_normals_;               // the body's vertex normals at the start of the substep (area-weighted)

@@ -373,6 +373,7 @@ void Solver::collision_pass(bool body) {
       m.pass.run(cloths_, m.states, swept, c.collision_gap, c.collision_rounds, m.push, m.reverted);
   timings_.pass_pairs += ps.pairs;
   timings_.pass_reverted += ps.reverted;
+  timings_.pass_zoned += ps.zoned;
   long yielded = ps.yielded;
   // The pass's pushes can stretch edges next to the vertices it moved:
   // the strain cap once more with those vertices held, then the pass
@@ -399,6 +400,7 @@ void Solver::collision_pass(bool body) {
         m.pass.run(cloths_, m.states, swept, c.collision_gap, c.collision_rounds, m.push, m.reverted, &m.moved);
     timings_.pass_pairs += more.pairs;
     timings_.pass_reverted += more.reverted;
+    timings_.pass_zoned += more.zoned;
     yielded = more.yielded;
     again = more.pairs > 0;
   }

@@ -16,6 +16,7 @@
 #include "fixtures.h"
 #include "layers/geometry/intersect.h"
 #include "layers/geometry/topology.h"
+#include "layers/sim/measures.h"
 #include "layers/sim/solver.h"
 
 namespace layers::sim {
@@ -263,6 +264,13 @@ TEST(CollisionPass, TwoLayersPinchedBetweenTwoPlatesKeepTheirOrder) {
     ASSERT_EQ(cloth_crossings(cloths, x), 0) << "frame " << f;
     // The outer layer is still above the inner one at the centre.
     EXPECT_GT(x[1][60].y(), x[0][60].y()) << "frame " << f;
+    // Where the plates press the layers from both sides the plates yield:
+    // the cloth is not torn apart by pushes out of one plate into the other.
+    for (int c = 0; c < 2; ++c) {
+      const Cloth& cloth = solver.cloth(c);
+      EXPECT_LT(max_edge_stretch(cloth.positions(), cloth.edges(), cloth.rest_lengths()), 0.15)
+          << "frame " << f << " cloth " << c;
+    }
   }
 }
 

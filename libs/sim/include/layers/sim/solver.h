@@ -48,6 +48,7 @@ struct StepTimings {
   long cap_unfinished = 0;    // cap calls that used all strain_sweeps while still correcting edges
   double collision_pass = 0;  // the continuous-collision safety pass
   long pass_pairs = 0;        // colliding pairs it met (first round of each substep)
+  long pass_zoned = 0;        // cloth vertices it moved rigidly with an impact zone (per zone round)
   long pass_reverted = 0;     // cloth vertices its fail-safe put back at the substep's start
   long pass_yielded = 0;      // body pairs the body swept through cloth that could not move
   double total = 0;
