@@ -172,7 +172,8 @@ std::string open_multi_work(const std::string& requested, const std::string& dat
     if (!in || !std::getline(in, first) || first + "\n" != line)
       throw InputError::message(requested, "",
                                 "exists and is not a cross-check of several scenes of this dataset (no " +
-                                    std::string(kScenesFile) + " naming it); --work must name a new folder or one "
+                                    std::string(kScenesFile) +
+                                    " naming it); --work must name a new folder or one "
                                     "to resume (nothing is overwritten)");
     return requested;
   }

@@ -86,9 +86,8 @@ std::string crosscheck_manifest(const std::string& prefix, const std::vector<std
   }
   const auto n = static_cast<std::size_t>(frames);
   out << "\n  ],\n  \"wind\": {\"rotation\": " << json_numbers(wind.rotation, 4 * n)
-      << ", \"strength\": " << json_numbers(wind.strength, n) << "},\n  \"gaps\": {\"body\": "
-      << json_number(gaps.body) << ", \"layer\": " << json_number(gaps.layer) << ", \"self\": " << json_number(gaps.self)
-      << "}\n}\n";
+      << ", \"strength\": " << json_numbers(wind.strength, n) << "},\n  \"gaps\": {\"body\": " << json_number(gaps.body)
+      << ", \"layer\": " << json_number(gaps.layer) << ", \"self\": " << json_number(gaps.self) << "}\n}\n";
   return out.str();
 }
 

@@ -24,13 +24,20 @@ struct Field {
   double CrosscheckColumn::*value;
 };
 const Field kFields[] = {
-    {"ms_per_frame", &CrosscheckColumn::ms_per_frame}, {"stretch_p99", &CrosscheckColumn::stretch_p99},
-    {"stretch_max", &CrosscheckColumn::stretch_max},   {"h", &CrosscheckColumn::h},
-    {"l_1cm", &CrosscheckColumn::l_1cm},               {"l_3cm", &CrosscheckColumn::l_3cm},
-    {"l_all", &CrosscheckColumn::l_all},               {"gen_h", &CrosscheckColumn::gen_h},
-    {"gen_l", &CrosscheckColumn::gen_l},               {"gen_stretch_max", &CrosscheckColumn::gen_stretch_max},
-    {"h_crossing", &CrosscheckColumn::h_crossing},     {"h_crossing_max", &CrosscheckColumn::h_crossing_max},
-    {"l_crossing", &CrosscheckColumn::l_crossing},     {"l_crossing_max", &CrosscheckColumn::l_crossing_max},
+    {"ms_per_frame", &CrosscheckColumn::ms_per_frame},
+    {"stretch_p99", &CrosscheckColumn::stretch_p99},
+    {"stretch_max", &CrosscheckColumn::stretch_max},
+    {"h", &CrosscheckColumn::h},
+    {"l_1cm", &CrosscheckColumn::l_1cm},
+    {"l_3cm", &CrosscheckColumn::l_3cm},
+    {"l_all", &CrosscheckColumn::l_all},
+    {"gen_h", &CrosscheckColumn::gen_h},
+    {"gen_l", &CrosscheckColumn::gen_l},
+    {"gen_stretch_max", &CrosscheckColumn::gen_stretch_max},
+    {"h_crossing", &CrosscheckColumn::h_crossing},
+    {"h_crossing_max", &CrosscheckColumn::h_crossing_max},
+    {"l_crossing", &CrosscheckColumn::l_crossing},
+    {"l_crossing_max", &CrosscheckColumn::l_crossing_max},
 };
 
 // The summary's rows: a field, its caption, and whether it is a share.
@@ -167,7 +174,8 @@ std::string crosscheck_summary(const std::vector<CrosscheckSceneColumns>& scenes
   for (const auto& l : labels)
     if (l != ours && l != again) blender.push_back(l);
   if (blender.empty()) return out;
-  out += "\nPaired over scenes: " + ours + " minus each other column (mean difference ± 95% interval; * where "
+  out += "\nPaired over scenes: " + ours +
+         " minus each other column (mean difference ± 95% interval; * where "
          "the interval excludes 0).\n\n| |";
   for (const auto& b : blender) out += " minus " + b + " |";
   out += "\n|---|";
@@ -177,8 +185,7 @@ std::string crosscheck_summary(const std::vector<CrosscheckSceneColumns>& scenes
     if (std::string(r.field) == "ms_per_frame") continue;
     out += std::string("| ") + r.caption + " |";
     for (const auto& b : blender) {
-      const MeanInterval d =
-          paired_interval(values(scenes, ours, member(r.field)), values(scenes, b, member(r.field)));
+      const MeanInterval d = paired_interval(values(scenes, ours, member(r.field)), values(scenes, b, member(r.field)));
       out += " " + cell(d, r.share) + (d.above_zero() || d.below_zero() ? " *" : "") + " |";
     }
     out += "\n";

@@ -311,11 +311,13 @@ SceneResult simulate_scene(const GeneratorConfig& config, const SceneSpec& spec,
   spdlog::debug(
       "{}: {} frames in {:.1f} s ({:.1f} s CPU), H-pen {:.3f}%, L-pen {:.3f}%, worst H-crossing {:.3f}%, worst "
       "L-crossing {:.3f}%, stretch {:.3f} (strain cap out of sweeps in {} calls, one per garment and substep); "
-      "collision pass: {:.0f} ms per frame, {} pairs met, {} vertices put back, {} body pairs yielded",
+      "collision pass: {:.0f} ms per frame, {} pairs met, {} vertices in impact zones, {} put back, {} body pairs "
+      "yielded",
       spec.id, result.simulated_frames, result.seconds, result.cpu_seconds, 100 * result.mean_h_penetration,
       100 * result.mean_l_penetration, 100 * result.max_h_crossing, 100 * result.max_l_crossing, result.max_stretch,
       solver.timings().cap_unfinished, 1e3 * solver.timings().collision_pass / std::max(1L, solver.timings().frames),
-      solver.timings().pass_pairs, solver.timings().pass_reverted, solver.timings().pass_yielded);
+      solver.timings().pass_pairs, solver.timings().pass_zoned, solver.timings().pass_reverted,
+      solver.timings().pass_yielded);
   if (!result.ok) return result;
 
   seq.id = spec.id;

@@ -475,8 +475,8 @@ void CollisionPass::move_zones(std::vector<int>& parent, Find&& find, CollisionP
     // line of vertices) keeps only the spin its inertia can carry.
     const Vec3 w = z.inertia.completeOrthogonalDecomposition().solve(z.spin);
     const double angle = w.norm();
-    rotation[root] = angle > 1e-12 ? Eigen::AngleAxisd(angle, w / angle).toRotationMatrix()
-                                   : Eigen::Matrix3d::Identity();
+    rotation[root] =
+        angle > 1e-12 ? Eigen::AngleAxisd(angle, w / angle).toRotationMatrix() : Eigen::Matrix3d::Identity();
   }
   for (int v : members) {
     const int root = find(v);

@@ -157,9 +157,9 @@ class CollisionPass {
   std::vector<std::uint8_t> back_;
   std::vector<std::uint8_t> pinched_;  // cloth vertex the body presses from opposite sides this substep
   Vec3s pinch_dir_;                    // the body's normal at the first body pair of each cloth vertex
-  std::vector<std::uint8_t> dirty_;  // moved since the last detection
-  std::vector<Hit> hits_;            // the pairs of the last detection
-  Vec3s body_normals_;               // the body's vertex normals at the start of the substep (area-weighted)
+  std::vector<std::uint8_t> dirty_;    // moved since the last detection
+  std::vector<Hit> hits_;              // the pairs of the last detection
+  Vec3s body_normals_;                 // the body's vertex normals at the start of the substep (area-weighted)
   std::vector<Box> vertex_boxes_, edge_boxes_, face_boxes_;
   std::vector<BoxGrid> vertex_grids_, edge_grids_, face_grids_;             // per cloth
   std::vector<Box> body_vertex_boxes_, body_edge_boxes_, body_face_boxes_;  // NaN: outside the filed region

@@ -2,7 +2,8 @@
 // the narrow phase on hand-made pairs, the pass on sheets displaced at
 // random (no crossings at the end, ever), and the solver with the pass on:
 // sheets driven through each other at speed, two layers pinched between
-// two plates, a thin strip crumpled onto itself, determinism.
+// two plates, a thin strip crumpled onto itself, determinism; impact zones
+// and the body yielding where it pinches cloth.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -155,7 +156,7 @@ TEST(CollisionPass, RandomDisplacementsNeverEndCrossed) {
   for (auto& s : states) ptr.push_back(&s);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-0.03, 0.03);
-  long reverted = 0, pairs = 0;
+  long reverted = 0, pairs = 0, zoned = 0;
   detail::CollisionPass pass;
   for (int round = 0; round < 20; ++round) {
     std::vector<Vec3s> push;
@@ -168,6 +169,7 @@ TEST(CollisionPass, RandomDisplacementsNeverEndCrossed) {
     }
     const detail::CollisionPassStats st = pass.run(cloths, ptr, {}, 5e-4, 4, push, back);
     reverted += st.reverted;
+    zoned += st.zoned;
     pairs += st.pairs;
     std::vector<Vec3s> now;
     for (auto& s : states) now.push_back(s.x);
@@ -175,7 +177,84 @@ TEST(CollisionPass, RandomDisplacementsNeverEndCrossed) {
     EXPECT_EQ(st.yielded, 0);
   }
   EXPECT_GT(pairs, 0);     // the displacements did collide
-  EXPECT_GT(reverted, 0);  // ... hard enough for the fail-safe to act
+  EXPECT_GT(zoned, 0);     // ... hard enough for impact zones
+  EXPECT_GT(reverted, 0);  // ... and for the fail-safe to act
+}
+
+TEST(CollisionPass, ClothPinchedBetweenTwoBodyPartsMakesTheBodyYield) {
+  // The body: two plates closing from 10 mm to 1 mm apart in one substep,
+  // a sheet at rest between them. Each plate alone would push the sheet
+  // out of its way, into the other; the sheet is pinched, so the plates
+  // yield and the sheet does not move.
+  const geometry::TriMesh lower = grid(V3(-0.05, -0.005, -0.05), V3(0, 0, 0.3), V3(0.3, 0, 0), 6, 6);
+  const geometry::TriMesh upper = grid(V3(-0.05, 0.005, -0.05), V3(0.3, 0, 0), V3(0, 0, 0.3), 6, 6);
+  const geometry::TriMesh body = geometry::concatenate({lower, upper});
+  Vec3s start, end;
+  for (Eigen::Index i = 0; i < body.vertices.rows(); ++i) {
+    const Vec3 p = body.vertices.row(i).cast<double>().transpose();
+    start.push_back(p);
+    end.push_back(Vec3(p.x(), 0.1 * p.y(), p.z()));
+  }
+  std::vector<std::array<int, 3>> faces;
+  for (Eigen::Index f = 0; f < body.faces.rows(); ++f)
+    faces.push_back({body.faces(f, 0), body.faces(f, 1), body.faces(f, 2)});
+  const geometry::Edges edges = geometry::unique_edges(body.faces);
+  detail::SweptBody swept;
+  swept.start = &start;
+  swept.end = &end;
+  swept.faces = &faces;
+  swept.edges = &edges;
+
+  std::vector<Cloth> cloths;
+  cloths.emplace_back(grid(V3(0, 0, 0), V3(0, 0, 0.2), V3(0.2, 0, 0), 8, 8), Material{}, ClothOptions("sheet", 0));
+  std::vector<Cloth::State> states{cloths[0].state()};
+  states[0].x_start = states[0].x;
+  std::vector<Cloth::State*> ptr{&states[0]};
+  std::vector<Vec3s> push{Vec3s(states[0].x.size(), Vec3::Zero())};
+  std::vector<std::vector<std::uint8_t>> back{std::vector<std::uint8_t>(states[0].x.size(), 0)};
+  detail::CollisionPass pass;
+  const detail::CollisionPassStats st = pass.run(cloths, ptr, swept, 5e-4, 16, push, back);
+  EXPECT_GT(st.pairs, 0);
+  EXPECT_GT(st.yielded, 0);
+  for (std::size_t i = 0; i < states[0].x.size(); ++i) EXPECT_EQ(states[0].x[i], states[0].x_start[i]) << i;
+}
+
+TEST(CollisionPass, AnImpactZoneMovesWithItsClothInsteadOfStopping) {
+  // Two sheets 3 mm apart move 1 cm along x together, while the upper
+  // one's middle is thrown 6 mm down through the lower one. With no
+  // rounds of pair corrections, impact zones alone resolve it: no
+  // crossing, nothing put back, and every vertex still moved along x.
+  std::vector<Cloth> cloths;
+  cloths.emplace_back(grid(V3(0, 0, 0), V3(0.2, 0, 0), V3(0, 0, 0.2), 10, 10), Material{}, ClothOptions("inner", 0));
+  cloths.emplace_back(grid(V3(0, 0.003, 0), V3(0.2, 0, 0), V3(0, 0, 0.2), 10, 10), Material{},
+                      ClothOptions("outer", 1));
+  std::vector<Cloth::State> states;
+  for (const Cloth& c : cloths) states.push_back(c.state());
+  std::vector<Cloth::State*> ptr;
+  std::vector<Vec3s> push;
+  std::vector<std::vector<std::uint8_t>> back;
+  for (std::size_t c = 0; c < states.size(); ++c) {
+    Cloth::State& s = states[c];
+    ptr.push_back(&s);
+    s.x_start = s.x;
+    for (Vec3& p : s.x) {
+      p.x() += 0.01;
+      const bool middle = std::abs(p.x() - 0.11) < 0.045 && std::abs(p.z() - 0.1) < 0.045;
+      if (c == 1 && middle) p.y() -= 0.006;
+    }
+    push.emplace_back(s.x.size(), Vec3::Zero());
+    back.emplace_back(s.x.size(), 0);
+  }
+  detail::CollisionPass pass;
+  const detail::CollisionPassStats st = pass.run(cloths, ptr, {}, 5e-4, 0, push, back);
+  std::vector<Vec3s> now;
+  for (auto& s : states) now.push_back(s.x);
+  EXPECT_EQ(cloth_crossings(cloths, now), 0);
+  EXPECT_GT(st.pairs, 0);
+  EXPECT_GT(st.zoned, 0);
+  EXPECT_EQ(st.reverted, 0);
+  for (const auto& s : states)
+    for (std::size_t i = 0; i < s.x.size(); ++i) EXPECT_GT(s.x[i].x() - s.x_start[i].x(), 0.005) << i;
 }
 
 SolverConfig pass_config(int substeps) {

@@ -17,7 +17,7 @@
 namespace layers::data {
 class Dataset;
 struct DatasetManifest;
-}
+}  // namespace layers::data
 
 namespace layers::generate {
 
