@@ -84,11 +84,14 @@ VerbRun register_train(CLI::App& app, const Global&) {
       const fs::path aside = move_aside(out, "run.output");
       std::printf("moved the old run %s aside to %s\n", out.string().c_str(), aside.string().c_str());
     }
-    if (root) {
+    train::TrainOptions options;
+    // The resolved experiment is written once the model and, on --resume,
+    // its checkpoint agree: a resume that fails leaves the run's
+    // experiment.yaml as it was.
+    options.started = [&] {
       fs::create_directories(out);
       write_text_atomic((out / data::run_layout::kExperiment).string(), cfg::to_yaml(loaded.resolved));
-    }
-    train::TrainOptions options;
+    };
     options.resume = a->resume;
     options.progress = !a->quiet;
     options.group = group.get();

@@ -5,6 +5,8 @@
 // says which split its scene is from.
 // Trains the test plugin's one-parameter model on the regression fixture.
 #include <gtest/gtest.h>
+
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
@@ -64,6 +66,19 @@ TEST(CliTrain, ExistingRunIsNeverOverwrittenOrLost) {
   EXPECT_EQ(unknown.exit_code, 1) << unknown.output;
   EXPECT_NE(unknown.output.find("unknown model 'no_such_model'"), std::string::npos) << unknown.output;
   EXPECT_EQ(read_bytes(run + "/experiment.yaml"), resolved);
+
+  // A resume from a damaged checkpoint fails before experiment.yaml is
+  // written: the run's resolved experiment stays as it was.
+  {
+    std::string damaged = checkpoint;
+    for (std::size_t i = damaged.size() / 2; i < damaged.size() / 2 + 64; ++i) damaged[i] ^= 0x5a;
+    std::ofstream(run + "/checkpoint-last.pt", std::ios::binary) << damaged;
+    auto broken = train(experiment, "--set train.lr=0.5 --resume");
+    EXPECT_EQ(broken.exit_code, 1) << broken.output;
+    EXPECT_NE(broken.output.find("checkpoint-last.pt: checksum"), std::string::npos) << broken.output;
+    EXPECT_EQ(read_bytes(run + "/experiment.yaml"), resolved);
+    std::ofstream(run + "/checkpoint-last.pt", std::ios::binary) << checkpoint;
+  }
 
   // --resume and --force together are a usage error.
   EXPECT_EQ(train(experiment, "--resume --force").exit_code, 2);

@@ -179,6 +179,7 @@ TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& re
     // Nothing to learn (reference models): the checkpoint holds the
     // normalisation, so evaluation runs the same way for every model.
     if (!root) return report;
+    if (options.started) options.started();
     save("last", nullptr);
     save("best", nullptr);
     write_selection(config, state);
@@ -192,6 +193,7 @@ TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& re
     state.epochs = t.epochs;
     spdlog::info("resuming from {} after epoch {} ({} steps)", report.last_checkpoint, state.epochs_done, state.steps);
   }
+  if (root && options.started) options.started();
   if (group) {
     // Every rank starts from rank 0's parameters and buffers, at the same epoch.
     check_same_start(*group, state, report.last_checkpoint);

@@ -169,6 +169,44 @@ TEST_F(Fixture, CheckpointRestoresParametersAndNormalisation) {
 // A checkpoint carries a checksum of its archive: 200 flipped bytes, a
 // truncated file or a damaged header are refused on load with one line
 // naming the file; a bare torch archive (before checksums) still loads.
+// "tiny" as another width would make it: `shift` of 5 values, not 3.
+class WiderTiny : public zoo::Model {
+ public:
+  WiderTiny() : Model("tiny") {
+    register_parameter("gain", at::scalar_tensor(0.5, at::kFloat));
+    register_parameter("shift", at::zeros({5}, at::kFloat));
+  }
+  cfg::Node config() const override { return cfg::to_node(testing::TinyParams()); }
+
+ protected:
+  zoo::StepOutput predict(const zoo::StepInput& in) override {
+    zoo::StepOutput out;
+    for (const zoo::GarmentState& g : in.garments) out.garments.push_back(g.current);
+    return out;
+  }
+};
+
+TEST_F(Fixture, ResumingWithAnotherModelShapeIsOneLineAndStartsNothing) {
+  ExperimentConfig c = config("shape");
+  run_training(c, registry, quiet());
+  zoo::Registry wider;
+  wider.add("tiny", "test model",
+            [](const cfg::Node&) -> std::shared_ptr<zoo::Model> { return std::make_shared<WiderTiny>(); });
+  TrainOptions resume = quiet();
+  resume.resume = true;
+  bool started = false;
+  resume.started = [&] { started = true; };
+  try {
+    run_training(c, wider, resume);
+    ADD_FAILURE() << "a checkpoint of another shape resumed";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), checkpoint_path(c, "last") +
+                                         ": model parameter shift: expected shape [5] (the model 'tiny' as "
+                                         "configured), got [3] in the checkpoint (trained with other model.params)");
+  }
+  EXPECT_FALSE(started);  // what the caller writes at the start (experiment.yaml) stays as it was
+}
+
 TEST_F(Fixture, DamagedCheckpointIsRefusedWithOneLine) {
   ExperimentConfig c = config("ckpt3");
   Session a = open_session(c, registry);

@@ -24,6 +24,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -39,7 +40,11 @@ class Group;
 namespace layers::train {
 
 struct TrainOptions {
-  bool resume = false;           // continue from checkpoint-last.pt if present
+  bool resume = false;  // continue from checkpoint-last.pt if present
+  // Called once the model is made and, when resuming, the checkpoint has
+  // loaded into it (shapes checked), before any step or file is written:
+  // where a caller writes what must not change when the run cannot start.
+  std::function<void()> started;
   bool progress = true;          // progress line on stderr
   dist::Group* group = nullptr;  // data-parallel ranks (null: this process alone)
 };
