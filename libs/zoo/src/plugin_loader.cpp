@@ -7,7 +7,9 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -54,6 +56,41 @@ bool is_plugin_file_name(const std::string& name) {
   const std::string prefix = kPrefix, suffix = kSuffix;
   return name.size() > prefix.size() + suffix.size() && name.compare(0, prefix.size(), prefix) == 0 &&
          name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// Why the 64-bit ELF file `path` cannot be a whole shared library, or "":
+// it is shorter than its own headers say (the program headers' segments and the
+// section header table must lie inside the file). dlopen maps a truncated
+// file and the process dies with SIGBUS on the first page past its end,
+// or loads a library cut short; this is read before dlopen.
+std::string elf_problem(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (!in || ec) return "cannot be read";
+  Elf64_Ehdr h{};
+  in.read(reinterpret_cast<char*>(&h), sizeof h);
+  // Not ELF, or not 64-bit: dlopen says what it is.
+  if (in.gcount() != static_cast<std::streamsize>(sizeof h) || std::memcmp(h.e_ident, ELFMAG, SELFMAG) != 0 ||
+      h.e_ident[EI_CLASS] != ELFCLASS64)
+    return "";
+  std::uintmax_t need = sizeof h;
+  const auto extent = [](std::uintmax_t offset, std::uintmax_t count, std::uintmax_t each) {
+    return offset + count * each;
+  };
+  need = std::max<std::uintmax_t>(need, extent(h.e_phoff, h.e_phnum, h.e_phentsize));
+  need = std::max<std::uintmax_t>(need, extent(h.e_shoff, h.e_shnum, h.e_shentsize));
+  if (need <= size && h.e_phentsize == sizeof(Elf64_Phdr)) {
+    in.seekg(static_cast<std::streamoff>(h.e_phoff));
+    for (int i = 0; i < h.e_phnum && in; ++i) {
+      Elf64_Phdr p{};
+      in.read(reinterpret_cast<char*>(&p), sizeof p);
+      if (in && p.p_type == PT_LOAD) need = std::max<std::uintmax_t>(need, p.p_offset + p.p_filesz);
+    }
+  }
+  if (need > size)
+    return "truncated: its ELF headers need " + std::to_string(need) + " bytes, the file has " + std::to_string(size);
+  return "";
 }
 
 std::string canonical_or_absolute(const fs::path& p) {
@@ -192,6 +229,7 @@ LoadedPlugin load_file(Registry& registry, const std::string& file) {
   const std::string path = canonical_or_absolute(file);
   if (auto already = RegistryLoading::models_of(registry, path); !already.empty()) return {path, already};
 
+  if (const std::string problem = elf_problem(path); !problem.empty()) refuse(path, "cannot load plugin: " + problem);
   dlerror();
   void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!handle) {
@@ -226,7 +264,7 @@ LoadedPlugin load_file(Registry& registry, const std::string& file) {
 LoadReport load_all(Registry& registry, const std::vector<std::string>& directories) {
   LoadReport report;
   report.searched = existing_unique(directories);
-  std::map<std::string, std::string> first_by_name;  // file name -> path loaded or refused
+  std::map<std::string, std::string> first_by_name;  // file name -> path loaded
   for (const auto& dir : report.searched) {
     for (const auto& file : plugin_files_in(dir)) {
       std::string name = file.filename().string();
@@ -238,7 +276,10 @@ LoadReport load_all(Registry& registry, const std::vector<std::string>& director
       try {
         report.loaded.push_back(load_file(registry, file.string()));
       } catch (const std::exception& e) {
+        // A refused file shadows nothing: a good one of the same name
+        // later on the path still loads.
         report.problems.push_back({file.string(), e.what()});
+        first_by_name.erase(it);
       }
     }
   }

@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "layers/core/error.h"
 #include "layers/zoo/plugin_abi.h"
@@ -160,6 +162,33 @@ TEST(PluginLoader, UnloadableFileGivesDlerror) {
   EXPECT_NE(message.find("invalid ELF header"), std::string::npos) << message;  // dlerror's words
   EXPECT_EQ(load_error(r, dir.file("liblayers_plugin_missing.so")),
             dir.file("liblayers_plugin_missing.so") + ": no such plugin file");
+}
+
+// A plugin cut short (a copy interrupted, a full disk) is refused before
+// dlopen, which would map it and die with SIGBUS past its end or load a
+// library missing its tail; it shadows nothing.
+TEST(PluginLoader, TruncatedPluginIsRefusedAndShadowsNothing) {
+  layers::test::TempDir first("layers-zoo-a"), second("layers-zoo-b");
+  const std::string name = "liblayers_plugin_test_constant_velocity.so";
+  std::ifstream in(plugin_file("test_constant_velocity"), std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (int percent : {10, 75, 90, 99}) {
+    const std::string cut = first.write(name, bytes.substr(0, bytes.size() * percent / 100));
+    zoo::Registry r;
+    const std::string message = load_error(r, cut);
+    EXPECT_EQ(message.rfind(canonical(cut) + ": cannot load plugin: truncated: its ELF headers need ", 0), 0u)
+        << percent << "%: " << message;
+    EXPECT_TRUE(r.names().empty());
+  }
+  fs::copy_file(plugin_file("test_constant_velocity"), second.file(name));
+  PluginPathEnv env(first.path() + ":" + second.path());
+  zoo::Registry r;
+  const zoo::LoadReport report = zoo::load_all(r);
+  ASSERT_FALSE(report.loaded.empty());
+  EXPECT_EQ(r.find("test_constant_velocity")->plugin_path, canonical(second.file(name)));
+  EXPECT_TRUE(report.shadowed.empty());
+  ASSERT_FALSE(report.problems.empty());
+  EXPECT_NE(report.problems[0].message.find("truncated"), std::string::npos);
 }
 
 TEST(PluginLoader, DuplicateNameNamesBothFilesAndRollsBack) {
