@@ -136,6 +136,9 @@ void parse_joint(Tokens& t, BvhClip& clip, const std::string& name, int parent, 
   joint.first_channel = channels;
   channels += static_cast<int>(count);
   const int index = static_cast<int>(clip.joints.size());
+  if (index >= kMaxBvhJoints)
+    t.fail("at most " + std::to_string(kMaxBvhJoints) + " joints",
+           "joint " + std::to_string(index + 1) + " (" + name + ")");
   clip.joints.push_back(joint);
   while (true) {
     std::string word2 = t.expect_any("JOINT, End Site or '}'");
@@ -217,6 +220,15 @@ BvhClip parse_bvh(std::istream& in, const std::string& name) {
            shortest(clip.frame_time));
   std::string leftover = t.rest_of_line();
   if (!leftover.empty()) t.fail("the end of the Frame Time line", "'" + leftover + "'");
+  // Bounds on what the frames will take, before any is read: joints x
+  // frames, and the clip's length (what resampling makes of it).
+  const double joint_frames = frames * static_cast<double>(clip.joints.size());
+  if (joint_frames > kMaxBvhJointFrames)
+    t.fail("at most " + std::to_string(kMaxBvhJointFrames) + " joints x frames",
+           std::to_string(clip.joints.size()) + " joints x " + shortest(frames) + " frames");
+  if (frames * clip.frame_time > kMaxBvhSeconds)
+    t.fail("a clip of at most " + shortest(kMaxBvhSeconds) + " s (Frames x Frame Time)",
+           shortest(frames * clip.frame_time) + " s");
 
   const int n = static_cast<int>(frames);
   std::vector<double> values(static_cast<std::size_t>(channels));
@@ -277,7 +289,12 @@ BvhClip resample(const BvhClip& clip, double fps) {
   out.frame_time = 1.0 / fps;
   if (clip.num_frames() == 0) return out;
   const double duration = (clip.num_frames() - 1) * clip.frame_time;
-  const int m = static_cast<int>(std::floor(duration * fps + 1e-6)) + 1;
+  const double frames = std::floor(duration * fps + 1e-6) + 1;
+  if (frames * static_cast<double>(clip.joints.size()) > kMaxBvhJointFrames)
+    throw InputError(clip.source, "frames",
+                     "at most " + std::to_string(kMaxBvhJointFrames) + " joints x frames at " + shortest(fps) + " fps",
+                     std::to_string(clip.joints.size()) + " joints x " + shortest(frames) + " frames");
+  const int m = static_cast<int>(frames);
   for (int i = 0; i < m; ++i) {
     const double s = std::min(i / fps / clip.frame_time, static_cast<double>(clip.num_frames() - 1));
     const int a = static_cast<int>(std::floor(s));

@@ -148,6 +148,54 @@ TEST(Bvh, FrameCountAndFrameTimeAreBounded) {
   expect_error_at_line(edited("OFFSET 0.1 -0.1 0", "OFFSET 0.1 -1e9 0"), 8, "OFFSET values within +-1e+06, got -1e+09");
 }
 
+// A hierarchy of `joints` joints with three rotation channels each and a
+// MOTION header declaring `frames` frames of `frame_time` (no frame lines:
+// the bounds refuse it before any is read).
+std::string chain(int joints, const std::string& frames, const std::string& frame_time) {
+  // A root with joints - 1 children (a chain would pass the depth bound).
+  std::string s = "HIERARCHY\nROOT j0\n{\nOFFSET 0 0 0\nCHANNELS 3 Zrotation Xrotation Yrotation\n";
+  for (int j = 1; j < joints; ++j)
+    s += "JOINT j" + std::to_string(j) +
+         "\n{\nOFFSET 0 0.1 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{\nOFFSET 0 0.1 0\n}\n}\n";
+  return s + "}\nMOTION\nFrames: " + frames + "\nFrame Time: " + frame_time + "\n";
+}
+
+std::string error_of(const std::string& text) {
+  std::istringstream in(text);
+  try {
+    parse_bvh(in, "clip.bvh");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(read)";
+}
+
+// Joints, joints x frames and the clip's length are bounded before a frame
+// is read, and resampling before it allocates: a small file cannot ask for
+// gigabytes.
+TEST(Bvh, JointsFramesAndLengthAreBoundedBeforeReading) {
+  EXPECT_NE(error_of(chain(1001, "1", "0.1")).find("at most 1000 joints, got joint 1001 (j1000)"), std::string::npos)
+      << error_of(chain(1001, "1", "0.1"));
+  EXPECT_NE(
+      error_of(chain(20, "1000000", "0.001")).find("at most 10000000 joints x frames, got 20 joints x 1e+06 frames"),
+      std::string::npos)
+      << error_of(chain(20, "1000000", "0.001"));
+  EXPECT_NE(error_of(chain(1, "1000000", "1")).find("a clip of at most 3600 s (Frames x Frame Time), got 1e+06 s"),
+            std::string::npos)
+      << error_of(chain(1, "1000000", "1"));
+  // Within the bounds the same header only misses its frames.
+  EXPECT_NE(error_of(chain(20, "1000", "0.01")).find("1000 frames"), std::string::npos)
+      << error_of(chain(20, "1000", "0.01"));
+  // Resampling the 0.2 s clip to 10^8 fps would make 2 x 10^7 frames per joint.
+  const BvhClip clip = parse(kSmall);
+  try {
+    resample(clip, 1e8);
+    ADD_FAILURE() << "resampled to 1e8 fps";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("joints x frames at 1e+08 fps"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Bvh, DirectoryIsNotABvhFile) {
   layers::test::TempDir dir;
   try {

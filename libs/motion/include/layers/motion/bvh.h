@@ -44,15 +44,18 @@ struct BvhClip {
   int index(const std::string& name) const;  // -1 when absent
 };
 
-// Bounds of what a BVH file may declare (InputError beyond them): at most
-// kMaxBvhFrames frames, a frame time in (kMinBvhFrameTime, kMaxBvhFrameTime]
-// seconds. With them, memory stays proportional to the file: every
-// declared frame is a line of the file, and resampling to 30 fps makes at
-// most 30 frames of each.
+// Bounds of what a BVH file may declare (InputError beyond them, before
+// the frames are read): at most kMaxBvhFrames frames, a frame time in
+// (kMinBvhFrameTime, kMaxBvhFrameTime] seconds, kMaxBvhJoints joints,
+// kMaxBvhJointFrames joints x frames (each costs 56 bytes: about 560 MB at
+// the bound) and a clip of at most kMaxBvhSeconds; resample() refuses to
+// make more than kMaxBvhJointFrames joints x frames either.
 inline constexpr int kMaxBvhFrames = 1000000;
 inline constexpr double kMinBvhFrameTime = 1e-4;
 inline constexpr double kMaxBvhFrameTime = 1.0;
-
+inline constexpr int kMaxBvhJoints = 1000;
+inline constexpr long kMaxBvhJointFrames = 10000000;
+inline constexpr double kMaxBvhSeconds = 3600;
 BvhClip read_bvh(const std::string& path);
 BvhClip parse_bvh(std::istream& in, const std::string& name);
 
