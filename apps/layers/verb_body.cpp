@@ -63,8 +63,11 @@ VerbRun register_body(CLI::App& app, const Global&) {
   cmd->add_option("--shape", a->shape, "shape parameters in 0..1, e.g. gender=0.3,muscle=0.5,weight=0.6,height=0.45");
   cmd->add_option("--motion", a->motion, "procedural:<kind>, bvh:<path> or a .bvh file")->capture_default_str();
   cmd->add_option("--frames", a->frames, "frames at 30 fps, transition included; 0 = whole clip")
-      ->capture_default_str();
-  cmd->add_option("--transition", a->transition, "frames blending in from the T-pose")->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100000));
+  cmd->add_option("--transition", a->transition, "frames blending in from the T-pose")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100000));
   cmd->add_option("--seed", a->seed, "randomises procedural speed and amplitude")->capture_default_str();
   cmd->add_option("--on-intersection", a->on_intersection, "longest_run, drop or keep")->capture_default_str();
   cmd->add_option("--arm-room", a->arm_room, "mm of room for the cloth between arms and torso (0 = off)")

@@ -64,6 +64,13 @@ TEST(CliBody, BadInputNamesTheProblem) {
   EXPECT_EQ(transition.exit_code, 2) << transition.output;
   EXPECT_NE(transition.output.find("--transition: expected fewer frames than --frames (3), got 15"), std::string::npos)
       << transition.output;
+  // Frame counts are bounded before anything is made (10^8 frames ran out
+  // of memory; 2 x 10^5 ran on for hours).
+  for (const char* flag : {"--frames 100000000", "--frames 200000", "--transition 100001"}) {
+    auto huge = run_command(test::layers_bin() + " body " + flag + " --out " + dir.file("x.h5"));
+    EXPECT_EQ(huge.exit_code, 2) << flag << ": " << huge.output;
+    EXPECT_NE(huge.output.find("not in range 0 to 100000"), std::string::npos) << flag << ": " << huge.output;
+  }
   auto room = run_command(test::layers_bin() + " body --thigh-room 150 --out " + dir.file("x.h5"));
   EXPECT_EQ(room.exit_code, 1) << room.output;
   EXPECT_NE(room.output.find("--thigh-room: body.thigh_room_mm: expected a number in [0, 100]"), std::string::npos)

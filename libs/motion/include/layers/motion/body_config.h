@@ -66,9 +66,11 @@ struct BodyMotionConfig {
   void visit(V& v) {
     v("shape", shape);
     v("motion", motion, cfg::opt().help("procedural:<kind>, bvh:<path> or a .bvh path"));
-    v("frames", frames, cfg::opt().min(0).help("total frames at 30 fps, transition included; 0 = whole clip"));
+    v("frames", frames,
+      cfg::opt().range(0, 100000).help("total frames at 30 fps, transition included; 0 = whole clip (at most 100000)"));
     v("seed", seed, cfg::opt().help("randomises procedural speed, amplitude and choices"));
-    v("transition_frames", transition_frames, cfg::opt().min(0).help("frames blending in from the T-pose"));
+    v("transition_frames", transition_frames,
+      cfg::opt().range(0, 100000).help("frames blending in from the T-pose (at most 100000)"));
     v("intersection_tolerance_mm", intersection_tolerance_mm,
       cfg::opt().range(0.5, 50).help("allowed self-intersection depth"));
     v("arm_room_mm", arm_room_mm,
