@@ -69,14 +69,27 @@ namespace {
 
 // Bounds of a config: aliases make copies (a few hundred bytes can expand
 // to billions of values), so values and depth are counted as they convert.
+// Keys and scalars are counted in bytes as well (one aliased long string
+// is one value many times over), and includes in files loaded (a file may
+// include another several times, and that one others).
 constexpr std::size_t kMaxConfigBytes = 16u << 20;
 constexpr std::int64_t kMaxConfigValues = 1000000;
+constexpr std::int64_t kMaxConfigExpandedBytes = 64 << 20;
 constexpr int kMaxConfigDepth = 64;
+constexpr int kMaxConfigFiles = 256;
 
 struct Budget {
-  std::int64_t values = 0;
+  std::int64_t values = 0, bytes = 0;
   int depth = 0;
 };
+
+void spend_bytes(Budget& budget, std::size_t bytes, const std::string& name) {
+  budget.bytes += static_cast<std::int64_t>(bytes);
+  if (budget.bytes > kMaxConfigExpandedBytes)
+    throw InputError(name, "",
+                     "a config of at most " + std::to_string(kMaxConfigExpandedBytes >> 20) + " MiB of keys and values",
+                     "more (YAML aliases expand into copies)");
+}
 
 Node convert(const YAML::Node& y, const std::string& name, Budget& budget) {
   if (++budget.values > kMaxConfigValues)
@@ -100,6 +113,7 @@ Node convert(const YAML::Node& y, const std::string& name, Budget& budget) {
       break;
     case YAML::NodeType::Scalar:
       out.kind = Node::Kind::Scalar;
+      spend_bytes(budget, y.Scalar().size(), name);
       out.scalar = y.Scalar();
       break;
     case YAML::NodeType::Sequence:
@@ -110,6 +124,7 @@ Node convert(const YAML::Node& y, const std::string& name, Budget& budget) {
       out.kind = Node::Kind::Map;
       for (const auto& kv : y) {
         std::string key = kv.first.as<std::string>();
+        spend_bytes(budget, key.size(), name);
         if (out.find(key))
           throw InputError::message(name + ":" + std::to_string(kv.first.Mark().line + 1), key, "duplicate key");
         out.map.emplace_back(key, convert(kv.second, name, budget));
@@ -119,8 +134,12 @@ Node convert(const YAML::Node& y, const std::string& name, Budget& budget) {
   return out;
 }
 
-Node load_recursive(const fs::path& path, std::vector<std::string>& stack) {
+Node load_recursive(const fs::path& path, std::vector<std::string>& stack, int& files) {
   std::string name = path.string();
+  if (++files > kMaxConfigFiles)
+    throw InputError::message(name, "include",
+                              "one file more than the " + std::to_string(kMaxConfigFiles) +
+                                  " a config may load with its includes (an include loads its file each time)");
   std::error_code ec;
   fs::path canonical = fs::weakly_canonical(path, ec);
   std::string key = ec ? name : canonical.string();
@@ -156,7 +175,7 @@ Node load_recursive(const fs::path& path, std::vector<std::string>& stack) {
     fs::path target = fs::path(p->scalar);
     if (target.is_relative()) target = path.parent_path() / target;
     if (!fs::exists(target)) throw InputError(p->where(), "include", "an existing file", "'" + target.string() + "'");
-    merge(result, load_recursive(target, stack));
+    merge(result, load_recursive(target, stack, files));
   }
   stack.pop_back();
   Node rest = own;
@@ -210,7 +229,8 @@ Node parse(const std::string& text, const std::string& name) {
 
 Node load_file(const std::string& path) {
   std::vector<std::string> stack;
-  return load_recursive(fs::path(path), stack);
+  int files = 0;
+  return load_recursive(fs::path(path), stack, files);
 }
 
 void merge(Node& base, const Node& over) {

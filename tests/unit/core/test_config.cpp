@@ -180,6 +180,16 @@ TEST(Config, IncludeErrors) {
   expect_error([&] { cfg::load_file(dir.file("nope.yaml")); }, {"nope.yaml", "cannot open"});
   std::string list = dir.write("list.yaml", "- 1\n- 2\n");
   expect_error([&] { cfg::load_file(list); }, {"list.yaml", "a mapping"});
+  // Includes that fan out (each file including the next ten times: 10^8
+  // loads) stop at 256 files loaded.
+  for (int i = 0; i < 8; ++i) {
+    std::string text = "include: [";
+    for (int k = 0; k < 10; ++k) text += (k ? ", " : "") + std::string("f") + std::to_string(i + 1) + ".yaml";
+    dir.write("f" + std::to_string(i) + ".yaml", text + "]\n");
+  }
+  dir.write("f8.yaml", "x: 1\n");
+  expect_error([&] { cfg::load_file(dir.file("f0.yaml")); },
+               {"include: one file more than the 256 a config may load with its includes"});
 }
 
 TEST(Config, SetOverridesFromCommandLine) {
@@ -214,6 +224,13 @@ TEST(Config, AliasBombAndDeepNestingAreBounded) {
   ASSERT_LT(bomb.size(), 1000u);
   expect_error([&] { cfg::parse(bomb, "bomb.yaml"); },
                {"bomb.yaml: expected a config of at most 1000000 values, got more (YAML aliases expand into copies)"});
+  // One long string aliased many times: few values, many bytes.
+  std::string wide = "a: &a " + std::string(1 << 20, 'x') + "\nb: [";
+  for (int i = 0; i < 100; ++i) wide += (i ? ", *a" : "*a");
+  wide += "]\n";
+  expect_error([&] { cfg::parse(wide, "wide.yaml"); },
+               {"wide.yaml: expected a config of at most 64 MiB of keys and values, got more (YAML aliases expand "
+                "into copies)"});
   std::string deep = "a: ";
   for (int i = 0; i < 100; ++i) deep += "[";
   for (int i = 0; i < 100; ++i) deep += "]";
