@@ -98,7 +98,7 @@ std::string run_scene(const Args& a, const std::vector<std::string>& setups, con
   data::SequenceData seq = dataset.read_sequence(sequence);
   seq.n_frames = frames;
   std::vector<generate::CrosscheckRun> runs;
-  generate::CrosscheckRun ours{"ours (stored)", std::nan(""), {}};
+  generate::CrosscheckRun ours{generate::kOursStored, std::nan(""), {}};
   for (const auto& g : seq.garments) ours.garments.push_back(g.positions);
   runs.push_back(std::move(ours));
   // Our solver timed on the same scene: simulated again from the

@@ -38,7 +38,7 @@ CrosscheckRun resimulate_ours(const std::string& dataset_dir, const std::string&
   if (!scene.usable()) throw InputError::message(path, sequence_id, "cannot be simulated again: " + scene.problem());
   scene.warm_up();
   CrosscheckRun run;
-  run.label = "ours (simulated again)";
+  run.label = kOursAgain;
   const sim::Solver& solver = scene.solver();
   run.garments.resize(static_cast<std::size_t>(solver.num_cloths()));
   double cpu = 0;

@@ -93,6 +93,15 @@ std::vector<double> values(const std::vector<CrosscheckSceneColumns>& scenes, co
   return out;
 }
 
+// A markdown table's header: an empty first cell, then `columns`.
+std::string header(const std::vector<std::string>& columns, const std::string& prefix = "") {
+  std::string out = "| |";
+  for (const auto& c : columns) out += " " + prefix + c + " |";
+  out += "\n|---|";
+  for (std::size_t i = 0; i < columns.size(); ++i) out += "---|";
+  return out + "\n";
+}
+
 }  // namespace
 
 std::string crosscheck_columns_tsv(const std::vector<CrosscheckColumn>& columns) {
@@ -156,11 +165,8 @@ std::string crosscheck_summary(const std::vector<CrosscheckSceneColumns>& scenes
     for (const auto& c : s.columns)
       if (std::find(labels.begin(), labels.end(), c.label) == labels.end()) labels.push_back(c.label);
   std::string out = "Cross-check over " + std::to_string(scenes.size()) +
-                    " scenes: mean over scenes ± the 95% interval (Student t, sample standard deviation).\n\n| |";
-  for (const auto& l : labels) out += " " + l + " |";
-  out += "\n|---|";
-  for (std::size_t i = 0; i < labels.size(); ++i) out += "---|";
-  out += "\n";
+                    " scenes: mean over scenes ± the 95% interval (Student t, sample standard deviation).\n\n" +
+                    header(labels);
   for (const Row& r : kRows) {
     out += std::string("| ") + r.caption + " |";
     for (const auto& l : labels) out += " " + cell(mean_interval(values(scenes, l, member(r.field))), r.share) + " |";
@@ -169,18 +175,15 @@ std::string crosscheck_summary(const std::vector<CrosscheckSceneColumns>& scenes
 
   // Paired, per scene: our stored ground truth minus each Blender column,
   // and our time (simulated again) over each Blender column's.
-  const std::string ours = "ours (stored)", again = "ours (simulated again)";
+  const std::string ours = kOursStored, again = kOursAgain;
   std::vector<std::string> blender;
   for (const auto& l : labels)
     if (l != ours && l != again) blender.push_back(l);
   if (blender.empty()) return out;
   out += "\nPaired over scenes: " + ours +
          " minus each other column (mean difference ± 95% interval; * where "
-         "the interval excludes 0).\n\n| |";
-  for (const auto& b : blender) out += " minus " + b + " |";
-  out += "\n|---|";
-  for (std::size_t i = 0; i < blender.size(); ++i) out += "---|";
-  out += "\n";
+         "the interval excludes 0).\n\n" +
+         header(blender, "minus ");
   for (const Row& r : kRows) {
     if (std::string(r.field) == "ms_per_frame") continue;
     out += std::string("| ") + r.caption + " |";

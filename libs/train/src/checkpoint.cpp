@@ -210,35 +210,35 @@ CheckpointState load_checkpoint(const std::string& path, zoo::Model& model, torc
   // LibTorch's load replaces a tensor whatever its shape: the shapes the
   // configured model has are compared afterwards, one line for the first
   // that differs (a model of another width, say).
-  std::vector<std::pair<std::string, std::vector<std::int64_t>>> shapes;
-  for (const auto& p : model.named_parameters(true)) shapes.emplace_back(p.key(), p.value().sizes().vec());
-  for (const auto& b : model.named_buffers(true)) shapes.emplace_back(b.key(), b.value().sizes().vec());
+  // Every parameter and buffer with its kind and shape, in one order.
+  struct Shape {
+    std::string what;
+    std::vector<std::int64_t> sizes;
+  };
+  const auto shapes_of = [&] {
+    std::vector<Shape> out;
+    for (const auto& p : model.named_parameters(true)) out.push_back({"parameter " + p.key(), p.value().sizes().vec()});
+    for (const auto& b : model.named_buffers(true)) out.push_back({"buffer " + b.key(), b.value().sizes().vec()});
+    return out;
+  };
+  const std::vector<Shape> configured = shapes_of();
   try {
     model.load(model_archive);
   } catch (const std::exception& e) {
     throw InputError(path, "model", "parameters matching the configured model '" + model.name() + "'",
                      "a mismatch: " + torch_message(e));
   }
-  const auto shape_text = [](const std::vector<std::int64_t>& shape) {
+  const auto text = [](const std::vector<std::int64_t>& shape) {
     std::string t = "[";
     for (std::size_t i = 0; i < shape.size(); ++i) t += (i ? ", " : "") + std::to_string(shape[i]);
     return t + "]";
   };
-  std::size_t k = 0;
-  for (const auto& p : model.named_parameters(true)) {
-    const auto& [name, want] = shapes[k++];
-    if (p.value().sizes().vec() != want)
-      throw InputError(path, "model parameter " + name,
-                       "shape " + shape_text(want) + " (the model '" + model.name() + "' as configured)",
-                       shape_text(p.value().sizes().vec()) + " in the checkpoint (trained with other model.params)");
-  }
-  for (const auto& b : model.named_buffers(true)) {
-    const auto& [name, want] = shapes[k++];
-    if (b.value().sizes().vec() != want)
-      throw InputError(path, "model buffer " + name,
-                       "shape " + shape_text(want) + " (the model '" + model.name() + "' as configured)",
-                       shape_text(b.value().sizes().vec()) + " in the checkpoint (trained with other model.params)");
-  }
+  const std::vector<Shape> loaded = shapes_of();
+  for (std::size_t k = 0; k < configured.size() && k < loaded.size(); ++k)
+    if (loaded[k].sizes != configured[k].sizes)
+      throw InputError(path, "model " + configured[k].what,
+                       "shape " + text(configured[k].sizes) + " (the model '" + model.name() + "' as configured)",
+                       text(loaded[k].sizes) + " in the checkpoint (trained with other model.params)");
   if (!in.try_read("normalization", norm_archive))
     throw InputError(path, "normalization", "the training statistics", "nothing");
   zoo::Normalization norm;

@@ -342,7 +342,7 @@ TEST(CrosscheckSummary, ColumnsRoundTripAndPairedIntervals) {
   std::vector<generate::CrosscheckSceneColumns> scenes;
   for (double blender : {0.020, 0.021, 0.022}) {
     generate::CrosscheckColumn ours, other;
-    ours.label = "ours (stored)";
+    ours.label = generate::kOursStored;
     ours.frames = other.frames = 3;
     other.label = "Blender, merged";
     other.ms_per_frame = 500;

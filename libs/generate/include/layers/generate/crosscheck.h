@@ -34,6 +34,11 @@
 
 namespace layers::generate {
 
+// The labels of our two columns: the stored ground truth, and the scene
+// simulated again by our solver (timed).
+inline constexpr const char* kOursStored = "ours (stored)";
+inline constexpr const char* kOursAgain = "ours (simulated again)";
+
 // One simulation of a sequence's garments: positions [T,V,3] per garment
 // (the sequence's garment order and vertex order), T >= frames measured.
 struct CrosscheckRun {
