@@ -295,12 +295,17 @@ void CollisionPass::mark_pinched(const std::vector<Hit>& hits) {
     if (owner_[h.v[0]] >= 0 && owner_[h.v[3]] >= 0) continue;
     const Vec3 n = body_normal(h);
     if (n.squaredNorm() == 0) continue;
+    int from = -1;
+    for (int v : h.v)
+      if (owner_[v] < 0) from = v - cloth_vertices_;
     for (int v : h.v) {
       if (owner_[v] < 0) continue;
       if (pinch_dir_[v].squaredNorm() == 0) {
         pinch_dir_[v] = n;
+        pinch_from_[v] = from;
       } else if (pinch_dir_[v].dot(n) < kPinchCos) {
-        pinched_[v] = 1;
+        const Vec3s* apart = body_.apart;
+        if (apart == nullptr || ((*apart)[pinch_from_[v]] - (*apart)[from]).norm() > kPinchApart) pinched_[v] = 1;
       }
     }
   }
@@ -384,6 +389,7 @@ CollisionPassStats CollisionPass::run(const std::vector<Cloth>& cloths, const st
   dirty_.assign(total, 0);
   pinched_.assign(total, 0);
   pinch_dir_.assign(total, Vec3::Zero());
+  pinch_from_.assign(total, -1);
   for (std::size_t c = 0; c < states.size(); ++c) {
     const Cloth::State& s = *states[c];
     for (std::size_t i = 0; i < s.x.size(); ++i) {

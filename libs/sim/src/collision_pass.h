@@ -53,8 +53,9 @@
 
 namespace layers::sim::detail {
 
-constexpr int kZoneRounds = 8;      // rounds of impact zones before the fail-safe
-constexpr double kPinchCos = -0.3;  // body normals this far apart at one cloth vertex: a pinch
+constexpr int kZoneRounds = 8;         // rounds of impact zones before the fail-safe
+constexpr double kPinchCos = -0.3;     // body normals this far apart at one cloth vertex: a pinch
+constexpr double kPinchApart = 0.036;  // m between the two parts in the apart pose (docs/metrics.md's 2 x 18 mm)
 
 struct CollisionPassStats {
   long pairs = 0;     // colliding pairs found in the first round
@@ -75,6 +76,9 @@ struct SweptBody {
   const Vec3s* frame_start = nullptr;
   const Vec3s* frame_end = nullptr;
   long frame = -1;
+  // A pose in which the body's parts stand apart (the T-pose; null: none),
+  // for telling a pinch between two parts from the two sides of one.
+  const Vec3s* apart = nullptr;
 };
 
 class CollisionPass {
@@ -115,8 +119,10 @@ class CollisionPass {
   // The body's outward normal at a body pair (its body vertices' normals).
   Vec3 body_normal(const Hit& h) const;
   // Flags the cloth vertices met by body pairs whose normals oppose
-  // (cosine below kPinchCos) within this substep: pinched between two
-  // parts of the body.
+  // (cosine below kPinchCos) within this substep and whose body vertices
+  // stand more than kPinchApart apart in the body's `apart` pose: pinched
+  // between two parts of the body (not lying over both sides of one thin
+  // part, where the body must not yield).
   void mark_pinched(const std::vector<Hit>& hits);
   // Moves each impact zone (the cloth vertices with parent >= 0, grouped by
   // find()) rigidly: its centre of mass as the zone's mean motion, its
@@ -157,6 +163,7 @@ class CollisionPass {
   std::vector<std::uint8_t> back_;
   std::vector<std::uint8_t> pinched_;  // cloth vertex the body presses from opposite sides this substep
   Vec3s pinch_dir_;                    // the body's normal at the first body pair of each cloth vertex
+  std::vector<int> pinch_from_;        // a body vertex of that pair (-1: none yet)
   std::vector<std::uint8_t> dirty_;    // moved since the last detection
   std::vector<Hit> hits_;              // the pairs of the last detection
   Vec3s body_normals_;                 // the body's vertex normals at the start of the substep (area-weighted)

@@ -367,6 +367,7 @@ void Solver::collision_pass(bool body) {
     swept.frame_start = &m.body.frame_start();
     swept.frame_end = &m.body.frame_end();
     swept.frame = frame_;
+    swept.apart = &m.body.pose_at_reset();
   }
   for (std::size_t ci = 0; ci < cloths_.size(); ++ci) m.before_pass[ci] = cloths_[ci].state_.x;
   const detail::CollisionPassStats ps =
