@@ -2,12 +2,17 @@
 //
 // A plugin is a shared library named liblayers_plugin_<name>.so (build it
 // with layers_plugin() in CMake, which exports only the entry point)
-// containing exactly one
+// containing exactly one LAYERS_PLUGIN block. Every plugin of this tree
+// declares its model's registry entry (a zoo::ModelSpec: name, one-line
+// description, factory; registry.h) in a torch-free header and registers
+// it in src/register.cpp:
 //
-//   LAYERS_PLUGIN(registry) {
-//     registry.add("my_model", "one-line description",
-//                  [](const layers::cfg::Node& params) { return std::make_shared<MyModel>(params); });
-//   }
+//   // my_model.h
+//   std::shared_ptr<zoo::Model> make_my_model(const cfg::Node& params);
+//   inline constexpr zoo::ModelSpec kMyModel{"my_model", "one-line description", make_my_model};
+//
+//   // register.cpp
+//   LAYERS_PLUGIN(registry) { registry.add(kMyModel); }
 //
 // The macro defines the extern "C" entry point layers_plugin_register
 // (plugin_abi.h). It first writes the plugin's ABI record (zoo API version,
