@@ -292,7 +292,9 @@ Vec3 CollisionPass::body_normal(const Hit& h) const {
 
 void CollisionPass::mark_pinched(const std::vector<Hit>& hits) {
   for (const Hit& h : hits) {
-    if (owner_[h.v[0]] >= 0 && owner_[h.v[3]] >= 0) continue;
+    // Only a cloth vertex against a body face: an edge or a face of the
+    // cloth spans too much to say the body presses it from both sides.
+    if (h.edge_edge || owner_[h.v[0]] < 0 || owner_[h.v[1]] >= 0) continue;
     const Vec3 n = body_normal(h);
     if (n.squaredNorm() == 0) continue;
     int from = -1;

@@ -118,7 +118,8 @@ class CollisionPass {
   bool correct(const Hit& hit, double gap);
   // The body's outward normal at a body pair (its body vertices' normals).
   Vec3 body_normal(const Hit& h) const;
-  // Flags the cloth vertices met by body pairs whose normals oppose
+  // Flags the cloth vertices met by vertex-face body pairs (the cloth
+  // vertex against a body face) whose normals oppose
   // (cosine below kPinchCos) within this substep and whose body vertices
   // stand more than kPinchApart apart in the body's `apart` pose: pinched
   // between two parts of the body (not lying over both sides of one thin
