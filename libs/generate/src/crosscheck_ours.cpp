@@ -5,8 +5,6 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "layers/core/config.h"
-#include "layers/core/config_node.h"
 #include "layers/core/error.h"
 #include "layers/data/manifest.h"
 #include "layers/generate/crosscheck.h"
@@ -24,10 +22,11 @@ CrosscheckRun resimulate_ours(const std::string& dataset_dir, const std::string&
                               "not found: a finished dataset's manifest carries the generator config (generator.yaml) "
                               "the scene is simulated again from");
   const data::DatasetManifest manifest = data::read_manifest(path);
-  if (manifest.generator_yaml.empty())
+  const std::optional<GeneratorConfig> recorded = recorded_generator_config(manifest.generator_yaml, path);
+  if (!recorded)
     throw InputError(path, "generator", "the generator config the dataset was made with",
                      "none (a dataset not made by `layers generate`)");
-  const GeneratorConfig config = cfg::read<GeneratorConfig>(cfg::parse(manifest.generator_yaml, path), "generator");
+  const GeneratorConfig& config = *recorded;
   int index = -1;
   char tail = 0;
   if (std::sscanf(sequence_id.c_str(), "seq-%d%c", &index, &tail) != 1 || index < 0 || scene_id(index) != sequence_id)

@@ -8,8 +8,6 @@
 #include <fstream>
 #include <sstream>
 
-#include "layers/core/config.h"
-#include "layers/core/config_node.h"
 #include "layers/core/error.h"
 #include "layers/data/dataset.h"
 #include "layers/data/export.h"
@@ -51,12 +49,10 @@ std::string json_numbers(const std::vector<float>& values, std::size_t count) {
 }  // namespace
 
 CrosscheckGaps crosscheck_gaps(const data::DatasetManifest& manifest, const std::string& file) {
-  sim::SolverConfig solver;
+  const std::optional<GeneratorConfig> recorded = recorded_generator_config(manifest.generator_yaml, file);
+  const sim::SolverConfig solver = recorded ? recorded->sim : sim::SolverConfig();
   CrosscheckGaps gaps;
-  if (!manifest.generator_yaml.empty()) {
-    solver = cfg::read<GeneratorConfig>(cfg::parse(manifest.generator_yaml, file), "generator").sim;
-    gaps.recorded = true;
-  }
+  gaps.recorded = recorded.has_value();
   gaps.body = solver.body_thickness;
   gaps.layer = solver.layer_thickness;
   gaps.self = solver.self_thickness;

@@ -141,7 +141,9 @@ std::vector<CrosscheckColumn> parse_crosscheck_columns(const std::string& text, 
     try {
       std::size_t used = 0;
       c.frames = std::stoll(cells[1], &used);
+      if (used != cells[1].size()) throw std::invalid_argument(cells[1]);
       c.nonfinite = std::stoll(cells[2], &used);
+      if (used != cells[2].size()) throw std::invalid_argument(cells[2]);
       for (std::size_t i = 0; i + 3 < expected; ++i) {
         const std::string& v = cells[i + 3];
         if (v == "nan" || v == "-nan") {

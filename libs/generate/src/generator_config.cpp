@@ -1,4 +1,5 @@
-// Cross-field checks of the generator config (see generator_config.h).
+// Cross-field checks of the generator config, and reading the one a
+// dataset manifest records (see generator_config.h).
 #include "layers/generate/generator_config.h"
 
 #include <algorithm>
@@ -101,6 +102,11 @@ void check(const GeneratorConfig& c, const std::string& file) {
   check_holdouts(c, file);
   garment::validate(c.garments.fit);
   sim::check(c.sim, "sim");
+}
+
+std::optional<GeneratorConfig> recorded_generator_config(const std::string& generator_yaml, const std::string& file) {
+  if (generator_yaml.empty()) return std::nullopt;
+  return cfg::read<GeneratorConfig>(cfg::parse(generator_yaml, file), "generator");
 }
 
 }  // namespace layers::generate

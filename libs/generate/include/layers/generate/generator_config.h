@@ -190,6 +190,11 @@ struct GeneratorConfig {
 // made before it existed; a file the schema rejects is not the same.
 bool same_saved_config(const std::string& path, const std::string& resolved);
 
+// The generator config a dataset's manifest records (dataset.yaml's
+// `generator`), read through the schema; nullopt for a dataset not made by
+// `layers generate`. InputError naming `file` when it does not read.
+std::optional<GeneratorConfig> recorded_generator_config(const std::string& generator_yaml, const std::string& file);
+
 // Cross-field checks the per-field ranges cannot express (ranges are
 // [lo, hi] pairs, weights not all zero, known garment types, outfits with
 // at least one inner garment, val + test < 1). InputError naming `file`
