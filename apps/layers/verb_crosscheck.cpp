@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "blender_runner.h"
+#include "dataset_access.h"
 #include "layers/core/error.h"
 #include "layers/core/text_file.h"
 #include "layers/data/dataset.h"
@@ -69,6 +70,7 @@ struct Args {
   std::vector<std::string> sequences;
   std::int64_t frames = 0;
   int threads = 1;
+  bool allow_unhashed = false;
 };
 
 constexpr const char* kColumnsFile = "columns.tsv";
@@ -186,7 +188,7 @@ int run(const Args& a) {
   const std::vector<std::string> setups = parse_setups(a.setups);
   if (a.frames < 0 || a.frames == 1) throw UsageError("--frames: expected at least 2 (0 = the whole sequence)");
   const std::string blender = find_blender(a.blender);
-  const data::Dataset dataset = data::Dataset::open(a.dataset);
+  const data::Dataset dataset = open_dataset(a.dataset, a.allow_unhashed);
   std::vector<std::string> sequences;
   for (const std::string& s : a.sequences) {
     if (s == "all") {
@@ -245,6 +247,7 @@ VerbRun register_crosscheck(CLI::App& app, const Global&) {
       "crosscheck", "Re-simulate a stored sequence with Blender's cloth from its frame 0 and compare the measures");
   auto args = std::make_shared<Args>();
   cmd->add_option("dataset", args->dataset, "dataset folder or shard .h5 file")->required();
+  add_allow_unhashed(*cmd, args->allow_unhashed);
   cmd->add_option("sequences", args->sequences,
                   "sequence ids, or all; with several, a summary with 95% intervals over them")
       ->required();

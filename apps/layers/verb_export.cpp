@@ -2,6 +2,7 @@
 // (one point cache per mesh) for Blender.
 #include <cstdio>
 
+#include "dataset_access.h"
 #include "frame_range.h"
 #include "layers/data/dataset.h"
 #include "layers/data/export.h"
@@ -12,10 +13,12 @@ namespace layers::app {
 VerbRun register_export(CLI::App& app, const Global&) {
   auto* cmd = app.add_subcommand("export", "Export a sequence's body and garments as OBJ or PC2");
   struct Args {
+    bool allow_unhashed = false;
     std::string path, sequence, format = "obj", frames = ":", out = "export";
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("dataset", args->path, "dataset folder or shard .h5 file")->required();
+  add_allow_unhashed(*cmd, args->allow_unhashed);
   cmd->add_option("sequence", args->sequence, "sequence id")->required();
   cmd->add_option("--format", args->format, "obj or pc2")->capture_default_str();
   cmd->add_option("--frames", args->frames, "frames a:b (b excluded), a:, :b or a single frame")->capture_default_str();
@@ -23,7 +26,7 @@ VerbRun register_export(CLI::App& app, const Global&) {
   return [args]() {
     auto format = data::parse_export_format(args->format);
     FrameRange range = parse_frame_range(args->frames);
-    data::Dataset ds = data::Dataset::open(args->path);
+    data::Dataset ds = open_dataset(args->path, args->allow_unhashed);
     auto files = data::export_sequence(ds, args->sequence, format, range.first, range.last, args->out);
     std::printf("wrote %zu files to %s\n", files.size(), args->out.c_str());
     return static_cast<int>(kOk);

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "dataset_access.h"
 #include "layers/data/dataset.h"
 #include "verbs.h"
 
@@ -33,15 +34,17 @@ void print_sequence(const data::SequenceInfo& s, bool garments) {
 VerbRun register_info(CLI::App& app, const Global&) {
   auto* cmd = app.add_subcommand("info", "Show what a dataset folder or shard file holds");
   struct Args {
+    bool allow_unhashed = false;
     std::string path, sequence;
     std::size_t max_rows = 40;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("path", args->path, "dataset folder or shard .h5 file")->required();
+  add_allow_unhashed(*cmd, args->allow_unhashed);
   cmd->add_option("--sequence", args->sequence, "show only this sequence, with its garments");
   cmd->add_option("--max-rows", args->max_rows, "list at most this many sequences")->capture_default_str();
   return [args]() {
-    data::Dataset ds = data::Dataset::open(args->path);
+    data::Dataset ds = open_dataset(args->path, args->allow_unhashed);
     if (!args->sequence.empty()) {
       print_sequence(ds.info(args->sequence), true);
       return static_cast<int>(kOk);

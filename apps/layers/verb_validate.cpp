@@ -8,7 +8,9 @@
 // many frames and sequences meet the crossing target; exit 1 if a
 // sequence is over the generator's thresholds. --frames-csv also writes
 // every frame's measures, to find where in a sequence they rise;
-// --threads measures several sequences at once.
+// --threads measures several sequences at once. --record-hashes migrates a
+// dataset written before content hashes: it validates it (the hashes it
+// has already are checked) and then records them in dataset.yaml.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -21,6 +23,7 @@
 #include "layers/core/error.h"
 #include "layers/core/parallel.h"
 
+#include "layers/data/content_hash.h"
 #include "layers/data/dataset.h"
 #include "layers/data/validate.h"
 #include "layers/generate/physics_summary.h"
@@ -209,7 +212,11 @@ VerbRun register_validate(CLI::App& app, const Global&) {
   auto target = std::make_shared<double>(0.1);
   auto frames_csv = std::make_shared<std::string>();
   auto threads = std::make_shared<int>(1);
+  auto record = std::make_shared<bool>(false);
   cmd->add_option("path", *path, "dataset folder or shard .h5 file")->required();
+  cmd->add_flag("--record-hashes", *record,
+                "for a dataset folder written before content hashes: validate it, then record its shard list, "
+                "sequence and stats hashes in dataset.yaml (the migration; docs/format.md)");
   cmd->add_flag("--physics", *physics,
                 "also recompute the generator's validation measures from the stored frames (H/L-penetration, "
                 "stretch; slow: every frame of every sequence)");
@@ -227,19 +234,30 @@ VerbRun register_validate(CLI::App& app, const Global&) {
   cmd->add_option("--threads", *threads, "with --physics: sequences measured at once (the output is the same)")
       ->capture_default_str()
       ->check(CLI::Range(1, 256));
-  return [path, physics, limits, target, frames_csv, threads]() {
+  return [path, physics, limits, target, frames_csv, threads, record]() {
     if (!frames_csv->empty() && !*physics) throw UsageError("--frames-csv needs --physics");
+    if (*record && *physics) throw UsageError("--record-hashes and --physics are run separately");
+    if (*record && !std::filesystem::is_directory(*path))
+      throw UsageError("--record-hashes needs a dataset folder (a shard file records its own hashes when written)");
     if (*threads != 1 && !*physics) throw UsageError("--threads needs --physics");
     std::error_code ec;
     if (!frames_csv->empty() && std::filesystem::exists(*frames_csv, ec))
       throw InputError::message(*frames_csv, "", kFramesCsvExists);
-    auto problems = data::validate_dataset(*path);
+    data::ValidateOptions options;
+    options.allow_unhashed = *record;
+    auto problems = data::validate_dataset(*path, options);
     for (const auto& p : problems) std::printf("%s\n", p.to_string().c_str());
     if (!problems.empty()) {
-      std::printf("%s: %zu problem%s\n", path->c_str(), problems.size(), problems.size() == 1 ? "" : "s");
+      std::printf("%s: %zu problem%s%s\n", path->c_str(), problems.size(), problems.size() == 1 ? "" : "s",
+                  *record ? "; no hash recorded" : "");
       return static_cast<int>(kFailure);
     }
     std::printf("%s: valid LAYERS-H5 (format version 1)\n", path->c_str());
+    if (*record) {
+      data::record_integrity(*path);
+      std::printf("%s: shard list, content hashes and stats hash recorded in dataset.yaml\n", path->c_str());
+      return static_cast<int>(kOk);
+    }
     return *physics ? check_physics(*path, *limits, *target / 100, *frames_csv, *threads) : static_cast<int>(kOk);
   };
 }

@@ -28,7 +28,7 @@ void write_dataset(const std::string& folder) {
   writer.set_split("train", {"a", "b"});
   writer.set_split("test", {"c"});
   writer.finish();
-  data::write_stats(folder + "/stats.h5", data::compute_stats(data::Dataset::open(folder)));  // as the generator does
+  data::write_dataset_stats(folder, data::compute_stats(data::Dataset::open(folder)));  // as the generator does
 }
 
 }  // namespace

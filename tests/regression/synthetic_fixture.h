@@ -117,7 +117,7 @@ inline std::string write_fixture(const std::string& parent) {
   writer.set_split("val", {ids[3]});
   writer.set_split("test", {ids[4], ids[5]});
   writer.finish();
-  data::write_stats(dir + "/stats.h5", data::compute_stats(data::Dataset::open(dir)));
+  data::write_dataset_stats(dir, data::compute_stats(data::Dataset::open(dir)));
   return dir;
 }
 

@@ -5,9 +5,11 @@
 #include <filesystem>
 
 #include "dataset_files.h"
+#include "integrity.h"
 #include "layers/core/checksum.h"
 #include "layers/data/dataset.h"
 #include "layers/data/manifest.h"
+#include "layers/data/stats.h"
 
 namespace layers::data {
 namespace {
@@ -82,14 +84,19 @@ std::string sequence_content_hash(const SequenceData& seq) {
   return x.h.hex();
 }
 
-void record_content_hashes(const std::string& folder) {
+void record_integrity(const std::string& folder) {
   const std::string manifest_path = (std::filesystem::path(folder) / kManifestFile).string();
   DatasetManifest manifest = read_manifest(manifest_path);
-  if (manifest.n_sequences == 0) return;
-  const Dataset dataset = Dataset::open(folder);
-  manifest.content_hashes.clear();
+  ReaderOptions options;
+  options.allow_unhashed = true;  // those recorded already are verified as they are read
+  const Dataset dataset = Dataset::open(folder, options);
+  manifest.shards.clear();
+  for (const std::string& shard : list_shards(folder))
+    manifest.shards.push_back(std::filesystem::path(shard).filename().string());
   for (const std::string& id : dataset.ids())
     manifest.content_hashes[id] = sequence_content_hash(dataset.read_sequence(id));
+  const std::string stats = (std::filesystem::path(folder) / kStatsFile).string();
+  if (std::filesystem::exists(stats)) manifest.stats_hash = stats_content_hash(read_stats(stats));
   write_manifest(manifest_path, manifest);
 }
 

@@ -3,14 +3,14 @@
 #include "layers/data/dataset.h"
 #include "layers/data/value_bounds.h"
 
-#include <spdlog/spdlog.h>
-
 #include <filesystem>
 #include <list>
+#include <set>
 #include <unordered_map>
 
 #include "dataset_files.h"
 #include "h5_io.h"
+#include "integrity.h"
 #include "layers/core/error.h"
 #include "sequence_io.h"
 #include "splits_source.h"
@@ -27,6 +27,11 @@ struct Dataset::Impl {
   std::vector<std::string> order;
   std::unordered_map<std::string, SequenceInfo> index;
   H5::FileAccPropList fapl;
+  ShardTotals totals;
+  std::map<std::string, std::string> shard_of_id;
+  std::map<std::string, std::map<std::string, std::string>> shard_hashes;  // the shards' own records
+  RecordedHashes recorded;  // what each sequence is verified against on its first read
+  std::set<std::string> verified;
 
   // Open shard files, most recently used first.
   std::list<std::pair<std::string, H5::H5File>> files;
@@ -81,20 +86,52 @@ struct Dataset::Impl {
                          "a duplicate of the sequence in " + existing->second.shard);
       }
       order.push_back(info.id);
+      totals.add(info);
+      shard_of_id[info.id] = shard;
       index.emplace(info.id, std::move(info));
     }
+    auto own = h5::guard(shard, "/", [&] { return shard_content_hashes(shard, f); });
+    if (!own.empty()) shard_hashes[shard] = std::move(own);
   }
 
-  void check_splits(const SplitsSource& source) const {
-    for (const auto& name : source.splits.names()) {
-      const auto& ids = source.splits.get(name);
-      for (std::size_t i = 0; i < ids.size(); ++i) {
-        if (!index.count(ids[i])) {
-          throw InputError(source.where(name, i), name, "ids of sequences in the dataset's shards",
-                           "'" + ids[i] + "' (unknown sequence)");
-        }
-      }
+  // Everything of one sequence as stored (no verification).
+  SequenceData read_whole(const SequenceInfo& info) {
+    SequenceStatic statics = read_static(info.shard, group(info), info);
+    Window window;
+    frames(info, 0, info.n_frames, window);
+    SequenceData seq;
+    seq.id = info.id;
+    seq.n_frames = info.n_frames;
+    seq.motion = info.motion;
+    seq.seed = info.seed;
+    seq.tags = info.tags;
+    seq.shape = info.shape;
+    static_cast<BodyStatic&>(seq.body) = std::move(statics.body);
+    static_cast<BodyFrames&>(seq.body) = std::move(window.body);
+    seq.wind = std::move(window.wind);
+    for (std::size_t k = 0; k < statics.garments.size(); ++k) {
+      GarmentData g;
+      static_cast<GarmentStatic&>(g) = std::move(statics.garments[k]);
+      g.positions = std::move(window.garments[k]);
+      seq.garments.push_back(std::move(g));
     }
+    return seq;
+  }
+
+  // The sequence's content hash against the recorded one, once per
+  // sequence, before any of its values leave the reader.
+  void verify(const SequenceData& seq) {
+    ThrowOnProblem sink;
+    check_content(recorded, seq, sink);
+    verified.insert(seq.id);
+  }
+  void verify(const SequenceInfo& info) {
+    if (verified.count(info.id)) return;
+    if (!recorded.hashes.count(info.id)) {  // unhashed reading allowed (checked at open)
+      verified.insert(info.id);
+      return;
+    }
+    verify(read_whole(info));
   }
 
   void frames(const SequenceInfo& info, std::int64_t first, std::int64_t count, Window& window) {
@@ -136,18 +173,30 @@ Dataset Dataset::open(const std::string& path, ReaderOptions options) {
     impl->manifest = read_manifest(manifest_path);
     const auto shards = list_shards(path);
     if (shards.empty()) throw InputError(path, "", "shard files (shard-NNNNN.h5)", "none");
+    // The integrity check (integrity.h): shard set, counts, splits and
+    // recorded hashes now; each sequence's content on its first read.
+    ThrowOnProblem sink;
+    check_shard_set(manifest_path, impl->manifest, shards, sink);
     for (const auto& shard : shards) impl->add_shard(shard);
+    check_counts(manifest_path, impl->manifest, impl->totals, sink);
     const std::string splits_path = (fs::path(path) / kSplitsFile).string();
-    if (fs::exists(splits_path)) {
-      const SplitsSource source = read_splits_source(splits_path);
-      impl->check_splits(source);
-      impl->splits = source.splits;
-    } else {
-      spdlog::warn("{}: no {}; the dataset has no splits", path, kSplitsFile);
-    }
+    if (!fs::exists(splits_path))
+      throw InputError(splits_path, "", "the dataset's splits (train, val, test, ...)", "no such file");
+    const SplitsSource source = read_splits_source(splits_path);
+    check_splits(source, impl->shard_of_id, sink);
+    impl->splits = source.splits;
+    impl->recorded = RecordedHashes{manifest_path, "content_hashes", impl->manifest.content_hashes};
+    check_recorded_hashes(impl->recorded, impl->shard_of_id, impl->shard_hashes, options.allow_unhashed, sink);
+    check_stats_hash(path, impl->manifest, options.allow_unhashed, sink);
   } else {
     impl->manifest.name = fs::path(path).stem().string();
     impl->add_shard(path);
+    const auto own = impl->shard_hashes.find(path);
+    impl->recorded =
+        RecordedHashes{path, std::string("/ attribute ") + kContentHashesAttr,
+                       own == impl->shard_hashes.end() ? std::map<std::string, std::string>{} : own->second};
+    ThrowOnProblem sink;
+    check_recorded_hashes(impl->recorded, impl->shard_of_id, {}, options.allow_unhashed, sink);
   }
   impl->manifest.n_sequences = static_cast<std::int64_t>(impl->order.size());
   return Dataset(std::move(impl));
@@ -171,6 +220,7 @@ std::shared_ptr<const SequenceStatic> Dataset::statics(const std::string& id) co
   }
   ++d.misses;
   const SequenceInfo& info = d.info(id);
+  d.verify(info);
   auto data = std::make_shared<const SequenceStatic>(read_static(info.shard, d.group(info), info));
   d.cache(id, data);
   return data;
@@ -190,6 +240,7 @@ Window Dataset::read_frames(const std::string& id, std::int64_t first, std::int6
   window.first_frame = window.start = first;
   window.n_frames = count;
   window.horizon = count - 1;
+  impl_->verify(info);
   impl_->frames(info, first, count, window);
   return window;
 }
@@ -214,35 +265,19 @@ Window Dataset::read_window(const std::string& id, std::int64_t start, std::int6
   window.start = start;
   window.history = history;
   window.horizon = horizon;
+  impl_->verify(info);
   impl_->frames(info, first, window.n_frames, window);
   return window;
 }
 
 SequenceData Dataset::read_sequence(const std::string& id) const {
   h5::Lock lock;
-  const SequenceInfo& info = impl_->info(id);
-  SequenceStatic statics = read_static(info.shard, impl_->group(info), info);
-  Window frames;
-  impl_->frames(info, 0, info.n_frames, frames);
-
-  SequenceData seq;
-  seq.id = id;
-  seq.n_frames = info.n_frames;
-  seq.motion = info.motion;
-  seq.seed = info.seed;
-  seq.tags = info.tags;
-  seq.shape = info.shape;
-  static_cast<BodyStatic&>(seq.body) = std::move(statics.body);
-  static_cast<BodyFrames&>(seq.body) = std::move(frames.body);
-  seq.wind = std::move(frames.wind);
-  for (std::size_t k = 0; k < statics.garments.size(); ++k) {
-    GarmentData g;
-    static_cast<GarmentStatic&>(g) = std::move(statics.garments[k]);
-    g.positions = std::move(frames.garments[k]);
-    seq.garments.push_back(std::move(g));
-  }
+  SequenceData seq = impl_->read_whole(impl_->info(id));
+  if (!impl_->verified.count(id)) impl_->verify(seq);
   return seq;
 }
+
+const ReaderOptions& Dataset::options() const { return impl_->options; }
 
 CacheStats Dataset::cache_stats() const {
   h5::Lock lock;

@@ -133,7 +133,7 @@ void DatasetWriter::finish() {
   manifest.generator_yaml = w.options.generator_config_yaml;
   write_splits(splits_path, w.splits);
   write_manifest(w.path(kManifestFile), manifest);
-  record_content_hashes(w.folder);
+  record_integrity(w.folder);
 }
 
 std::vector<std::string> DatasetWriter::ids() const {

@@ -7,6 +7,14 @@
 #include "yaml_util.h"
 
 namespace layers::data {
+namespace {
+
+void check_hash_text(const std::string& path, const YAML::Node& node, const std::string& key, const std::string& hash) {
+  if (hash.size() != 16 || hash.find_first_not_of("0123456789abcdef") != std::string::npos)
+    throw InputError(yaml_where(path, node), key, "16 hex digits", "'" + hash + "'");
+}
+
+}  // namespace
 
 std::string manifest_to_yaml(const DatasetManifest& m) {
   YAML::Emitter out;
@@ -35,6 +43,12 @@ std::string manifest_to_yaml(const DatasetManifest& m) {
     }
     out << YAML::EndMap << YAML::EndMap;
   }
+  if (!m.shards.empty()) {
+    out << YAML::Key << "shards" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+    for (const auto& name : m.shards) out << name;
+    out << YAML::EndSeq;
+  }
+  if (!m.stats_hash.empty()) out << YAML::Key << "stats_hash" << YAML::Value << m.stats_hash;
   if (!m.content_hashes.empty()) {
     out << YAML::Key << "content_hashes" << YAML::Value << YAML::BeginMap;
     for (const auto& [id, hash] : m.content_hashes) out << YAML::Key << id << YAML::Value << hash;
@@ -104,10 +118,24 @@ DatasetManifest read_manifest(const std::string& path) {
     for (const auto& kv : hashes) {
       const std::string id = kv.first.as<std::string>();
       const std::string hash = yaml_scalar<std::string>(kv.second, path, "content_hashes." + id, "a string");
-      if (hash.size() != 16 || hash.find_first_not_of("0123456789abcdef") != std::string::npos)
-        throw InputError(yaml_where(path, kv.second), "content_hashes." + id, "16 hex digits", "'" + hash + "'");
+      check_hash_text(path, kv.second, "content_hashes." + id, hash);
       m.content_hashes[id] = hash;
     }
+  }
+  if (const YAML::Node shards = root["shards"]) {
+    if (!shards.IsSequence())
+      throw InputError(yaml_where(path, shards), "shards", "a list of shard file names", "something else");
+    for (std::size_t i = 0; i < shards.size(); ++i) {
+      const std::string at = "shards[" + std::to_string(i) + "]";
+      const auto name = yaml_scalar<std::string>(shards[i], path, at, "a file name");
+      if (name.empty() || name.find('/') != std::string::npos || name.find("..") != std::string::npos)
+        throw InputError(yaml_where(path, shards[i]), at, "a file name in the dataset folder", "'" + name + "'");
+      m.shards.push_back(name);
+    }
+  }
+  if (const YAML::Node stats = root["stats_hash"]) {
+    m.stats_hash = yaml_scalar<std::string>(stats, path, "stats_hash", "a string");
+    check_hash_text(path, stats, "stats_hash", m.stats_hash);
   }
   if (const YAML::Node generator = root["generator"]) {
     YAML::Emitter out;

@@ -4,8 +4,10 @@
 #include <set>
 
 #include "h5_io.h"
+#include "integrity.h"
 #include "layers/core/atomic_file.h"
 #include "layers/core/error.h"
+#include "layers/data/content_hash.h"
 #include "layers/data/format.h"
 #include "sequence_io.h"
 
@@ -27,6 +29,7 @@ struct ShardWriter::Impl {
   H5::Group seqs;
   std::vector<std::string> ids;
   std::set<std::string> id_set;
+  std::map<std::string, std::string> hashes;  // id -> content hash, the shard's own record
   bool failed = false, committed = false;
 
   void usable() const {
@@ -71,6 +74,7 @@ void ShardWriter::append(const SequenceData& seq) {
   }
   impl_->ids.push_back(seq.id);
   impl_->id_set.insert(seq.id);
+  impl_->hashes[seq.id] = sequence_content_hash(seq);
 }
 
 std::size_t ShardWriter::size() const { return impl_->ids.size(); }
@@ -82,6 +86,7 @@ void ShardWriter::commit() {
   {
     h5::Lock lock;
     h5::guard(impl_->atomic.target(), "", [&] {
+      write_shard_content_hashes(impl_->file, impl_->hashes);
       impl_->seqs.close();
       impl_->file.flush(H5F_SCOPE_GLOBAL);
       impl_->file.close();

@@ -5,10 +5,13 @@
 #include <cmath>
 #include <filesystem>
 
+#include "dataset_files.h"
 #include "h5_io.h"
 #include "layers/core/atomic_file.h"
+#include "layers/core/checksum.h"
 #include "layers/core/error.h"
 #include "layers/data/dataset.h"
+#include "layers/data/manifest.h"
 
 namespace layers::data {
 namespace {
@@ -246,6 +249,30 @@ NormStats read_stats(const std::string& path) {
     });
     return stats;
   });
+}
+
+std::string stats_content_hash(const NormStats& stats) {
+  ContentHash h;
+  auto text = [&](const std::string& t) {
+    const auto n = static_cast<std::uint64_t>(t.size());
+    h.add(&n, sizeof n).add(t);
+  };
+  text(stats.split);
+  h.add(&stats.n_sequences, sizeof stats.n_sequences).add(&stats.n_frames, sizeof stats.n_frames);
+  h.add(&stats.std_floor, sizeof stats.std_floor);
+  for_each_quantity(stats, [&](const char* name, const Moments& m) {
+    text(name);
+    h.add(m.mean.data(), sizeof m.mean).add(m.std.data(), sizeof m.std).add(&m.count, sizeof m.count);
+  });
+  return h.hex();
+}
+
+void write_dataset_stats(const std::string& folder, const NormStats& stats) {
+  const std::string manifest_path = (std::filesystem::path(folder) / kManifestFile).string();
+  DatasetManifest manifest = read_manifest(manifest_path);
+  write_stats((std::filesystem::path(folder) / kStatsFile).string(), stats);
+  manifest.stats_hash = stats_content_hash(stats);
+  write_manifest(manifest_path, manifest);
 }
 
 }  // namespace layers::data

@@ -12,8 +12,8 @@
 
 #include "dataset_files.h"
 #include "h5_io.h"
+#include "integrity.h"
 #include "layers/core/error.h"
-#include "layers/data/content_hash.h"
 #include "layers/data/dataset.h"
 #include "layers/data/format.h"
 #include "layers/data/manifest.h"
@@ -178,7 +178,8 @@ void check_values(const std::string& file, const H5::Group& seq, const SequenceL
 }
 
 // Returns false when the file cannot be opened at all.
-bool validate_shard(const std::string& path, ProblemSink& sink, std::map<std::string, std::string>& seen) {
+bool validate_shard(const std::string& path, ProblemSink& sink, std::map<std::string, std::string>& seen,
+                    ShardTotals& totals) {
   h5::Lock lock;
   H5::H5File file;
   try {
@@ -205,6 +206,7 @@ bool validate_shard(const std::string& path, ProblemSink& sink, std::map<std::st
     try {
       const H5::Group seq = file.openGroup(object);
       const SequenceLayout layout = inspect_sequence(path, seq, id, sink);
+      totals.add(layout.info);
       check_values(path, seq, layout, sink);
     } catch (const H5::Exception& e) {
       sink.report(Problem{path, object, "HDF5 error: " + h5::error_text(e)});
@@ -216,35 +218,15 @@ bool validate_shard(const std::string& path, ProblemSink& sink, std::map<std::st
 }
 
 void validate_splits(const std::string& path, const std::map<std::string, std::string>& seen, ProblemSink& sink) {
-  SplitsSource source;
   try {
-    source = read_splits_source(path);
+    const SplitsSource source = read_splits_source(path);
+    check_splits(source, seen, sink);
+    // Complete, not only consistent: statistics come from train.
+    if (!source.splits.has("train"))
+      sink.report(Problem{path, "train", "expected a train split (statistics come from it), got none"});
   } catch (const InputError& e) {
     sink.report(problem_from(e));
-    return;
   }
-  std::map<std::string, std::string> standard_owner;  // id -> train/val/test split holding it
-  for (const auto& name : source.splits.names()) {
-    const auto& ids = source.splits.get(name);
-    std::set<std::string> in_split;
-    for (std::size_t i = 0; i < ids.size(); ++i) {
-      const std::string& id = ids[i];
-      if (!seen.count(id)) {
-        sink.report(Problem{source.where(name, i), name, "unknown sequence id '" + id + "' (not in any shard)"});
-      }
-      if (!in_split.insert(id).second) {
-        sink.report(Problem{source.where(name, i), name, "sequence id '" + id + "' listed twice"});
-      }
-      if (name == "train" || name == "val" || name == "test") {
-        const auto [owner, fresh] = standard_owner.emplace(id, name);
-        if (!fresh && owner->second != name) {
-          sink.report(Problem{source.where(name, i), name,
-                              "sequence id '" + id + "' is in both " + owner->second + " and " + name});
-        }
-      }
-    }
-  }
-  if (!source.splits.has("train")) sink.report(Problem{path, "train", "missing split (statistics come from train)"});
 }
 
 bool train_split_nonempty(const std::string& splits_path) {
@@ -256,7 +238,7 @@ bool train_split_nonempty(const std::string& splits_path) {
   }
 }
 
-void validate_folder(const std::string& folder, ProblemSink& sink) {
+void validate_folder(const std::string& folder, const ValidateOptions& options, ProblemSink& sink) {
   const std::string manifest_path = (fs::path(folder) / kManifestFile).string();
   std::optional<DatasetManifest> manifest;
   if (!fs::exists(manifest_path)) {
@@ -270,19 +252,14 @@ void validate_folder(const std::string& folder, ProblemSink& sink) {
   }
   const auto shards = list_shards(folder);
   if (shards.empty()) sink.report(Problem{folder, "", "no shard files (shard-NNNNN.h5)"});
+  if (manifest && !shards.empty()) check_shard_set(manifest_path, *manifest, shards, sink);
   std::map<std::string, std::string> seen;
+  ShardTotals totals;
   bool all_opened = true;
-  for (const auto& shard : shards) all_opened &= validate_shard(shard, sink, seen);
+  for (const auto& shard : shards) all_opened &= validate_shard(shard, sink, seen, totals);
 
-  // (With an unreadable shard the count would differ for that reason alone.)
-  if (manifest && !shards.empty() && all_opened) {
-    const auto n = static_cast<std::int64_t>(seen.size());
-    if (manifest->n_sequences != n) {
-      sink.report(Problem{manifest_path, "counts.sequences",
-                          "expected " + std::to_string(n) + " (sequences in the shards), got " +
-                              std::to_string(manifest->n_sequences)});
-    }
-  }
+  // (With an unreadable shard the counts would differ for that reason alone.)
+  if (manifest && !shards.empty() && all_opened) check_counts(manifest_path, *manifest, totals, sink);
   const std::string splits_path = (fs::path(folder) / kSplitsFile).string();
   if (!fs::exists(splits_path)) {
     sink.report(Problem{splits_path, "", "missing (a dataset folder needs splits.yaml)"});
@@ -293,6 +270,7 @@ void validate_folder(const std::string& folder, ProblemSink& sink) {
   if (fs::exists(stats_path)) {
     try {
       read_stats(stats_path);
+      if (manifest) check_stats_hash(folder, *manifest, options.allow_unhashed, sink);
     } catch (const InputError& e) {
       sink.report(problem_from(e));
     }
@@ -303,29 +281,19 @@ void validate_folder(const std::string& folder, ProblemSink& sink) {
   }
 }
 
-// Every frame through the reader, which checks the physical bounds of
-// value_bounds.h (finite, within 10 m of the body root, ...). Run only on a
-// structurally valid dataset, so that one damage is not reported twice.
-// With the manifest's content hashes (a folder), each sequence's content
-// is hashed again and compared.
-void check_frame_bounds(const std::string& path, ProblemSink& sink) {
+// Every sequence through the reader, which runs the integrity check
+// (integrity.h: recorded hashes at open, each sequence's content hash on
+// its read) and the physical bounds of value_bounds.h (finite, within 10 m
+// of the body root, ...). Run only on a structurally valid dataset, so
+// that one damage is not reported twice.
+void check_through_reader(const std::string& path, const ValidateOptions& options, ProblemSink& sink) {
   try {
-    const Dataset dataset = Dataset::open(path);
-    const std::string manifest_path = (fs::path(path) / kManifestFile).string();
-    std::map<std::string, std::string> recorded;
-    if (fs::is_directory(path)) recorded = read_manifest(manifest_path).content_hashes;
+    ReaderOptions reader;
+    reader.allow_unhashed = options.allow_unhashed;
+    const Dataset dataset = Dataset::open(path, reader);
     for (const std::string& id : dataset.ids()) {
       try {
-        const SequenceData seq = dataset.read_sequence(id);
-        if (recorded.empty()) continue;  // written before content hashes
-        const auto it = recorded.find(id);
-        const std::string now = sequence_content_hash(seq);
-        if (it == recorded.end())
-          sink.report(Problem{manifest_path, "content_hashes", "no hash for sequence '" + id + "'"});
-        else if (it->second != now)
-          sink.report(
-              Problem{manifest_path, "content_hashes." + id,
-                      "expected " + it->second + ", got " + now + " (the sequence changed since it was written)"});
+        dataset.read_sequence(id);
       } catch (const InputError& e) {
         sink.report(problem_from(e));
       }
@@ -337,17 +305,18 @@ void check_frame_bounds(const std::string& path, ProblemSink& sink) {
 
 }  // namespace
 
-std::vector<Problem> validate_dataset(const std::string& path) {
+std::vector<Problem> validate_dataset(const std::string& path, const ValidateOptions& options) {
   std::vector<Problem> problems;
   CollectProblems sink(problems);
   std::error_code ec;
   if (fs::is_directory(path, ec)) {
-    validate_folder(path, sink);
-    if (problems.empty()) check_frame_bounds(path, sink);
+    validate_folder(path, options, sink);
+    if (problems.empty()) check_through_reader(path, options, sink);
   } else if (fs::exists(path, ec)) {
     std::map<std::string, std::string> seen;
-    validate_shard(path, sink, seen);
-    if (problems.empty()) check_frame_bounds(path, sink);
+    ShardTotals totals;
+    validate_shard(path, sink, seen, totals);
+    if (problems.empty()) check_through_reader(path, options, sink);
   } else {
     sink.report(Problem{path, "", "does not exist"});
   }

@@ -162,11 +162,15 @@ FinalizeReport finalize(const Layout& layout, const std::string& config_yaml) {
   manifest.generator_revision = source_revision();  // claim_folder checked it against the folder's
   // Only with parametric motions, so datasets made without them keep their bytes.
   if (layout.config.body.variation) count_motions(layout, motions, manifest);
-  data::write_manifest((layout.out / "dataset.yaml").string(), manifest);
-  data::record_content_hashes(layout.out.string());
+  // Hashes recorded by an earlier finalize are kept, so that they are
+  // verified against the shards rather than replaced.
+  const fs::path manifest_path = layout.out / "dataset.yaml";
+  if (fs::exists(manifest_path)) manifest.content_hashes = data::read_manifest(manifest_path.string()).content_hashes;
+  data::write_manifest(manifest_path.string(), manifest);
+  data::record_integrity(layout.out.string());
   if (!out.get("train").empty()) {
     data::Dataset ds = data::Dataset::open(layout.out.string());
-    data::write_stats((layout.out / "stats.h5").string(), data::compute_stats(ds));
+    data::write_dataset_stats(layout.out.string(), data::compute_stats(ds));
     report.stats = true;
   } else {
     spdlog::warn("{}: no train sequence was written; stats.h5 not computed", layout.out.string());

@@ -6,7 +6,6 @@
 #include <torch/serialize/output-archive.h>
 
 #include <c10/util/Exception.h>
-#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -31,9 +30,9 @@ std::string norm_key(const char* quantity) {
 }
 
 // The file: a header line "layers-checkpoint 1 fnv1a64 <16 hex> <n>\n",
-// then the n bytes of the torch archive the hash covers. A file that
-// starts with a zip signature is a torch archive written before checksums
-// (read as it is, with a warning).
+// then the n bytes of the torch archive the hash covers. A bare torch
+// archive (no header, as written before checksums) is refused: its damage
+// could not be told from its content.
 constexpr const char* kMagic = "layers-checkpoint 1 fnv1a64 ";
 
 std::string first_line(const std::string& text) { return text.substr(0, text.find('\n')); }
@@ -44,8 +43,6 @@ std::string torch_message(const std::exception& e) {
   return first_line(e.what());
 }
 
-// The verified torch archive bytes of a checkpoint file; `checksum` gets
-// the verified hash ("" for a file written before checksums).
 // What a header line may echo: printable ASCII as it is, other bytes as
 // \xNN (a damaged or foreign file prints no raw bytes).
 std::string printable(const std::string& text) {
@@ -62,6 +59,8 @@ std::string printable(const std::string& text) {
   return out;
 }
 
+// The verified torch archive bytes of a checkpoint file; `checksum` gets
+// the verified hash.
 std::string checked_payload(const std::string& path, std::string& checksum) {
   // A regular file no larger than kMaxCheckpointBytes, checked before a
   // byte is read (a folder, a device such as /dev/zero or a huge file is
@@ -80,10 +79,10 @@ std::string checked_payload(const std::string& path, std::string& checksum) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "checkpoint", "a readable file", "cannot open it");
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (bytes.rfind("PK\x03\x04", 0) == 0) {
-    spdlog::warn("{}: checkpoint without a checksum (written before checksums); read unchecked", path);
-    return bytes;
-  }
+  if (bytes.rfind("PK\x03\x04", 0) == 0)
+    throw InputError(path, "checkpoint", "a layers checkpoint (header '" + std::string(kMagic) + "...')",
+                     "a bare torch archive without a checksum (damage to it could not be detected; retrain, or "
+                     "resave it with a build from before this check)");
   const std::string magic = kMagic;
   const std::size_t eol = bytes.find('\n');
   if (bytes.rfind(magic, 0) != 0 || eol == std::string::npos || eol > 128)

@@ -433,6 +433,8 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
               {"split", report.split},
               {"subsets", config.data.subsets},
               {"inner_only", config.data.inner_only},
+              // true: sequences without a recorded content hash were read unverified.
+              {"allow_unhashed", config.data.allow_unhashed},
               {"horizon", horizon},
               {"diverge_mm", config.eval.diverge_mm},
               {"sequences", report.sequences},

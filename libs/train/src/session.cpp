@@ -2,6 +2,7 @@
 #include "layers/train/session.h"
 
 #include <ATen/Context.h>
+#include <spdlog/spdlog.h>
 
 #include <filesystem>
 
@@ -25,7 +26,12 @@ Session open_session(const ExperimentConfig& config, const zoo::Registry& regist
     throw InputError(config.source, "run.device", "a device this build can use (cpu)", "cuda, but torch has no CUDA");
   set_compute_threads(config.run.threads);
   at::manual_seed(config.run.seed);
-  Session s{config, data::Dataset::open(config.data.dataset), nullptr, GarmentSelection{config.data.inner_only},
+  data::ReaderOptions reader;
+  reader.allow_unhashed = config.data.allow_unhashed;
+  if (reader.allow_unhashed)
+    spdlog::warn("{}: data.allow_unhashed: sequences without a recorded content hash are read unverified",
+                 config.data.dataset);
+  Session s{config, data::Dataset::open(config.data.dataset, reader), nullptr, GarmentSelection{config.data.inner_only},
             config.run.device == "cuda" && device_index >= 0
                 ? at::Device(at::kCUDA, static_cast<c10::DeviceIndex>(device_index))
                 : at::Device(config.run.device == "cuda" ? at::kCUDA : at::kCPU)};

@@ -46,7 +46,7 @@ void write_pair(const std::string& folder) {
   writer.add(make_sequence("without", 2));
   writer.set_split("train", {"with", "without"});
   writer.finish();
-  write_stats(folder + "/stats.h5", compute_stats(Dataset::open(folder)));  // as the generator does
+  write_dataset_stats(folder, compute_stats(Dataset::open(folder)));  // as the generator does
 }
 
 std::string all_text(const std::vector<Problem>& problems) {

@@ -32,7 +32,7 @@ void write_good(const std::string& folder) {
   writer.set_split("val", {});
   writer.set_split("test", {"b"});
   writer.finish();
-  write_stats(folder + "/stats.h5", compute_stats(Dataset::open(folder)));  // as the generator does
+  write_dataset_stats(folder, compute_stats(Dataset::open(folder)));  // as the generator does
 }
 
 std::string all_text(const std::vector<Problem>& problems) {
@@ -77,7 +77,7 @@ TEST_F(DataValidate, TruncatedFile) {
   EXPECT_TRUE(has_problem(problems, "shard-00001.h5: cannot open the HDF5 file")) << all_text(problems);
   EXPECT_TRUE(has_problem(problems, "truncated"));
   // The other shard is still checked, and the split naming b is flagged.
-  EXPECT_TRUE(has_problem(problems, "unknown sequence id 'b'"));
+  EXPECT_TRUE(has_problem(problems, "got 'b' (in no shard)"));
   const std::string error = open_error(dir.path());
   EXPECT_NE(error.find("shard-00001.h5"), std::string::npos) << error;
   EXPECT_NE(error.find("truncated"), std::string::npos) << error;
@@ -148,10 +148,13 @@ TEST_F(DataValidate, WindOutOfRangeAndNonUnitQuaternion) {
 TEST_F(DataValidate, SplitNamingAnUnknownSequence) {
   testing::write_text(dir.file("splits.yaml"), "train: [a]\nval: []\ntest:\n  - b\n  - zzz\n");
   const auto problems = validate_dataset(dir.path());
-  EXPECT_TRUE(has_problem(problems, "splits.yaml:5: test: unknown sequence id 'zzz'")) << all_text(problems);
+  EXPECT_TRUE(has_problem(problems,
+                          "splits.yaml:5: test: expected ids of sequences in the dataset's shards, got 'zzz' (in no "
+                          "shard)"))
+      << all_text(problems);
   const std::string error = open_error(dir.path());
   EXPECT_NE(error.find("splits.yaml:5: test"), std::string::npos) << error;
-  EXPECT_NE(error.find("'zzz' (unknown sequence)"), std::string::npos) << error;
+  EXPECT_NE(error.find("got 'zzz' (in no shard)"), std::string::npos) << error;
 }
 
 TEST_F(DataValidate, MalformedSplitsYaml) {
@@ -175,7 +178,12 @@ TEST_F(DataValidate, DuplicateIdsAcrossShards) {
   std::filesystem::copy_file(shard(0), dir.file("shard-00002.h5"));
   const auto problems = validate_dataset(dir.path());
   EXPECT_TRUE(has_problem(problems, "shard-00002.h5: /seq/a: duplicate sequence id: also in"));
-  EXPECT_NE(open_error(dir.path()).find("duplicate"), std::string::npos);
+  // The reader stops at the first problem: a shard file dataset.yaml does not list.
+  EXPECT_NE(open_error(dir.path())
+                .find("shards: expected only the listed shard files, got 1 more in the folder: "
+                      "shard-00002.h5"),
+            std::string::npos)
+      << open_error(dir.path());
 }
 
 TEST_F(DataValidate, WrongRootAttributes) {
@@ -202,7 +210,7 @@ TEST_F(DataValidate, ReportsEveryProblemNotJustTheFirst) {
   EXPECT_TRUE(has_problem(problems, "/seq/a/body/positions: expected finite values"));
   EXPECT_TRUE(has_problem(problems, "/seq/a/garments/0/faces: expected indices in [0,127]"));
   EXPECT_TRUE(has_problem(problems, "/seq/b/body/joint_names: missing dataset"));
-  EXPECT_TRUE(has_problem(problems, "unknown sequence id 'ghost'"));
+  EXPECT_TRUE(has_problem(problems, "got 'ghost' (in no shard)"));
   EXPECT_EQ(problems.size(), 4u) << all_text(problems);
 }
 

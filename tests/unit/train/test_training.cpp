@@ -168,7 +168,7 @@ TEST_F(Fixture, CheckpointRestoresParametersAndNormalisation) {
 
 // A checkpoint carries a checksum of its archive: 200 flipped bytes, a
 // truncated file or a damaged header are refused on load with one line
-// naming the file; a bare torch archive (before checksums) still loads.
+// naming the file; so is a bare torch archive (no checksum header).
 // "tiny" as another width would make it: `shift` of 5 values, not 3.
 class WiderTiny : public zoo::Model {
  public:
@@ -241,16 +241,17 @@ TEST_F(Fixture, DamagedCheckpointIsRefusedWithOneLine) {
   const std::string h = write("header.pt", "layers-checkpoint 1 fnv1a64 zz\n" + bytes.substr(bytes.find('\n') + 1));
   EXPECT_NE(message(h).find("expected 'layers-checkpoint 1 fnv1a64 <16 hex digits> <size>'"), std::string::npos)
       << message(h);
-  // The archive alone, as written before checksums: loads unchecked.
-  const std::string legacy = write("legacy.pt", bytes.substr(bytes.find('\n') + 1));
-  EXPECT_EQ(message(legacy), "loaded");
-  // A damaged bare archive: LibTorch's error on one line, no backtrace.
-  std::string broken = bytes.substr(bytes.find('\n') + 1);
-  broken.resize(broken.size() / 2);
-  const std::string b = write("broken-legacy.pt", broken);
-  EXPECT_EQ(message(b).rfind(b + ": checkpoint: expected a layers checkpoint (torch archive), got unreadable: ", 0), 0u)
-      << message(b);
-  EXPECT_EQ(message(b).find('\n'), std::string::npos) << message(b);
+  // The archive alone, as written before checksums, whole or with a
+  // flipped byte: refused, since damage to it could not be detected.
+  const std::string bare = bytes.substr(bytes.find('\n') + 1);
+  std::string bare_flipped = bare;
+  bare_flipped[bare.size() / 2] ^= 0x01;
+  for (const std::string& content : {bare, bare_flipped}) {
+    const std::string legacy = write("legacy.pt", content);
+    EXPECT_NE(message(legacy).find("got a bare torch archive without a checksum"), std::string::npos)
+        << message(legacy);
+    EXPECT_EQ(message(legacy).find('\n'), std::string::npos) << message(legacy);
+  }
   // A folder, a device that never ends, a header of raw bytes: one line
   // each, before any read (no bytes echoed as they are).
   EXPECT_EQ(message(dir.path()), dir.path() +

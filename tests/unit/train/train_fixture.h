@@ -142,7 +142,7 @@ inline std::string write_dataset(const std::string& folder, int n = 5, std::int6
   writer.set_split("test", {ids.back()});
   writer.set_split("T", {ids[0], ids.back()});
   writer.finish();
-  data::write_stats(folder + "/stats.h5", data::compute_stats(data::Dataset::open(folder)));
+  data::write_dataset_stats(folder, data::compute_stats(data::Dataset::open(folder)));
   return folder;
 }
 

@@ -2,8 +2,9 @@
 // FNV-1a (layers/core/checksum.h) over everything a sequence holds, in a
 // fixed order (frame count, motion, seed, tags, shape, every body, wind and
 // garment array and attribute). dataset.yaml lists it per sequence
-// (`content_hashes`), and `layers validate` recomputes it from the data it
-// reads, so any change or damage of a sequence's content shows.
+// (`content_hashes`), each shard in its root attributes, and every reader
+// recomputes it when it first reads the sequence (integrity.h), so any
+// change or damage of a sequence's content shows.
 #pragma once
 
 #include <map>
@@ -18,8 +19,12 @@ class Dataset;
 // 16 hex digits.
 std::string sequence_content_hash(const SequenceData& seq);
 
-// Reads every sequence of the dataset folder `folder` and records its
-// content hash in the folder's dataset.yaml (rewritten atomically).
-void record_content_hashes(const std::string& folder);
+// Records in the folder's dataset.yaml (rewritten atomically) what the
+// readers verify (integrity.h): the shard file list, the content hash of
+// every sequence (read in full; a hash recorded already is verified, not
+// replaced) and, when stats.h5 exists, its hash. The writers call it when
+// a dataset is complete; `layers validate --record-hashes` calls it to
+// migrate a dataset written before.
+void record_integrity(const std::string& folder);
 
 }  // namespace layers::data

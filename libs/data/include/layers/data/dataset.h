@@ -10,6 +10,13 @@
 // All HDF5 calls are serialised by one process-wide mutex, so a Dataset
 // may be shared by threads (the returned data is theirs to process in
 // parallel). A single shard file can be opened directly (no splits).
+//
+// Integrity (integrity.h): open() checks the shard set, the counts, the
+// splits and the recorded content hashes against the shards, and a
+// sequence's content hash is verified when it is first read, before any of
+// its values are returned; so damage shows as an InputError, never as
+// changed values. A dataset without recorded hashes is refused unless
+// allow_unhashed.
 #pragma once
 
 #include <cstddef>
@@ -28,6 +35,9 @@ struct ReaderOptions {
   std::size_t cache_bytes = 64u << 20;       // statics LRU cache
   std::size_t max_open_files = 4;            // shard handles kept open
   std::size_t chunk_cache_bytes = 1u << 20;  // HDF5 raw chunk cache per open dataset
+  // Read a dataset (or some of its sequences) without recorded content
+  // hashes, unverified; those it has are still verified.
+  bool allow_unhashed = false;
 };
 
 struct CacheStats {
@@ -46,13 +56,15 @@ class Dataset {
   ~Dataset();
 
   const std::string& path() const;
+  const ReaderOptions& options() const;
   const DatasetManifest& manifest() const;  // from dataset.yaml (name only for a single shard)
   const Splits& splits() const;
   std::vector<std::string> ids() const;  // shard order, then order in the shard
   bool contains(const std::string& id) const;
   const SequenceInfo& info(const std::string& id) const;
 
-  // Static data of a sequence, cached. The pointer stays valid after
+  // Static data of a sequence, cached. Every read below verifies the
+  // sequence's content hash first if it was not verified yet. The pointer stays valid after
   // eviction.
   std::shared_ptr<const SequenceStatic> statics(const std::string& id) const;
   // Frames [start - history, start + horizon] (history + horizon + 1 frames).

@@ -9,12 +9,19 @@
 //   motions: {distinct: n, families: {<family>: {sequences: n, distinct: n, skipped: n}}}  # optional
 //   generator: <the generator config, as a YAML mapping; optional>
 //   generator_revision: <source revision of the generator that simulated the scenes; optional>
+//   shards: [shard-00000.h5, ...]                            # the shard files; optional (older datasets)
 //   content_hashes: {<sequence id>: <16 hex digits>, ...}   # optional (content_hash.h)
+//   stats_hash: <16 hex digits>   # content hash of stats.h5's values (stats.h); optional
+//
+// The readers refuse a dataset whose content hashes or stats hash are
+// missing unless opened with allow_unhashed (integrity.h); `layers
+// generate --finalize` records them for a dataset written before.
 #pragma once
 
 #include <cstdint>
 #include <map>
 #include <string>
+#include <vector>
 
 namespace layers::data {
 
@@ -36,6 +43,8 @@ struct DatasetManifest {
   std::string generator_yaml;                                // YAML text of the generator config; "" if none
   std::string generator_revision;  // source_revision() of the generator that made the scenes; "" if not recorded
   std::map<std::string, std::string> content_hashes;  // id -> content hash; empty if not recorded
+  std::vector<std::string> shards;                    // shard file names; empty if not recorded
+  std::string stats_hash;                             // stats_content_hash of stats.h5; "" if not recorded
 };
 
 std::string manifest_to_yaml(const DatasetManifest& manifest);

@@ -5,6 +5,9 @@
 // old file or the complete new one, never a half-written shard. A writer
 // destroyed without commit() (an exception while writing, a rejected
 // sequence) removes its temporary file and leaves any previous file intact.
+// The shard records the content hash of each sequence it was given (root
+// attribute content_hashes), so a shard file read on its own is verified
+// too.
 #pragma once
 
 #include <memory>

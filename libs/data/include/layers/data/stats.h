@@ -62,5 +62,12 @@ void for_each_quantity(Stats& stats, F&& f) {
 NormStats compute_stats(const Dataset& dataset, const StatsOptions& options = {});
 void write_stats(const std::string& path, const NormStats& stats);  // atomic
 NormStats read_stats(const std::string& path);
+// The content hash of the statistics (16 hex digits): what dataset.yaml's
+// stats_hash records and the readers verify (integrity.h).
+std::string stats_content_hash(const NormStats& stats);
+// Writes <folder>/stats.h5 and records its hash in the folder's
+// dataset.yaml; how the generator and `layers stats` store a dataset's
+// statistics.
+void write_dataset_stats(const std::string& folder, const NormStats& stats);
 
 }  // namespace layers::data

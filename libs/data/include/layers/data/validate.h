@@ -6,7 +6,9 @@
 // inconsistent sizes, non-finite values (streamed frame block by frame
 // block), indices out of range, wind outside 0..400 or non-unit
 // quaternions, malformed or missing dataset.yaml / splits.yaml, splits
-// naming unknown sequences, duplicate ids across shards.
+// naming unknown sequences, duplicate ids across shards; then, with the
+// reader's own integrity check (the same code, integrity.h), the shard set,
+// counts, recorded hashes and every sequence's content hash.
 #pragma once
 
 #include <string>
@@ -21,6 +23,13 @@ struct Problem {
   std::string to_string() const;  // "file: object: message"
 };
 
-std::vector<Problem> validate_dataset(const std::string& path);
+struct ValidateOptions {
+  // A dataset without recorded hashes is valid (those it has are checked);
+  // how `layers validate --record-hashes` checks a dataset before it
+  // records them.
+  bool allow_unhashed = false;
+};
+
+std::vector<Problem> validate_dataset(const std::string& path, const ValidateOptions& options = {});
 
 }  // namespace layers::data

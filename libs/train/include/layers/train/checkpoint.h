@@ -52,8 +52,8 @@ void save_checkpoint(const std::string& path, zoo::Model& model, const torch::op
 // Restores into `model` (and `optimizer` when given). InputError naming the
 // file, on one line, for a missing, damaged (checksum), unreadable
 // checkpoint, one made for another model, a folder, a special file or one
-// over kMaxCheckpointBytes. A bare torch archive (written
-// before checksums) is read unchecked, with a warning.
+// over kMaxCheckpointBytes, or a bare torch archive without our checksum
+// header.
 CheckpointState load_checkpoint(const std::string& path, zoo::Model& model, torch::optim::Optimizer* optimizer);
 
 }  // namespace layers::train

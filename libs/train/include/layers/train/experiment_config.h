@@ -28,7 +28,8 @@ struct DataConfig {
   // Keep only sequences listed in at least one of these splits.yaml subsets
   // (e.g. [T, T+W]); empty = all.
   std::vector<std::string> subsets;
-  bool inner_only = false;  // drop the outer garments (the paper's starred rows)
+  bool inner_only = false;      // drop the outer garments (the paper's starred rows)
+  bool allow_unhashed = false;  // read a dataset without recorded content hashes, unverified
 
   template <class V>
   void visit(V& v) {
@@ -38,6 +39,8 @@ struct DataConfig {
     v("test_split", test_split);
     v("subsets", subsets, cfg::opt().help("only sequences in one of these splits.yaml subsets"));
     v("inner_only", inner_only, cfg::opt().help("train and evaluate on the inner garments only"));
+    v("allow_unhashed", allow_unhashed,
+      cfg::opt().help("read a dataset written before content hashes, unverified (docs/format.md, Integrity)"));
   }
 };
 
