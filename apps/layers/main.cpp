@@ -66,8 +66,15 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    int code = app.exit(e);
-    return code == 0 ? app::kOk : app::kUsage;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    // One line, like every other error (CLI11 adds a second, "Run with --help ...").
+    std::string where = "layers";
+    for (const CLI::App* sub = &app; !sub->get_subcommands().empty();) {
+      sub = sub->get_subcommands().front();
+      where += " " + sub->get_name();
+    }
+    std::cerr << "layers: " << e.what() << " (see " << where << " --help)\n";
+    return app::kUsage;
   }
 
   try {

@@ -279,6 +279,11 @@ SequenceData Dataset::read_sequence(const std::string& id) const {
 
 const ReaderOptions& Dataset::options() const { return impl_->options; }
 
+void Dataset::verify(const std::vector<std::string>& ids) const {
+  h5::Lock lock;
+  for (const std::string& id : ids) impl_->verify(impl_->info(id));
+}
+
 CacheStats Dataset::cache_stats() const {
   h5::Lock lock;
   return CacheStats{impl_->cached_bytes, impl_->lru.size(), impl_->hits, impl_->misses, impl_->files.size()};

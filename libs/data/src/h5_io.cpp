@@ -114,8 +114,28 @@ std::string error_text(const H5::Exception& e) {
   return text;
 }
 
+std::string damage_text(const H5::Exception& e) {
+  const std::string detail = error_text(e);
+  // The part of the file the failing HDF5 call reads, by its API prefix
+  // ("H5Aexists failed", "H5Oget_info_by_name failed", ...).
+  static const std::pair<const char*, const char*> kParts[] = {
+      {"H5Dread", "the array's values"}, {"H5D", "the array"}, {"H5A", "the attributes"}, {"H5G", "the group"},
+      {"H5O", "the object header"},      {"H5L", "the link"},  {"H5F", "the file"},       {"H5T", "the data type"},
+      {"H5S", "the array's shape"}};
+  std::string part = "the file's structure";
+  const std::size_t api = detail.find("H5");
+  for (const auto& [prefix, name] : kParts) {
+    if (api != std::string::npos && detail.compare(api, std::strlen(prefix), prefix) == 0) {
+      part = name;
+      break;
+    }
+  }
+  if (detail.find("Fletcher32") != std::string::npos) return "expected chunks that pass their checksum, got " + detail;
+  return "expected " + part + " readable, got a damaged or foreign file (HDF5: " + detail + ")";
+}
+
 void rethrow(const H5::Exception& e, const std::string& file, const std::string& object) {
-  throw InputError::message(file, object, "HDF5 error: " + error_text(e));
+  throw InputError::message(file, object, damage_text(e));
 }
 
 std::string dims_text(const Dims& dims) {
@@ -312,7 +332,8 @@ H5::DataSet open_checked(const Where& where, const H5::Group& loc, const std::st
       H5Pget_filter_by_id2(plist.getId(), H5Z_FILTER_FLETCHER32, &flags, &n, nullptr, sizeof name, name, &config) >= 0;
   if (checksummed)
     throw H5::DataSetIException(
-        "", "a chunk fails its Fletcher32 checksum or cannot be decoded: the file is damaged (" + error_text(e) + ")");
+        "",
+        "a chunk that fails its Fletcher32 checksum or cannot be decoded: the file is damaged (" + error_text(e) + ")");
   throw;
 }
 

@@ -34,6 +34,9 @@ class Lock {
 // The message of an HDF5 failure: the C++ wrapper's text plus the innermost
 // entry of HDF5's error stack (e.g. "truncated file: eof = ...").
 std::string error_text(const H5::Exception& e);
+// "expected <the part of the file> readable, got a damaged or foreign file
+// (HDF5: ...)": the message of an HDF5 failure, in plain words.
+std::string damage_text(const H5::Exception& e);
 [[noreturn]] void rethrow(const H5::Exception& e, const std::string& file, const std::string& object);
 
 // Runs f(); an H5::Exception becomes InputError(file, object).

@@ -77,8 +77,8 @@ enum class ValueRule { Finite, UnitQuaternion, WindStrength };
 // Streams a well-formed float32 array in blocks of rows and reports
 // non-finite values and, per rule, non-unit quaternions or strengths
 // outside 0..400.
-void scan_floats(const std::string& file, const H5::Group& loc, const std::string& rel, const std::string& object,
-                 ValueRule rule, ProblemSink& sink) {
+void scan_float_values(const std::string& file, const H5::Group& loc, const std::string& rel, const std::string& object,
+                       ValueRule rule, ProblemSink& sink) {
   const H5::DataSet ds = loc.openDataSet(rel);
   const h5::Dims dims = h5::dims_of(ds);
   if (dims.empty()) return;
@@ -129,13 +129,21 @@ void scan_floats(const std::string& file, const H5::Group& loc, const std::strin
   }
 }
 
+// A read failure of the array is reported with the array's path.
+void scan_floats(const std::string& file, const H5::Group& loc, const std::string& rel, const std::string& object,
+                 ValueRule rule, ProblemSink& sink) {
+  h5::guard(file, object, [&] { scan_float_values(file, loc, rel, object, rule, sink); });
+}
+
 void scan_indices(const std::string& file, const H5::Group& loc, const std::string& rel, const std::string& object,
                   std::int64_t lo, std::int64_t hi, ProblemSink& sink) {
-  const H5::DataSet ds = loc.openDataSet(rel);
-  const h5::Dims dims = h5::dims_of(ds);
-  const std::vector<std::int32_t> values = h5::read_all<std::int32_t>(h5::Where{file, object}, loc, rel, dims);
-  const std::size_t width = dims.size() > 1 ? dims[1] : 1;
-  if (auto problem = check_index_range(values, lo, hi, width)) sink.report(Problem{file, object, *problem});
+  h5::guard(file, object, [&] {
+    const H5::DataSet ds = loc.openDataSet(rel);
+    const h5::Dims dims = h5::dims_of(ds);
+    const std::vector<std::int32_t> values = h5::read_all<std::int32_t>(h5::Where{file, object}, loc, rel, dims);
+    const std::size_t width = dims.size() > 1 ? dims[1] : 1;
+    if (auto problem = check_index_range(values, lo, hi, width)) sink.report(Problem{file, object, *problem});
+  });
 }
 
 // Value checks of the arrays the structure check found well-formed.
@@ -191,13 +199,13 @@ bool validate_shard(const std::string& path, ProblemSink& sink, std::map<std::st
   try {
     check_root(path, file, sink);
   } catch (const H5::Exception& e) {
-    sink.report(Problem{path, "/", "HDF5 error: " + h5::error_text(e)});
+    sink.report(Problem{path, "/", h5::damage_text(e)});
   }
   std::vector<std::string> ids;
   try {
     ids = sequence_ids(path, file, sink);
   } catch (const H5::Exception& e) {
-    sink.report(Problem{path, "/seq", "HDF5 error: " + h5::error_text(e)});
+    sink.report(Problem{path, "/seq", h5::damage_text(e)});
   }
   for (const auto& id : ids) {
     const std::string object = "/seq/" + id;
@@ -209,7 +217,7 @@ bool validate_shard(const std::string& path, ProblemSink& sink, std::map<std::st
       totals.add(layout.info);
       check_values(path, seq, layout, sink);
     } catch (const H5::Exception& e) {
-      sink.report(Problem{path, object, "HDF5 error: " + h5::error_text(e)});
+      sink.report(Problem{path, object, h5::damage_text(e)});
     } catch (const InputError& e) {
       sink.report(problem_from(e));
     }

@@ -264,7 +264,6 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
       !options.out_dir.empty()
           ? options.out_dir
           : (std::filesystem::path(config.run.output) / data::run_layout::eval_folder(report.split)).string();
-  if (root) std::filesystem::create_directories(report.out_dir);
   const std::vector<std::string> ids =
       options.sequences.empty() ? select_sequences(s.dataset, report.split, config.data.subsets) : options.sequences;
   if (ids.empty())
@@ -272,6 +271,9 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
   for (const std::string& id : ids)
     if (!s.dataset.contains(id))
       throw InputError(config.data.dataset, "sequence '" + id + "'", "a sequence of the dataset", "unknown id");
+  // Every evaluated sequence passes the integrity check before a file is written.
+  s.dataset.verify(ids);
+  if (root) std::filesystem::create_directories(report.out_dir);
 
   std::unique_ptr<data::ShardWriter> writer;
   if (config.eval.save_predictions && root)

@@ -163,7 +163,16 @@ TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& re
   report.run_dir = config.run.output;
   report.last_checkpoint = checkpoint_path(config, "last");
   report.best_checkpoint = checkpoint_path(config, "best");
-  if (root) std::filesystem::create_directories(config.run.output);
+  // The run folder is made, and options.started called, just before the
+  // first checkpoint is saved: a sequence refused by the integrity check
+  // on its first read (data::Dataset) ends the run with nothing written.
+  bool claimed = false;
+  auto claim = [&] {
+    if (claimed) return;
+    std::filesystem::create_directories(config.run.output);
+    if (options.started) options.started();
+    claimed = true;
+  };
   const std::vector<at::Tensor> params = trainable(*s.model);
   for (const at::Tensor& p : params) report.trainable_parameters += p.numel();
 
@@ -172,6 +181,7 @@ TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& re
   state.epochs = t.epochs;
   // Saves checkpoint-<which>.pt with the selection record naming it.
   auto save = [&](const char* which, const torch::optim::Optimizer* optimizer) {
+    claim();
     state.kind = which;
     save_checkpoint(checkpoint_path(config, which), *s.model, optimizer, state);
   };
@@ -179,7 +189,6 @@ TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& re
     // Nothing to learn (reference models): the checkpoint holds the
     // normalisation, so evaluation runs the same way for every model.
     if (!root) return report;
-    if (options.started) options.started();
     save("last", nullptr);
     save("best", nullptr);
     write_selection(config, state);
@@ -193,7 +202,6 @@ TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& re
     state.epochs = t.epochs;
     spdlog::info("resuming from {} after epoch {} ({} steps)", report.last_checkpoint, state.epochs_done, state.steps);
   }
-  if (root && options.started) options.started();
   if (group) {
     // Every rank starts from rank 0's parameters and buffers, at the same epoch.
     check_same_start(*group, state, report.last_checkpoint);

@@ -74,6 +74,10 @@ class Dataset {
   // Everything of one sequence (export, validation, tests).
   SequenceData read_sequence(const std::string& id) const;
 
+  // Verifies the content hash of each of `ids` not verified yet (each read
+  // in full once): for a caller that must know before it writes anything.
+  void verify(const std::vector<std::string>& ids) const;
+
   CacheStats cache_stats() const;
 
  private:

@@ -41,9 +41,11 @@ namespace layers::train {
 
 struct TrainOptions {
   bool resume = false;  // continue from checkpoint-last.pt if present
-  // Called once the model is made and, when resuming, the checkpoint has
-  // loaded into it (shapes checked), before any step or file is written:
-  // where a caller writes what must not change when the run cannot start.
+  // Called once, just before the run's first file (a checkpoint) is
+  // written: the model is made, a resumed checkpoint has loaded into it
+  // (shapes checked) and the sequences read so far passed the integrity
+  // check. Where a caller writes what must not change when the run cannot
+  // start.
   std::function<void()> started;
   bool progress = true;          // progress line on stderr
   dist::Group* group = nullptr;  // data-parallel ranks (null: this process alone)
