@@ -36,11 +36,11 @@
 #include <string>
 #include <vector>
 
-#include "factory.h"
 #include "graph_layer.h"
 #include "layers/zoo/mlp.h"
 #include "layers/zoo/model.h"
 #include "params.h"
+#include "spec.h"
 
 namespace layers::deepsd {
 

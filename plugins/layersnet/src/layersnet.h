@@ -12,11 +12,11 @@
 #include <vector>
 
 #include "decoder.h"
-#include "factory.h"
 #include "integration.h"
 #include "layers/zoo/mlp.h"
 #include "layers/zoo/model.h"
 #include "params.h"
+#include "spec.h"
 #include "tie_block.h"
 
 namespace layers::layersnet {

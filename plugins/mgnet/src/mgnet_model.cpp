@@ -9,10 +9,10 @@
 
 #include "layers/mgnet/input_maps.h"
 #include "layers/mgnet/layout.h"
-#include "layers/mgnet/mgnet.h"
 #include "layers/mgnet/params.h"
 #include "layers/mgnet/uv_network.h"
 #include "layers/zoo/model.h"
+#include "spec.h"
 
 namespace layers::mgnet {
 namespace {

@@ -8,11 +8,11 @@
 #include "error_of.h"
 #include "layers/core/config.h"
 #include "layers/core/error.h"
-#include "layers/mgnet/mgnet.h"
 #include "layers/zoo/model.h"
 #include "layers/zoo/plugin_loader.h"
 #include "layers/zoo/registry.h"
 #include "mgnet_fixture.h"
+#include "spec.h"
 
 namespace zoo = layers::zoo;
 namespace cfg = layers::cfg;

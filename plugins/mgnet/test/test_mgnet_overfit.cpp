@@ -6,9 +6,9 @@
 #include <torch/optim/adam.h>
 
 #include "layers/core/config.h"
-#include "layers/mgnet/mgnet.h"
 #include "layers/zoo/model.h"
 #include "mgnet_fixture.h"
+#include "spec.h"
 
 namespace zoo = layers::zoo;
 using namespace layers::mgnet::testing;

@@ -1,5 +1,5 @@
-// Registers the "skinned" reference model (see skinned_model.h).
+// Registers the "skinned" reference model (see spec.h).
 #include "layers/zoo/plugin.h"
-#include "skinned_model.h"
+#include "spec.h"
 
 LAYERS_PLUGIN(registry) { registry.add(layers::reference::kSkinned); }

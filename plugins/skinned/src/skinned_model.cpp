@@ -1,7 +1,7 @@
-// The "skinned" reference model (see skinned_model.h): binding garment
+// The "skinned" reference model (see spec.h): binding garment
 // vertices to body vertices' skinning weights on the first step, and
 // moving them with the blended joint motion from t to t+1.
-#include "skinned_model.h"
+#include "spec.h"
 
 #include <vector>
 
@@ -35,7 +35,7 @@ class SkinnedModel : public zoo::Model {
   struct Skinnable : Derived {};
 
   // Per garment: the joints [V,4] (int64) and weights [V,4] (sum 1) of the
-  // body vertex each garment vertex is bound to (see skinned_model.h).
+  // body vertex each garment vertex is bound to (see spec.h).
   struct Binding : Derived {
     std::vector<zoo::SkinBinding> garments;
     std::int64_t max_joint = -1;

@@ -10,7 +10,7 @@
 #include "layers/core/config_node.h"
 #include "layers/core/error.h"
 #include "reference_fixture.h"
-#include "skinned_model.h"
+#include "spec.h"
 
 namespace zoo = layers::zoo;
 namespace cfg = layers::cfg;

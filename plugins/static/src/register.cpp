@@ -1,5 +1,5 @@
-// Registers the "static" reference model (see static_model.h).
+// Registers the "static" reference model (see spec.h).
 #include "layers/zoo/plugin.h"
-#include "static_model.h"
+#include "spec.h"
 
 LAYERS_PLUGIN(registry) { registry.add(layers::reference::kStatic); }

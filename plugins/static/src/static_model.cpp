@@ -1,5 +1,5 @@
-// The "static" reference model (see static_model.h).
-#include "static_model.h"
+// The "static" reference model (see spec.h).
+#include "spec.h"
 
 #include "layers/core/config.h"
 #include "layers/core/error.h"

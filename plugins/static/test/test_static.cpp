@@ -9,7 +9,7 @@
 #include "layers/core/config_node.h"
 #include "layers/core/error.h"
 #include "reference_fixture.h"
-#include "static_model.h"
+#include "spec.h"
 
 namespace zoo = layers::zoo;
 namespace cfg = layers::cfg;

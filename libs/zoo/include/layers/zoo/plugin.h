@@ -4,10 +4,10 @@
 // with layers_plugin() in CMake, which exports only the entry point)
 // containing exactly one LAYERS_PLUGIN block. Every plugin of this tree
 // declares its model's registry entry (a zoo::ModelSpec: name, one-line
-// description, factory; registry.h) in a torch-free header and registers
-// it in src/register.cpp:
+// description, factory; registry.h) in the torch-free header src/spec.h
+// and registers it in src/register.cpp:
 //
-//   // my_model.h
+//   // spec.h
 //   std::shared_ptr<zoo::Model> make_my_model(const cfg::Node& params);
 //   inline constexpr zoo::ModelSpec kMyModel{"my_model", "one-line description", make_my_model};
 //

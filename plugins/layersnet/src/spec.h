@@ -1,4 +1,4 @@
-// plugins/layersnet/src/factory.h -- LayersNet's name, description and
+// plugins/layersnet/src/spec.h -- LayersNet's name, description and
 // factory for the registry, torch-free (register.cpp needs no torch).
 #pragma once
 

@@ -1,4 +1,4 @@
-// plugins/skinned/src/skinned_model.h -- the "skinned" reference model: each
+// plugins/skinned/src/spec.h -- the "skinned" reference model: each
 // garment vertex follows its nearest body vertex through the body's linear
 // blend skinning,
 //   p(t+1) = sum_j w_j [R_j(t+1) R_j(t)^T (p(t) - p_j(t)) + p_j(t+1)],

@@ -1,4 +1,4 @@
-// layers/mgnet/mgnet.h -- creating the MGNet model (the motion-guided
+// plugins/mgnet/src/spec.h -- creating the MGNet model (the motion-guided
 // UV-space garment model; docs/mgnet.md). Torch-free declaration: the plugin
 // registration and the tests create it through this factory.
 #pragma once

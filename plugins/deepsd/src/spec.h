@@ -1,4 +1,4 @@
-// plugins/deepsd/src/factory.h -- the DeePSD model's registry entry: name,
+// plugins/deepsd/src/spec.h -- the DeePSD model's registry entry: name,
 // description and factory (torch-free, for the plugin's registration).
 #pragma once
 

@@ -1,4 +1,4 @@
-// plugins/static/src/static_model.h -- the "static" reference model: every
+// plugins/static/src/spec.h -- the "static" reference model: every
 // garment moves rigidly with the body root (pelvis) from the last known
 // frame,
 //   p(t+1) = R(t+1) R(t)^T (p(t) - root(t)) + root(t+1),
