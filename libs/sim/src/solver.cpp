@@ -147,6 +147,8 @@ void Solver::for_each_layer_pair(F&& f) {
   }
 }
 
+// advance() reads as its phases, each below with what it reads and
+// changes; the timings are taken between them.
 void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
   Clock::time_point start = Clock::now(), t = start;
   if (!std::isfinite(wind.strength) || wind.strength < 0 || !wind.direction.allFinite()) {
@@ -158,12 +160,59 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
   const SolverConfig& c = config_;
   const int n = c.substeps;
   const double h = 1.0 / (c.fps * n);
-  const Vec3 gravity(c.gravity[0], c.gravity[1], c.gravity[2]);
-  const double damping = std::exp(-c.air_damping * h);
   Wind unit_wind = wind;
   if (wind.direction.norm() > 0) unit_wind.direction.normalize();
 
-  // Frame set-up: supports of this frame, and the factorisations they need.
+  prepare_frame(h, body);
+  timings_.elastic += seconds_since(t);
+  for (int k = 0; k < n; ++k) {
+    const double step2 = predict(h, unit_wind);
+    timings_.predict += seconds_since(t);
+    // The body's edge-edge pass on every body_edge_every-th substep.
+    const double body_edges = k % c.body_edge_every == 0 ? c.body_edge_thickness : 0.0;
+    if (body) {
+      m.body.begin_substep(static_cast<double>(k + 1) / n, 2 * std::sqrt(step2) + c.body_thickness, c.body_thickness,
+                           body_edges);
+      for (std::size_t ci = 0; ci < cloths_.size(); ++ci) m.body.locate_supports(cloths_[ci].state_, m.body_memory[ci]);
+    }
+    timings_.body_contact += seconds_since(t);
+    elastic_iterations(body);
+    cap_folds_and_strain();
+    timings_.elastic += seconds_since(t);
+    project_layer_contacts();
+    timings_.layer_contact += seconds_since(t);
+    project_self_contacts();
+    timings_.self_contact += seconds_since(t);
+    project_body_contacts(body, body_edges, h);
+    timings_.body_contact += seconds_since(t);
+    settle_outer_layers();
+    timings_.layer_contact += seconds_since(t);
+    recap_strain(body);
+    timings_.strain_cap += seconds_since(t);
+    // The continuous-collision safety pass, after every position edit.
+    if (c.collision_pass) {
+      collision_pass(body);
+    } else {
+      for (auto& r : m.reverted) std::fill(r.begin(), r.end(), 0);
+    }
+    timings_.collision_pass += seconds_since(t);
+    update_velocities(h);
+    timings_.predict += seconds_since(t);
+  }
+
+  if (body) {
+    m.body.end_frame();
+    if (body_next) body_.vertices = *body_next;
+  }
+  ++frame_;
+  ++timings_.frames;
+  timings_.total += std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Frame set-up: supports of this frame, and the factorisations they need.
+void Solver::prepare_frame(double h, bool body) {
+  Impl& m = *impl_;
+  const SolverConfig& c = config_;
   for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
     detail::ProjectiveSystem& system = *m.elastic[ci];
     if (!system.current(cloths_[ci], h)) system.build(cloths_[ci], h);
@@ -177,176 +226,182 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
     for (std::size_t i = 0; i < wanted.size(); ++i) wanted[i] = (body && bm.wanted[i]) || lm.wanted[i];
     system.update_attachments(wanted, c.support_stiffness);
   }
-  timings_.elastic += seconds_since(t);
+}
 
-  for (int k = 0; k < n; ++k) {
-    // Prediction: gravity, wind, air damping.
-    double step2 = 0;
-    for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
-      Cloth::State& s = cloths_[ci].state_;
-      Vec3s& force = m.forces[ci];
-      std::fill(force.begin(), force.end(), Vec3::Zero());
-      add_wind_forces(cloths_[ci].topology().faces, s.x, unit_wind, c.wind_pressure, force);
-      for (std::size_t i = 0; i < s.x.size(); ++i) {
-        s.x_start[i] = s.x[i];
-        if (s.inv_mass[i] == 0.0) continue;
-        Vec3 v = (s.v[i] + h * (gravity + s.inv_mass[i] * force[i])) * damping;
-        const double speed = v.norm();
-        if (c.max_speed > 0 && speed > c.max_speed) v *= c.max_speed / speed;
-        s.v[i] = v;
-        s.x[i] += h * v;
-        step2 = std::max(step2, (h * v).squaredNorm());
-      }
-      m.elastic[ci]->begin(s);
+// Prediction: gravity, wind, air damping; returns the largest squared
+// step a vertex takes (the body contact's search reach).
+double Solver::predict(double h, const Wind& unit_wind) {
+  Impl& m = *impl_;
+  const SolverConfig& c = config_;
+  const Vec3 gravity(c.gravity[0], c.gravity[1], c.gravity[2]);
+  const double damping = std::exp(-c.air_damping * h);
+  double step2 = 0;
+  for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
+    Cloth::State& s = cloths_[ci].state_;
+    Vec3s& force = m.forces[ci];
+    std::fill(force.begin(), force.end(), Vec3::Zero());
+    add_wind_forces(cloths_[ci].topology().faces, s.x, unit_wind, c.wind_pressure, force);
+    for (std::size_t i = 0; i < s.x.size(); ++i) {
+      s.x_start[i] = s.x[i];
+      if (s.inv_mass[i] == 0.0) continue;
+      Vec3 v = (s.v[i] + h * (gravity + s.inv_mass[i] * force[i])) * damping;
+      const double speed = v.norm();
+      if (c.max_speed > 0 && speed > c.max_speed) v *= c.max_speed / speed;
+      s.v[i] = v;
+      s.x[i] += h * v;
+      step2 = std::max(step2, (h * v).squaredNorm());
     }
-    timings_.predict += seconds_since(t);
-
-    // The body's edge-edge pass on every body_edge_every-th substep.
-    const double body_edges = k % c.body_edge_every == 0 ? c.body_edge_thickness : 0.0;
-    if (body) {
-      m.body.begin_substep(static_cast<double>(k + 1) / n, 2 * std::sqrt(step2) + c.body_thickness, c.body_thickness,
-                           body_edges);
-      for (std::size_t ci = 0; ci < cloths_.size(); ++ci) m.body.locate_supports(cloths_[ci].state_, m.body_memory[ci]);
-    }
-    timings_.body_contact += seconds_since(t);
-
-    // Elastic iterations, inner garments first; outer garments' supports
-    // load the inner ones through `reactions` (one iteration behind).
-    for (int it = 0; it < c.iterations; ++it) {
-      std::swap(m.reactions, m.next_reactions);
-      for (Vec3s& r : m.next_reactions) std::fill(r.begin(), r.end(), Vec3::Zero());
-      for (int ci : m.order) {
-        Cloth::State& s = cloths_[ci].state_;
-        detail::ProjectiveSystem& system = *m.elastic[ci];
-        const std::vector<double>& weights = system.attachment_weights();
-        std::vector<std::uint8_t>& claimed = m.claimed[ci];
-        std::fill(claimed.begin(), claimed.end(), 0);
-        Vec3s& rhs = m.rhs[ci];
-        rhs = m.reactions[ci];
-        if (body) m.body.aim_supports(s, m.body_memory[ci], weights, c.body_thickness, rhs, claimed);
-        detail::LayerContact::aim_supports(s, m.layer_memory[ci], weights, cloths_, c.layer_thickness, rhs, claimed);
-        // Attached in the matrix but no longer supported: follow inertia.
-        const Vec3s& y = system.predicted();
-        for (std::size_t i = 0; i < rhs.size(); ++i) {
-          if (weights[i] != 0.0 && !claimed[i]) rhs[i] += weights[i] * y[i];
-        }
-        system.iterate(cloths_[ci], s, rhs);
-        if (body) m.body.record_supports(s, m.body_memory[ci], weights, claimed);
-        detail::LayerContact::record_supports(s, m.layer_memory[ci], weights, cloths_, m.next_reactions);
-      }
-    }
-    // The fold cap before the strain cap, which then takes up the
-    // stretch its pushes leave.
-    if (c.max_fold > 0) {
-      for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
-        m.folds[ci].apply(cloths_[ci], cloths_[ci].state_, c.max_fold * kPi / 180, kFoldSweeps);
-      }
-    }
-    if (c.max_strain > 0) {
-      for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
-        m.limiters[ci].apply(cloths_[ci], cloths_[ci].state_, c.max_strain, 2);
-      }
-    }
-    timings_.elastic += seconds_since(t);
-
-    // Contact projections: layers (two-way), self, the body, and last the
-    // outer layers once more against the inner ones (one-way), so that a
-    // body push on an inner garment cannot leave the layers crossed.
-    for (auto& lm : m.layer_memory) lm.forget_touching();
-    m.layers.set_guarded(c.collision_pass);
-    for (Vec3s& p : m.push) std::fill(p.begin(), p.end(), Vec3::Zero());
-    for_each_layer_pair([&](int a, int b, double mu) {
-      m.layers.collide(a, cloths_[a], cloths_[a].state_, m.layer_memory[a], b, cloths_[b], cloths_[b].state_,
-                       m.layer_memory[b], m.body_memory[a].touching, c.layer_thickness, c.layer_edge_thickness, mu,
-                       m.push[a], m.push[b]);
-    });
-    timings_.layer_contact += seconds_since(t);
-
-    if (c.self_contact) {
-      for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
-        Cloth& cloth = cloths_[ci];
-        if (cloth.self_contact()) {
-          m.self.collide(cloth, cloth.state_, c.self_thickness, cloth.material().self_friction, m.push[ci]);
-        }
-      }
-    }
-    timings_.self_contact += seconds_since(t);
-
-    std::vector<double>& body_push = m.body_push;
-    body_push.assign(cloths_.size(), 0.0);
-    if (body) {
-      for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
-        Cloth::State& s = cloths_[ci].state_;
-        body_push[ci] = m.body.collide(s, m.body_memory[ci], c.body_thickness, cloths_[ci].material().friction, h);
-        body_push[ci] = std::max(body_push[ci], m.body.collide_edges(cloths_[ci], s, body_edges, m.push[ci]));
-      }
-    }
-    timings_.body_contact += seconds_since(t);
-    for_each_layer_pair([&](int a, int b, double mu) {
-      // Only needed where the body moved the inner garment noticeably.
-      if (body_push[a] < 0.05 * c.layer_thickness) return;
-      m.layers.settle_outer(a, cloths_[a], cloths_[a].state_, cloths_[b], cloths_[b].state_, m.layer_memory[b],
-                            c.layer_thickness, mu, m.push[b]);
-    });
-    timings_.layer_contact += seconds_since(t);
-    // The strain cap once more: contact pushes can stretch edges near
-    // contacts. Vertices in contact stay where the contacts put them (the
-    // free end of an edge moves), so the cap cannot push them back through.
-    if (c.max_strain > 0) {
-      for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
-        const std::vector<std::uint8_t>& on_body = m.body_memory[ci].touching;
-        const std::vector<std::uint8_t>& on_layer = m.layer_memory[ci].touching;
-        m.held.assign(cloths_[ci].state_.x.size(), 0);
-        for (std::size_t i = 0; i < m.held.size(); ++i) {
-          m.held[i] = (body && on_body[i]) || on_layer[i];
-        }
-        timings_.cap_sweeps +=
-            m.limiters[ci].apply(cloths_[ci], cloths_[ci].state_, c.max_strain, c.strain_sweeps, &m.held);
-        if (!m.limiters[ci].converged()) ++timings_.cap_unfinished;
-      }
-    }
-    timings_.strain_cap += seconds_since(t);
-
-    // The continuous-collision safety pass, after every position edit.
-    if (c.collision_pass) {
-      collision_pass(body);
-    } else {
-      for (auto& r : m.reverted) std::fill(r.begin(), r.end(), 0);
-    }
-    timings_.collision_pass += seconds_since(t);
-
-    // Velocities from the position change, except that cloth-cloth pushes
-    // move positions without adding velocity: they only remove the part of
-    // the velocity that approached the contact (inelastic). Otherwise an
-    // overlap left from an earlier substep would launch the layers apart.
-    const double inv_h = 1.0 / h;
-    for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
-      Cloth::State& s = cloths_[ci].state_;
-      const Vec3s& push = m.push[ci];
-      for (std::size_t i = 0; i < s.x.size(); ++i) {
-        if (s.inv_mass[i] == 0.0 || m.reverted[ci][i]) {
-          s.v[i] = Vec3::Zero();
-          continue;
-        }
-        Vec3 v = (s.x[i] - s.x_start[i] - push[i]) * inv_h;
-        const double len = push[i].norm();
-        if (len > 0) {
-          const Vec3 n = push[i] / len;
-          v -= std::min(0.0, v.dot(n)) * n;
-        }
-        s.v[i] = v;
-      }
-    }
-    timings_.predict += seconds_since(t);
+    m.elastic[ci]->begin(s);
   }
+  return step2;
+}
 
-  if (body) {
-    m.body.end_frame();
-    if (body_next) body_.vertices = *body_next;
+// Elastic iterations, inner garments first; outer garments' supports load
+// the inner ones through `reactions` (one iteration behind).
+void Solver::elastic_iterations(bool body) {
+  Impl& m = *impl_;
+  const SolverConfig& c = config_;
+  for (int it = 0; it < c.iterations; ++it) {
+    std::swap(m.reactions, m.next_reactions);
+    for (Vec3s& r : m.next_reactions) std::fill(r.begin(), r.end(), Vec3::Zero());
+    for (int ci : m.order) {
+      Cloth::State& s = cloths_[ci].state_;
+      detail::ProjectiveSystem& system = *m.elastic[ci];
+      const std::vector<double>& weights = system.attachment_weights();
+      std::vector<std::uint8_t>& claimed = m.claimed[ci];
+      std::fill(claimed.begin(), claimed.end(), 0);
+      Vec3s& rhs = m.rhs[ci];
+      rhs = m.reactions[ci];
+      if (body) m.body.aim_supports(s, m.body_memory[ci], weights, c.body_thickness, rhs, claimed);
+      detail::LayerContact::aim_supports(s, m.layer_memory[ci], weights, cloths_, c.layer_thickness, rhs, claimed);
+      // Attached in the matrix but no longer supported: follow inertia.
+      const Vec3s& y = system.predicted();
+      for (std::size_t i = 0; i < rhs.size(); ++i) {
+        if (weights[i] != 0.0 && !claimed[i]) rhs[i] += weights[i] * y[i];
+      }
+      system.iterate(cloths_[ci], s, rhs);
+      if (body) m.body.record_supports(s, m.body_memory[ci], weights, claimed);
+      detail::LayerContact::record_supports(s, m.layer_memory[ci], weights, cloths_, m.next_reactions);
+    }
   }
-  ++frame_;
-  ++timings_.frames;
-  timings_.total += std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// The fold cap before the strain cap, which then takes up the stretch its
+// pushes leave.
+void Solver::cap_folds_and_strain() {
+  Impl& m = *impl_;
+  const SolverConfig& c = config_;
+  if (c.max_fold > 0) {
+    for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
+      m.folds[ci].apply(cloths_[ci], cloths_[ci].state_, c.max_fold * kPi / 180, kFoldSweeps);
+    }
+  }
+  if (c.max_strain > 0) {
+    for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
+      m.limiters[ci].apply(cloths_[ci], cloths_[ci].state_, c.max_strain, 2);
+    }
+  }
+}
+
+// Contact projections: layers (two-way), self, the body, and last the outer
+// layers once more against the inner ones (one-way, settle_outer_layers),
+// so that a body push on an inner garment cannot leave the layers crossed.
+// Each adds what it moved a vertex by to `push` (update_velocities).
+void Solver::project_layer_contacts() {
+  Impl& m = *impl_;
+  const SolverConfig& c = config_;
+  for (auto& lm : m.layer_memory) lm.forget_touching();
+  m.layers.set_guarded(c.collision_pass);
+  for (Vec3s& p : m.push) std::fill(p.begin(), p.end(), Vec3::Zero());
+  for_each_layer_pair([&](int a, int b, double mu) {
+    m.layers.collide(a, cloths_[a], cloths_[a].state_, m.layer_memory[a], b, cloths_[b], cloths_[b].state_,
+                     m.layer_memory[b], m.body_memory[a].touching, c.layer_thickness, c.layer_edge_thickness, mu,
+                     m.push[a], m.push[b]);
+  });
+}
+
+void Solver::project_self_contacts() {
+  Impl& m = *impl_;
+  const SolverConfig& c = config_;
+  if (!c.self_contact) return;
+  for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
+    Cloth& cloth = cloths_[ci];
+    if (cloth.self_contact()) {
+      m.self.collide(cloth, cloth.state_, c.self_thickness, cloth.material().self_friction, m.push[ci]);
+    }
+  }
+}
+
+// The body's vertex-face and edge-edge pushes; body_push[ci] says how far
+// the body moved garment ci.
+void Solver::project_body_contacts(bool body, double body_edges, double h) {
+  Impl& m = *impl_;
+  const SolverConfig& c = config_;
+  std::vector<double>& body_push = m.body_push;
+  body_push.assign(cloths_.size(), 0.0);
+  if (!body) return;
+  for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
+    Cloth::State& s = cloths_[ci].state_;
+    body_push[ci] = m.body.collide(s, m.body_memory[ci], c.body_thickness, cloths_[ci].material().friction, h);
+    body_push[ci] = std::max(body_push[ci], m.body.collide_edges(cloths_[ci], s, body_edges, m.push[ci]));
+  }
+}
+
+void Solver::settle_outer_layers() {
+  Impl& m = *impl_;
+  const SolverConfig& c = config_;
+  for_each_layer_pair([&](int a, int b, double mu) {
+    // Only needed where the body moved the inner garment noticeably.
+    if (m.body_push[a] < 0.05 * c.layer_thickness) return;
+    m.layers.settle_outer(a, cloths_[a], cloths_[a].state_, cloths_[b], cloths_[b].state_, m.layer_memory[b],
+                          c.layer_thickness, mu, m.push[b]);
+  });
+}
+
+// The strain cap once more: contact pushes can stretch edges near
+// contacts. Vertices in contact stay where the contacts put them (the free
+// end of an edge moves), so the cap cannot push them back through.
+void Solver::recap_strain(bool body) {
+  Impl& m = *impl_;
+  const SolverConfig& c = config_;
+  if (!(c.max_strain > 0)) return;
+  for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
+    const std::vector<std::uint8_t>& on_body = m.body_memory[ci].touching;
+    const std::vector<std::uint8_t>& on_layer = m.layer_memory[ci].touching;
+    m.held.assign(cloths_[ci].state_.x.size(), 0);
+    for (std::size_t i = 0; i < m.held.size(); ++i) {
+      m.held[i] = (body && on_body[i]) || on_layer[i];
+    }
+    timings_.cap_sweeps +=
+        m.limiters[ci].apply(cloths_[ci], cloths_[ci].state_, c.max_strain, c.strain_sweeps, &m.held);
+    if (!m.limiters[ci].converged()) ++timings_.cap_unfinished;
+  }
+}
+
+// Velocities from the position change, except that cloth-cloth pushes move
+// positions without adding velocity: they only remove the part of the
+// velocity that approached the contact (inelastic). Otherwise an overlap
+// left from an earlier substep would launch the layers apart.
+void Solver::update_velocities(double h) {
+  Impl& m = *impl_;
+  const double inv_h = 1.0 / h;
+  for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
+    Cloth::State& s = cloths_[ci].state_;
+    const Vec3s& push = m.push[ci];
+    for (std::size_t i = 0; i < s.x.size(); ++i) {
+      if (s.inv_mass[i] == 0.0 || m.reverted[ci][i]) {
+        s.v[i] = Vec3::Zero();
+        continue;
+      }
+      Vec3 v = (s.x[i] - s.x_start[i] - push[i]) * inv_h;
+      const double len = push[i].norm();
+      if (len > 0) {
+        const Vec3 n = push[i] / len;
+        v -= std::min(0.0, v.dot(n)) * n;
+      }
+      s.v[i] = v;
+    }
+  }
 }
 
 void Solver::collision_pass(bool body) {

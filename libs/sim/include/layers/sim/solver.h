@@ -98,6 +98,18 @@ class Solver {
  private:
   struct Impl;
   void advance(const geometry::Points* body_next, const Wind& wind);
+  // The phases of advance(), in the order it calls them (solver.cpp): once
+  // per frame, then per substep.
+  void prepare_frame(double h, bool body);
+  double predict(double h, const Wind& unit_wind);
+  void elastic_iterations(bool body);
+  void cap_folds_and_strain();
+  void project_layer_contacts();
+  void project_self_contacts();
+  void project_body_contacts(bool body, double body_edges, double h);
+  void settle_outer_layers();
+  void recap_strain(bool body);
+  void update_velocities(double h);
   // The end of a substep: the collision pass and the strain cap after it.
   void collision_pass(bool body);
   template <class F>
