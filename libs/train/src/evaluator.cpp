@@ -230,6 +230,176 @@ json selection_of(const CheckpointState& state, const std::string& file, const s
           {"metric", chosen ? json(state.metric) : json(nullptr)}};
 }
 
+// What the evaluation keeps of each sequence as it goes: the inputs of
+// the summaries (per sequence, per garment type, per rollout step), the
+// per-sequence entries of metrics.json and the rows of sequences.csv.
+struct EvalTally {
+  Values overall, truth;
+  std::map<std::string, Values> per_type;
+  std::vector<std::vector<double>> step_error, step_h, step_l, step_hx, step_lx, step_lp;  // [step][sequence]
+  json sequences = json::array();
+  std::ostringstream csv;
+  std::vector<double> growth_rates;  // mm per frame, per sequence (error growth)
+  double model_seconds = 0;
+  std::int64_t frames = 0, diverged = 0;
+
+  EvalTally() {
+    // New columns go at the end: scripts read the older ones by position.
+    csv << "sequence,motion,tags,garment,type,layer,error_mm,h_collision,l_collision,diverged_at,h_crossing,l_crossing,"
+           "l_collision_plain\n";
+  }
+
+  // One evaluated sequence, in the split's order.
+  void add(const SequenceRollout& r, const data::Dataset& dataset) {
+    const std::string& id = r.id;
+    const RolloutResult& res = r.result;
+    model_seconds += res.model_seconds;
+    frames += static_cast<std::int64_t>(res.frames.size());
+    if (res.diverged_at >= 0) ++diverged;
+    std::vector<double> e, h, l, th, tl, hx, lx, thx, tlx, lp, tlp;
+    for (std::size_t k = 0; k < res.frames.size(); ++k) {
+      const FrameMetrics& m = res.frames[k];
+      e.push_back(m.error_mm), h.push_back(m.h_collision), l.push_back(m.l_collision);
+      th.push_back(m.truth_h_collision), tl.push_back(m.truth_l_collision);
+      hx.push_back(m.h_crossing), lx.push_back(m.l_crossing);
+      thx.push_back(m.truth_h_crossing), tlx.push_back(m.truth_l_crossing);
+      lp.push_back(m.l_collision_plain), tlp.push_back(m.truth_l_collision_plain);
+      if (step_error.size() <= k) {
+        step_error.resize(k + 1), step_h.resize(k + 1), step_l.resize(k + 1);
+        step_hx.resize(k + 1), step_lx.resize(k + 1), step_lp.resize(k + 1);
+      }
+      step_error[k].push_back(m.error_mm), step_h[k].push_back(m.h_collision), step_l[k].push_back(m.l_collision);
+      step_hx[k].push_back(m.h_crossing), step_lx[k].push_back(m.l_crossing);
+      step_lp[k].push_back(m.l_collision_plain);
+    }
+    const double seq_error = zoo::sequence_mean(e), seq_h = finite_mean(h), seq_l = finite_mean(l);
+    const double seq_hx = finite_mean(hx), seq_lx = finite_mean(lx), seq_lp = finite_mean(lp);
+    const double growth = error_growth_mm_per_frame(res.frames);
+    if (std::isfinite(growth)) growth_rates.push_back(growth);
+    overall.error.push_back(seq_error), overall.h.push_back(seq_h), overall.l.push_back(seq_l);
+    overall.hx.push_back(seq_hx), overall.lx.push_back(seq_lx), overall.lp.push_back(seq_lp);
+    truth.h.push_back(finite_mean(th)), truth.l.push_back(finite_mean(tl));
+    truth.hx.push_back(finite_mean(thx)), truth.lx.push_back(finite_mean(tlx)), truth.lp.push_back(finite_mean(tlp));
+    const data::SequenceInfo& info = dataset.info(id);
+    std::string tags;
+    for (const std::string& t : info.tags) tags += (tags.empty() ? "" : " ") + t;
+    json garments = json::array();
+    for (std::size_t g = 0; g < r.statics->garments.size(); ++g) {
+      const zoo::GarmentStatic& gs = r.statics->garments[g];
+      std::vector<double> ge, gh, ghx;
+      for (const FrameMetrics& m : res.frames) {
+        ge.push_back(m.garment_error_mm[g]);
+        gh.push_back(m.diverged ? kNaN : m.garment_h_collision[g]);
+        ghx.push_back(m.diverged ? kNaN : m.garment_h_crossing[g]);
+      }
+      const double g_error = zoo::sequence_mean(ge), g_h = finite_mean(gh), g_hx = finite_mean(ghx);
+      // L-collision (both rules) and L-crossing belong to the outer garment
+      const bool outer = gs.layer == 1;
+      const double g_l = outer ? seq_l : kNaN, g_lx = outer ? seq_lx : kNaN, g_lp = outer ? seq_lp : kNaN;
+      Values& type = per_type[gs.type];
+      type.error.push_back(g_error), type.h.push_back(g_h), type.l.push_back(g_l);
+      type.hx.push_back(g_hx), type.lx.push_back(g_lx), type.lp.push_back(g_lp);
+      garments.push_back({{"name", gs.name},
+                          {"type", gs.type},
+                          {"layer", gs.layer},
+                          {"error_mm", number(g_error)},
+                          {"h_collision", number(g_h)},
+                          {"l_collision", number(g_l)},
+                          {"l_collision_plain", number(g_lp)},
+                          {"h_crossing", number(g_hx)},
+                          {"l_crossing", number(g_lx)}});
+      csv << id << ',' << info.motion << ',' << tags << ',' << gs.name << ',' << gs.type << ',' << gs.layer << ','
+          << csv_number(g_error) << ',' << csv_number(g_h) << ',' << csv_number(g_l) << ','
+          << (res.diverged_at >= 0 ? std::to_string(res.diverged_at) : "") << ',' << csv_number(g_hx) << ','
+          << csv_number(g_lx) << ',' << csv_number(g_lp) << '\n';
+    }
+    sequences.push_back({{"id", id},
+                         {"motion", info.motion},
+                         {"tags", info.tags},
+                         {"frames", res.frames.size()},
+                         {"error_mm", number(seq_error)},
+                         {"h_collision", number(seq_h)},
+                         {"l_collision", number(seq_l)},
+                         {"l_collision_plain", number(seq_lp)},
+                         {"truth_h_collision", number(truth.h.back())},
+                         {"truth_l_collision", number(truth.l.back())},
+                         {"truth_l_collision_plain", number(truth.lp.back())},
+                         {"h_crossing", number(seq_hx)},
+                         {"l_crossing", number(seq_lx)},
+                         {"truth_h_crossing", number(truth.hx.back())},
+                         {"truth_l_crossing", number(truth.lx.back())},
+                         {"diverged_at", res.diverged_at >= 0 ? json(res.diverged_at) : json(nullptr)},
+                         {"diverge_reason", res.diverge_reason},
+                         {"error_growth_mm_per_frame", number(growth)},
+                         {"garments", garments}});
+  }
+};
+
+// The report's summaries from the tally.
+void summarise(const EvalTally& tally, EvalReport& report) {
+  const Values& overall = tally.overall;
+  const Values& truth = tally.truth;
+  report.frames = tally.frames;
+  report.diverged = tally.diverged;
+  report.overall = overall.summary();
+  for (const auto& [type, values] : tally.per_type) report.per_type.emplace_back(type, values.summary());
+  report.truth_h_collision = finite_mean(truth.h);
+  report.truth_l_collision = finite_mean(truth.l);
+  report.truth_h_crossing = finite_mean(truth.hx);
+  report.truth_l_crossing = finite_mean(truth.lx);
+  report.truth_l_collision_plain = finite_mean(truth.lp);
+  report.ms_per_frame = report.frames ? 1000.0 * tally.model_seconds / static_cast<double>(report.frames) : 0;
+}
+
+// metrics.json (docs/metrics.md).
+json metrics_json(const EvalReport& report, const EvalTally& tally, const CheckpointState& state, const json& selection,
+                  const ExperimentConfig& config, int horizon, std::int64_t parameters) {
+  json by_step = json::array();
+  for (std::size_t k = 0; k < tally.step_error.size(); ++k) {
+    by_step.push_back({{"step", k + 1},
+                       {"error_mm", number(zoo::mean_std(tally.step_error[k]).mean)},
+                       {"h_collision", number(finite_mean(tally.step_h[k]))},
+                       {"l_collision", number(finite_mean(tally.step_l[k]))},
+                       {"l_collision_plain", number(finite_mean(tally.step_lp[k]))},
+                       {"h_crossing", number(finite_mean(tally.step_hx[k]))},
+                       {"l_crossing", number(finite_mean(tally.step_lx[k]))},
+                       {"sequences", tally.step_error[k].size()}});
+  }
+  json types = json::object();
+  for (const auto& [type, summary] : report.per_type) types[type] = to_json(summary);
+  return {{"model", report.model},
+          {"checkpoint", report.checkpoint},
+          // Ties these results to the exact checkpoint bytes they came from.
+          {"checkpoint_fnv1a64", state.checksum},
+          {"trained_epochs", state.epochs_done},
+          {"selection", selection},
+          {"experiment", config.source},
+          {"dataset", config.data.dataset},
+          {"split", report.split},
+          {"subsets", config.data.subsets},
+          {"inner_only", config.data.inner_only},
+          // true: sequences without a recorded content hash were read unverified.
+          {"allow_unhashed", config.data.allow_unhashed},
+          {"horizon", horizon},
+          {"diverge_mm", config.eval.diverge_mm},
+          {"sequences", report.sequences},
+          {"frames", report.frames},
+          {"diverged", report.diverged},
+          {"ms_per_frame", report.ms_per_frame},
+          {"parameters", parameters},
+          {"overall", to_json(report.overall)},
+          {"error_growth_mm_per_frame", to_json(zoo::mean_std(tally.growth_rates))},
+          {"truth",
+           {{"h_collision", number(report.truth_h_collision)},
+            {"l_collision", number(report.truth_l_collision)},
+            {"l_collision_plain", number(report.truth_l_collision_plain)},
+            {"h_crossing", number(report.truth_h_crossing)},
+            {"l_crossing", number(report.truth_l_crossing)}}},
+          {"per_type", types},
+          {"by_step", by_step},
+          {"per_sequence", tally.sequences}};
+}
+
 }  // namespace
 
 std::string resolve_checkpoint(const ExperimentConfig& config, const std::string& which) {
@@ -237,21 +407,29 @@ std::string resolve_checkpoint(const ExperimentConfig& config, const std::string
   return which;
 }
 
-EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& registry, const EvalOptions& options) {
-  dist::Group* group = options.group;
-  const bool root = !group || group->is_root();
-  const std::size_t rank = group ? static_cast<std::size_t>(group->rank()) : 0;
-  const std::size_t ranks = group ? static_cast<std::size_t>(group->size()) : 1;
-  Session s = open_session(config, registry, group ? group->local_rank() : -1);
-  EvalReport report;
+namespace {
+
+// What is evaluated, and with what, checked before anything is written:
+// the checkpoint and its selection, the split and its sequences (each
+// passes the integrity check), the horizon and the output folder.
+struct EvalPlan {
+  CheckpointState state;
+  json selection;
+  int horizon = 0;
+  std::vector<std::string> ids;
+};
+
+EvalPlan plan_evaluation(const ExperimentConfig& config, const EvalOptions& options, Session& s, bool root,
+                         EvalReport& report) {
+  EvalPlan plan;
   report.model = s.model->name();
   report.checkpoint = resolve_checkpoint(config, options.checkpoint);
-  const CheckpointState state = load_checkpoint(report.checkpoint, *s.model, nullptr);
+  plan.state = load_checkpoint(report.checkpoint, *s.model, nullptr);
   s.model->train(false);
   report.split = evaluated_split(config, options.split);
-  const json selection = selection_of(state, report.checkpoint, report.split);
-  report.checkpoint_kind = selection["checkpoint"].get<std::string>();
-  report.chosen_on = selection["chosen_on"].get<std::string>();
+  plan.selection = selection_of(plan.state, report.checkpoint, report.split);
+  report.checkpoint_kind = plan.selection["checkpoint"].get<std::string>();
+  report.chosen_on = plan.selection["chosen_on"].get<std::string>();
   if (report.chosen_on == config.data.test_split)
     throw InputError(report.checkpoint, "selection.chosen_on",
                      "a checkpoint chosen on a split other than data.test_split '" + config.data.test_split + "'",
@@ -259,141 +437,69 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
   if (root && report.chosen_on == report.split)
     spdlog::warn("{}: chosen on '{}', the split it is evaluated on: these figures are optimistic", report.checkpoint,
                  report.split);
-  const int horizon = options.horizon >= 0 ? options.horizon : config.eval.horizon;
+  plan.horizon = options.horizon >= 0 ? options.horizon : config.eval.horizon;
   report.out_dir =
       !options.out_dir.empty()
           ? options.out_dir
           : (std::filesystem::path(config.run.output) / data::run_layout::eval_folder(report.split)).string();
-  const std::vector<std::string> ids =
+  plan.ids =
       options.sequences.empty() ? select_sequences(s.dataset, report.split, config.data.subsets) : options.sequences;
-  if (ids.empty())
+  if (plan.ids.empty())
     throw InputError(config.data.dataset + "/splits.yaml", report.split, "at least one sequence to evaluate", "none");
-  for (const std::string& id : ids)
+  for (const std::string& id : plan.ids)
     if (!s.dataset.contains(id))
       throw InputError(config.data.dataset, "sequence '" + id + "'", "a sequence of the dataset", "unknown id");
   // Every evaluated sequence passes the integrity check before a file is written.
-  s.dataset.verify(ids);
-  if (root) std::filesystem::create_directories(report.out_dir);
+  s.dataset.verify(plan.ids);
+  return plan;
+}
 
+// Rollouts of ids[first..first + ranks): one per rank; rank 0 gets them
+// all, in the split's order (the other ranks get none).
+std::vector<SequenceRollout> rollout_round(Session& s, dist::Group* group, const EvalPlan& plan, std::size_t first,
+                                           const ExperimentConfig& config, bool keep_predictions) {
+  std::vector<SequenceRollout> round;
+  if (!group) {
+    round.push_back(rollout_sequence(s, plan.ids[first], plan.horizon, config.eval.diverge_mm, keep_predictions));
+    return round;
+  }
+  const auto rank = static_cast<std::size_t>(group->rank()), ranks = static_cast<std::size_t>(group->size());
+  std::string mine;
+  if (first + rank < plan.ids.size())
+    mine = encode(
+        rollout_sequence(s, plan.ids[first + rank], plan.horizon, config.eval.diverge_mm, config.eval.save_predictions)
+            .result);
+  const std::vector<std::string> all = group->gather(mine);
+  for (std::size_t k = 0; group->is_root() && k < ranks && first + k < plan.ids.size(); ++k) {
+    round.push_back(sequence_truth(s, plan.ids[first + k], plan.horizon));
+    round.back().result = decode(all[k]);
+  }
+  return round;
+}
+
+}  // namespace
+
+EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& registry, const EvalOptions& options) {
+  dist::Group* group = options.group;
+  const bool root = !group || group->is_root();
+  const std::size_t ranks = group ? static_cast<std::size_t>(group->size()) : 1;
+  Session s = open_session(config, registry, group ? group->local_rank() : -1);
+  EvalReport report;
+  const EvalPlan plan = plan_evaluation(config, options, s, root, report);
+  if (root) std::filesystem::create_directories(report.out_dir);
   std::unique_ptr<data::ShardWriter> writer;
   if (config.eval.save_predictions && root)
     writer = std::make_unique<data::ShardWriter>(
         (std::filesystem::path(report.out_dir) / data::run_layout::kPredictions).string());
-  Values overall, truth;
-  std::map<std::string, Values> per_type;
-  std::vector<std::vector<double>> step_error, step_h, step_l, step_hx, step_lx, step_lp;  // [step][sequence]
-  json sequences = json::array();
-  std::ostringstream csv;
-  // New columns go at the end: scripts read the older ones by position.
-  csv << "sequence,motion,tags,garment,type,layer,error_mm,h_collision,l_collision,diverged_at,h_crossing,l_crossing,"
-         "l_collision_plain\n";
-  std::vector<double> growth_rates;  // mm per frame, per sequence (error growth)
-  double model_seconds = 0;
+  EvalTally tally;
   std::optional<Progress> progress;
-  if (root) progress.emplace("eval " + report.model + " on " + report.split, ids.size(), "sequences");
-  // In rounds of one sequence per rank; rank 0 takes the round's results
-  // in the split's order, so the summaries are those of one process.
-  for (std::size_t first = 0; first < ids.size(); first += ranks) {
-    std::vector<SequenceRollout> round;
-    if (!group) {
-      round.push_back(rollout_sequence(s, ids[first], horizon, config.eval.diverge_mm, writer != nullptr));
-    } else {
-      std::string mine;
-      if (first + rank < ids.size())
-        mine =
-            encode(rollout_sequence(s, ids[first + rank], horizon, config.eval.diverge_mm, config.eval.save_predictions)
-                       .result);
-      const std::vector<std::string> all = group->gather(mine);
-      for (std::size_t k = 0; root && k < ranks && first + k < ids.size(); ++k) {
-        round.push_back(sequence_truth(s, ids[first + k], horizon));
-        round.back().result = decode(all[k]);
-      }
-    }
-    for (SequenceRollout& r : round) {
-      const std::string& id = r.id;
-      const RolloutResult& res = r.result;
-      model_seconds += res.model_seconds;
-      report.frames += static_cast<std::int64_t>(res.frames.size());
-      if (res.diverged_at >= 0) ++report.diverged;
-      std::vector<double> e, h, l, th, tl, hx, lx, thx, tlx, lp, tlp;
-      for (std::size_t k = 0; k < res.frames.size(); ++k) {
-        const FrameMetrics& m = res.frames[k];
-        e.push_back(m.error_mm), h.push_back(m.h_collision), l.push_back(m.l_collision);
-        th.push_back(m.truth_h_collision), tl.push_back(m.truth_l_collision);
-        hx.push_back(m.h_crossing), lx.push_back(m.l_crossing);
-        thx.push_back(m.truth_h_crossing), tlx.push_back(m.truth_l_crossing);
-        lp.push_back(m.l_collision_plain), tlp.push_back(m.truth_l_collision_plain);
-        if (step_error.size() <= k) {
-          step_error.resize(k + 1), step_h.resize(k + 1), step_l.resize(k + 1);
-          step_hx.resize(k + 1), step_lx.resize(k + 1), step_lp.resize(k + 1);
-        }
-        step_error[k].push_back(m.error_mm), step_h[k].push_back(m.h_collision), step_l[k].push_back(m.l_collision);
-        step_hx[k].push_back(m.h_crossing), step_lx[k].push_back(m.l_crossing);
-        step_lp[k].push_back(m.l_collision_plain);
-      }
-      const double seq_error = zoo::sequence_mean(e), seq_h = finite_mean(h), seq_l = finite_mean(l);
-      const double seq_hx = finite_mean(hx), seq_lx = finite_mean(lx), seq_lp = finite_mean(lp);
-      const double growth = error_growth_mm_per_frame(res.frames);
-      if (std::isfinite(growth)) growth_rates.push_back(growth);
-      overall.error.push_back(seq_error), overall.h.push_back(seq_h), overall.l.push_back(seq_l);
-      overall.hx.push_back(seq_hx), overall.lx.push_back(seq_lx), overall.lp.push_back(seq_lp);
-      truth.h.push_back(finite_mean(th)), truth.l.push_back(finite_mean(tl));
-      truth.hx.push_back(finite_mean(thx)), truth.lx.push_back(finite_mean(tlx)), truth.lp.push_back(finite_mean(tlp));
-      const data::SequenceInfo& info = s.dataset.info(id);
-      std::string tags;
-      for (const std::string& t : info.tags) tags += (tags.empty() ? "" : " ") + t;
-      json garments = json::array();
-      for (std::size_t g = 0; g < r.statics->garments.size(); ++g) {
-        const zoo::GarmentStatic& gs = r.statics->garments[g];
-        std::vector<double> ge, gh, ghx;
-        for (const FrameMetrics& m : res.frames) {
-          ge.push_back(m.garment_error_mm[g]);
-          gh.push_back(m.diverged ? kNaN : m.garment_h_collision[g]);
-          ghx.push_back(m.diverged ? kNaN : m.garment_h_crossing[g]);
-        }
-        const double g_error = zoo::sequence_mean(ge), g_h = finite_mean(gh), g_hx = finite_mean(ghx);
-        // L-collision (both rules) and L-crossing belong to the outer garment
-        const bool outer = gs.layer == 1;
-        const double g_l = outer ? seq_l : kNaN, g_lx = outer ? seq_lx : kNaN, g_lp = outer ? seq_lp : kNaN;
-        Values& type = per_type[gs.type];
-        type.error.push_back(g_error), type.h.push_back(g_h), type.l.push_back(g_l);
-        type.hx.push_back(g_hx), type.lx.push_back(g_lx), type.lp.push_back(g_lp);
-        garments.push_back({{"name", gs.name},
-                            {"type", gs.type},
-                            {"layer", gs.layer},
-                            {"error_mm", number(g_error)},
-                            {"h_collision", number(g_h)},
-                            {"l_collision", number(g_l)},
-                            {"l_collision_plain", number(g_lp)},
-                            {"h_crossing", number(g_hx)},
-                            {"l_crossing", number(g_lx)}});
-        csv << id << ',' << info.motion << ',' << tags << ',' << gs.name << ',' << gs.type << ',' << gs.layer << ','
-            << csv_number(g_error) << ',' << csv_number(g_h) << ',' << csv_number(g_l) << ','
-            << (res.diverged_at >= 0 ? std::to_string(res.diverged_at) : "") << ',' << csv_number(g_hx) << ','
-            << csv_number(g_lx) << ',' << csv_number(g_lp) << '\n';
-      }
-      sequences.push_back({{"id", id},
-                           {"motion", info.motion},
-                           {"tags", info.tags},
-                           {"frames", res.frames.size()},
-                           {"error_mm", number(seq_error)},
-                           {"h_collision", number(seq_h)},
-                           {"l_collision", number(seq_l)},
-                           {"l_collision_plain", number(seq_lp)},
-                           {"truth_h_collision", number(truth.h.back())},
-                           {"truth_l_collision", number(truth.l.back())},
-                           {"truth_l_collision_plain", number(truth.lp.back())},
-                           {"h_crossing", number(seq_hx)},
-                           {"l_crossing", number(seq_lx)},
-                           {"truth_h_crossing", number(truth.hx.back())},
-                           {"truth_l_crossing", number(truth.lx.back())},
-                           {"diverged_at", res.diverged_at >= 0 ? json(res.diverged_at) : json(nullptr)},
-                           {"diverge_reason", res.diverge_reason},
-                           {"error_growth_mm_per_frame", number(growth)},
-                           {"garments", garments}});
+  if (root) progress.emplace("eval " + report.model + " on " + report.split, plan.ids.size(), "sequences");
+  for (std::size_t first = 0; first < plan.ids.size(); first += ranks) {
+    for (SequenceRollout& r : rollout_round(s, group, plan, first, config, writer != nullptr)) {
+      tally.add(r, s.dataset);
       if (writer) writer->append(prediction_sequence(s.dataset, r, s.selection));
       char extra[64];
-      std::snprintf(extra, sizeof extra, "error %.1f mm", zoo::mean_std(overall.error).mean);
+      std::snprintf(extra, sizeof extra, "error %.1f mm", zoo::mean_std(tally.overall.error).mean);
       if (options.progress && progress) progress->advance(1, extra);
     }
   }
@@ -401,62 +507,12 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
   if (options.progress) progress->finish();
   if (writer) writer->commit();
 
-  report.sequences = static_cast<std::int64_t>(ids.size());
-  report.overall = overall.summary();
-  for (const auto& [type, values] : per_type) report.per_type.emplace_back(type, values.summary());
-  report.truth_h_collision = finite_mean(truth.h);
-  report.truth_l_collision = finite_mean(truth.l);
-  report.truth_h_crossing = finite_mean(truth.hx);
-  report.truth_l_crossing = finite_mean(truth.lx);
-  report.truth_l_collision_plain = finite_mean(truth.lp);
-  report.ms_per_frame = report.frames ? 1000.0 * model_seconds / static_cast<double>(report.frames) : 0;
-
-  json by_step = json::array();
-  for (std::size_t k = 0; k < step_error.size(); ++k) {
-    by_step.push_back({{"step", k + 1},
-                       {"error_mm", number(zoo::mean_std(step_error[k]).mean)},
-                       {"h_collision", number(finite_mean(step_h[k]))},
-                       {"l_collision", number(finite_mean(step_l[k]))},
-                       {"l_collision_plain", number(finite_mean(step_lp[k]))},
-                       {"h_crossing", number(finite_mean(step_hx[k]))},
-                       {"l_crossing", number(finite_mean(step_lx[k]))},
-                       {"sequences", step_error[k].size()}});
-  }
-  json types = json::object();
-  for (const auto& [type, summary] : report.per_type) types[type] = to_json(summary);
-  json doc = {{"model", report.model},
-              {"checkpoint", report.checkpoint},
-              // Ties these results to the exact checkpoint bytes they came from.
-              {"checkpoint_fnv1a64", state.checksum},
-              {"trained_epochs", state.epochs_done},
-              {"selection", selection},
-              {"experiment", config.source},
-              {"dataset", config.data.dataset},
-              {"split", report.split},
-              {"subsets", config.data.subsets},
-              {"inner_only", config.data.inner_only},
-              // true: sequences without a recorded content hash were read unverified.
-              {"allow_unhashed", config.data.allow_unhashed},
-              {"horizon", horizon},
-              {"diverge_mm", config.eval.diverge_mm},
-              {"sequences", report.sequences},
-              {"frames", report.frames},
-              {"diverged", report.diverged},
-              {"ms_per_frame", report.ms_per_frame},
-              {"parameters", s.model->info().parameters},
-              {"overall", to_json(report.overall)},
-              {"error_growth_mm_per_frame", to_json(zoo::mean_std(growth_rates))},
-              {"truth",
-               {{"h_collision", number(report.truth_h_collision)},
-                {"l_collision", number(report.truth_l_collision)},
-                {"l_collision_plain", number(report.truth_l_collision_plain)},
-                {"h_crossing", number(report.truth_h_crossing)},
-                {"l_crossing", number(report.truth_l_crossing)}}},
-              {"per_type", types},
-              {"by_step", by_step},
-              {"per_sequence", sequences}};
+  report.sequences = static_cast<std::int64_t>(plan.ids.size());
+  summarise(tally, report);
+  const json doc =
+      metrics_json(report, tally, plan.state, plan.selection, config, plan.horizon, s.model->info().parameters);
   write_text_atomic((std::filesystem::path(report.out_dir) / data::run_layout::kMetrics).string(), doc.dump(2) + "\n");
-  write_text_atomic((std::filesystem::path(report.out_dir) / data::run_layout::kSequences).string(), csv.str());
+  write_text_atomic((std::filesystem::path(report.out_dir) / data::run_layout::kSequences).string(), tally.csv.str());
   return report;
 }
 
