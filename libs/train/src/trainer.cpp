@@ -154,185 +154,232 @@ std::string checkpoint_path(const ExperimentConfig& config, const std::string& w
   return (std::filesystem::path(config.run.output) / data::run_layout::checkpoint(which)).string();
 }
 
-TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& registry, const TrainOptions& options) {
-  dist::Group* group = options.group;
-  const bool root = !group || group->is_root();
-  Session s = open_session(config, registry, group ? group->local_rank() : -1);
-  const TrainConfig& t = config.train;
-  TrainReport report;
-  report.run_dir = config.run.output;
-  report.last_checkpoint = checkpoint_path(config, "last");
-  report.best_checkpoint = checkpoint_path(config, "best");
-  // The run folder is made, and options.started called, just before the
-  // first checkpoint is saved: a sequence refused by the integrity check
-  // on its first read (data::Dataset) ends the run with nothing written.
-  bool claimed = false;
-  auto claim = [&] {
-    if (claimed) return;
-    std::filesystem::create_directories(config.run.output);
-    if (options.started) options.started();
-    claimed = true;
-  };
-  const std::vector<at::Tensor> params = trainable(*s.model);
-  for (const at::Tensor& p : params) report.trainable_parameters += p.numel();
+namespace {
 
+// One training run: what its phases share. The run folder is made, and
+// options.started called, just before the first checkpoint is saved: a
+// sequence refused by the integrity check on its first read
+// (data::Dataset) ends the run with nothing written.
+struct TrainingRun {
+  const ExperimentConfig& config;
+  const TrainOptions& options;
+  dist::Group* group;
+  bool root;
+  Session s;
+  TrainReport report;
   CheckpointState state;
-  state.model_name = s.model->name();
-  state.epochs = t.epochs;
+  bool claimed = false;
+  bool first_batch = true;  // of this process (a resumed run's first too)
+
   // Saves checkpoint-<which>.pt with the selection record naming it.
-  auto save = [&](const char* which, const torch::optim::Optimizer* optimizer) {
-    claim();
+  void save(const char* which, const torch::optim::Optimizer* optimizer) {
+    if (!claimed) {
+      std::filesystem::create_directories(config.run.output);
+      if (options.started) options.started();
+      claimed = true;
+    }
     state.kind = which;
     save_checkpoint(checkpoint_path(config, which), *s.model, optimizer, state);
-  };
-  if (params.empty()) {
-    // Nothing to learn (reference models): the checkpoint holds the
-    // normalisation, so evaluation runs the same way for every model.
-    if (!root) return report;
-    save("last", nullptr);
-    save("best", nullptr);
-    write_selection(config, state);
-    spdlog::info("model '{}' has no trainable parameters: saved {} without training", s.model->name(),
-                 report.last_checkpoint);
-    return report;
   }
-  torch::optim::Adam optimizer(params, torch::optim::AdamOptions(t.lr));
-  if (options.resume && std::filesystem::exists(report.last_checkpoint)) {
-    state = load_checkpoint(report.last_checkpoint, *s.model, &optimizer);
-    state.epochs = t.epochs;
-    spdlog::info("resuming from {} after epoch {} ({} steps)", report.last_checkpoint, state.epochs_done, state.steps);
-  }
-  if (group) {
-    // Every rank starts from rank 0's parameters and buffers, at the same epoch.
-    check_same_start(*group, state, report.last_checkpoint);
-    std::vector<at::Tensor> tensors = s.model->parameters(true);
-    for (const at::Tensor& b : s.model->buffers(true)) tensors.push_back(b);
-    dist::broadcast_from_root(*group, tensors);
-    spdlog::info("data-parallel training: {} ranks ({}), batch {} per rank", group->size(), group->backend(),
-                 t.batch_size);
-  }
-  report.epochs_done = state.epochs_done;
-  report.steps = state.steps;
+};
 
+TrainingRun open_run(const ExperimentConfig& config, const zoo::Registry& registry, const TrainOptions& options) {
+  dist::Group* group = options.group;
+  TrainingRun run{config,
+                  options,
+                  group,
+                  !group || group->is_root(),
+                  open_session(config, registry, group ? group->local_rank() : -1),
+                  {},
+                  {},
+                  false,
+                  true};
+  run.report.run_dir = config.run.output;
+  run.report.last_checkpoint = checkpoint_path(config, "last");
+  run.report.best_checkpoint = checkpoint_path(config, "best");
+  run.state.model_name = run.s.model->name();
+  run.state.epochs = config.train.epochs;
+  return run;
+}
+
+// A resumed run's checkpoint, and on several ranks the same start
+// everywhere (rank 0's parameters and buffers).
+void resume_and_sync(TrainingRun& run, torch::optim::Adam& optimizer) {
+  if (run.options.resume && std::filesystem::exists(run.report.last_checkpoint)) {
+    run.state = load_checkpoint(run.report.last_checkpoint, *run.s.model, &optimizer);
+    run.state.epochs = run.config.train.epochs;
+    spdlog::info("resuming from {} after epoch {} ({} steps)", run.report.last_checkpoint, run.state.epochs_done,
+                 run.state.steps);
+  }
+  if (!run.group) return;
+  dist::Group& group = *run.group;
+  check_same_start(group, run.state, run.report.last_checkpoint);
+  std::vector<at::Tensor> tensors = run.s.model->parameters(true);
+  for (const at::Tensor& b : run.s.model->buffers(true)) tensors.push_back(b);
+  dist::broadcast_from_root(group, tensors);
+  spdlog::info("data-parallel training: {} ranks ({}), batch {} per rank", group.size(), group.backend(),
+               run.config.train.batch_size);
+}
+
+LoaderOptions loader_options(const TrainingRun& run) {
+  const TrainConfig& t = run.config.train;
   LoaderOptions lo;
-  lo.split = config.data.train_split;
-  lo.subsets = config.data.subsets;
-  lo.selection = s.selection;
+  lo.split = run.config.data.train_split;
+  lo.subsets = run.config.data.subsets;
+  lo.selection = run.s.selection;
   lo.batch_size = t.batch_size;
   lo.windows_per_epoch = t.windows_per_epoch;
   lo.stride = t.window_stride;
   lo.prefetch = t.prefetch;
-  lo.seed = config.run.seed;
-  if (group) lo.rank = group->rank(), lo.world = group->size();
-  WindowLoader loader(s.dataset, lo);
-  const std::int64_t loss_steps = t.two_step ? 2 : 1;
-  bool first_batch = true;
+  lo.seed = run.config.run.seed;
+  if (run.group) lo.rank = run.group->rank(), lo.world = run.group->size();
+  return lo;
+}
 
-  for (int epoch = state.epochs_done; epoch < t.epochs; ++epoch) {
-    // Resume-independent; each rank draws its own training noise.
-    at::manual_seed(config.run.seed * 7919 + static_cast<std::uint64_t>(epoch) +
-                    (group ? 104729ULL * static_cast<std::uint64_t>(group->rank()) : 0));
-    const double lr = learning_rate(t, epoch);
-    set_learning_rate(optimizer, lr);
-    const std::int64_t free_steps = std::min(epoch, t.curriculum_max);
-    const std::size_t batches = loader.start_epoch(epoch, free_steps + loss_steps);
-    s.model->train(true);
-    Timer timer;
-    const double comm_before = group ? group->comm_seconds() : 0;
-    std::optional<Progress> progress;
-    if (root)
-      progress.emplace("epoch " + std::to_string(epoch + 1) + "/" + std::to_string(t.epochs), batches, "batches");
-    double loss_sum = 0;
-    std::int64_t frames = 0;
-    std::size_t seen = 0;
-    while (std::optional<Batch> batch = loader.next()) {
-      optimizer.zero_grad();
-      const zoo::TrainingContext context{epoch, state.steps};
-      double batch_loss = 0;
-      for (const Sample& sample : *batch)
-        batch_loss +=
-            train_window(s, sample, free_steps, loss_steps, context, static_cast<double>(batch->size()), t.noise_std);
-      batch_loss /= static_cast<double>(batch->size());
-      std::int64_t batch_frames = static_cast<std::int64_t>(batch->size()) * loss_steps;
-      if (group) {
-        // Mean gradient and loss over the ranks (every rank's batch is as
-        // large), so the step is the one of the whole batch in one process.
-        std::vector<double> sums{batch_loss, static_cast<double>(batch_frames)};
-        dist::average_gradients(*group, params, sums);
-        batch_loss = sums[0] / group->size();
-        batch_frames = static_cast<std::int64_t>(sums[1]);
-      }
-      if (t.grad_clip > 0) torch::nn::utils::clip_grad_norm_(params, t.grad_clip);
-      optimizer.step();
-      ++state.steps;
-      ++seen;
-      if (first_batch) report.first_loss = batch_loss;
-      first_batch = false;
-      loss_sum += batch_loss;
-      frames += batch_frames;
-      char extra[96];
-      std::snprintf(extra, sizeof extra, "loss %.4g  %.1f frames/s", loss_sum / static_cast<double>(seen),
-                    static_cast<double>(frames) / std::max(timer.seconds(), 1e-9));
-      if (progress) progress->advance(1, extra);
+// One epoch of optimiser steps over the loader's batches (the mean
+// gradient over the ranks); the summary without its validation error.
+EpochSummary train_epoch(TrainingRun& run, WindowLoader& loader, torch::optim::Adam& optimizer,
+                         const std::vector<at::Tensor>& params, int epoch) {
+  const TrainConfig& t = run.config.train;
+  dist::Group* group = run.group;
+  const std::int64_t loss_steps = t.two_step ? 2 : 1;
+  // Resume-independent; each rank draws its own training noise.
+  at::manual_seed(run.config.run.seed * 7919 + static_cast<std::uint64_t>(epoch) +
+                  (group ? 104729ULL * static_cast<std::uint64_t>(group->rank()) : 0));
+  const double lr = learning_rate(t, epoch);
+  set_learning_rate(optimizer, lr);
+  const std::int64_t free_steps = std::min(epoch, t.curriculum_max);
+  const std::size_t batches = loader.start_epoch(epoch, free_steps + loss_steps);
+  run.s.model->train(true);
+  Timer timer;
+  const double comm_before = group ? group->comm_seconds() : 0;
+  std::optional<Progress> progress;
+  if (run.root)
+    progress.emplace("epoch " + std::to_string(epoch + 1) + "/" + std::to_string(t.epochs), batches, "batches");
+  double loss_sum = 0;
+  std::int64_t frames = 0;
+  std::size_t seen = 0;
+  while (std::optional<Batch> batch = loader.next()) {
+    optimizer.zero_grad();
+    const zoo::TrainingContext context{epoch, run.state.steps};
+    double batch_loss = 0;
+    for (const Sample& sample : *batch)
+      batch_loss +=
+          train_window(run.s, sample, free_steps, loss_steps, context, static_cast<double>(batch->size()), t.noise_std);
+    batch_loss /= static_cast<double>(batch->size());
+    std::int64_t batch_frames = static_cast<std::int64_t>(batch->size()) * loss_steps;
+    if (group) {
+      // Mean gradient and loss over the ranks (every rank's batch is as
+      // large), so the step is the one of the whole batch in one process.
+      std::vector<double> sums{batch_loss, static_cast<double>(batch_frames)};
+      dist::average_gradients(*group, params, sums);
+      batch_loss = sums[0] / group->size();
+      batch_frames = static_cast<std::int64_t>(sums[1]);
     }
-    if (progress) progress->finish();
-    EpochSummary e;
-    e.epoch = epoch + 1;
-    e.loss = seen ? loss_sum / static_cast<double>(seen) : 0;
-    e.seconds = timer.seconds();
-    e.frames_per_second = static_cast<double>(frames) / std::max(e.seconds, 1e-9);
-    e.lr = lr;
-    e.comm_seconds = group ? group->comm_seconds() - comm_before : 0;
-    e.ranks = group ? group->size() : 1;
-    s.model->train(false);
-    e.val_error_mm = validate(s, group);
-    state.epochs_done = epoch + 1;
-    // A checkpoint from before the history was kept: the earlier epochs are unknown (NaN).
-    state.loss_by_epoch.resize(static_cast<std::size_t>(epoch), std::nan(""));
-    state.val_mm_by_epoch.resize(static_cast<std::size_t>(epoch), std::nan(""));
-    state.loss_by_epoch.push_back(e.loss);
-    state.val_mm_by_epoch.push_back(e.val_error_mm);
-    if (!root) {
-      // The best-so-far bookkeeping as on rank 0 (it decides what is saved).
-      if (e.val_error_mm >= 0 && (state.best_val_mm < 0 || e.val_error_mm < state.best_val_mm))
-        state.best_val_mm = e.val_error_mm;
-      report.epochs.push_back(e);
-      continue;
-    }
-    save("last", &optimizer);
-    if (e.val_error_mm >= 0 && (state.best_val_mm < 0 || e.val_error_mm < state.best_val_mm)) {
-      // Chosen on the validation split alone (check_selection: never the test split).
-      state.best_val_mm = e.val_error_mm;
-      state.chosen_on = config.data.val_split;
-      state.metric = selection_metric(t);
-      state.chosen_epoch = e.epoch;
-      save("best", &optimizer);
-      save("last", &optimizer);  // same best in both
-    } else if (e.val_error_mm < 0) {
-      save("best", &optimizer);  // no validation: the latest epoch, nothing chosen
-    }
-    write_selection(config, state);
-    if (group)
-      spdlog::info(
-          "epoch {}/{}: loss {:.4g}, val error {:.2f} mm, lr {:.3g}, {:.1f} frames/s on {} ranks, {:.1f} s "
-          "({:.1f}% in gradient exchange)",
-          e.epoch, t.epochs, e.loss, e.val_error_mm, lr, e.frames_per_second, e.ranks, e.seconds,
-          100.0 * e.comm_seconds / std::max(e.seconds, 1e-9));
-    else
-      spdlog::info("epoch {}/{}: loss {:.4g}, val error {:.2f} mm, lr {:.3g}, {:.1f} frames/s, {:.1f} s", e.epoch,
-                   t.epochs, e.loss, e.val_error_mm, lr, e.frames_per_second, e.seconds);
-    report.epochs.push_back(e);
+    if (t.grad_clip > 0) torch::nn::utils::clip_grad_norm_(params, t.grad_clip);
+    optimizer.step();
+    ++run.state.steps;
+    ++seen;
+    if (run.first_batch) run.report.first_loss = batch_loss;
+    run.first_batch = false;
+    loss_sum += batch_loss;
+    frames += batch_frames;
+    char extra[96];
+    std::snprintf(extra, sizeof extra, "loss %.4g  %.1f frames/s", loss_sum / static_cast<double>(seen),
+                  static_cast<double>(frames) / std::max(timer.seconds(), 1e-9));
+    if (progress) progress->advance(1, extra);
   }
-  report.epochs_done = state.epochs_done;
-  report.steps = state.steps;
+  if (progress) progress->finish();
+  EpochSummary e;
+  e.epoch = epoch + 1;
+  e.loss = seen ? loss_sum / static_cast<double>(seen) : 0;
+  e.seconds = timer.seconds();
+  e.frames_per_second = static_cast<double>(frames) / std::max(e.seconds, 1e-9);
+  e.lr = lr;
+  e.comm_seconds = group ? group->comm_seconds() - comm_before : 0;
+  e.ranks = group ? group->size() : 1;
+  return e;
+}
+
+// The epoch's history, and on rank 0 its checkpoints: last always, best
+// when the validation error is the lowest so far (chosen on the validation
+// split alone; check_selection keeps it off the test split).
+void keep_epoch(TrainingRun& run, const EpochSummary& e, torch::optim::Adam& optimizer) {
+  CheckpointState& state = run.state;
+  const int epoch = e.epoch - 1;
+  state.epochs_done = e.epoch;
+  // A checkpoint from before the history was kept: the earlier epochs are unknown (NaN).
+  state.loss_by_epoch.resize(static_cast<std::size_t>(epoch), std::nan(""));
+  state.val_mm_by_epoch.resize(static_cast<std::size_t>(epoch), std::nan(""));
+  state.loss_by_epoch.push_back(e.loss);
+  state.val_mm_by_epoch.push_back(e.val_error_mm);
+  run.report.epochs.push_back(e);
+  if (!run.root) {
+    // The best-so-far bookkeeping as on rank 0 (it decides what is saved).
+    if (e.val_error_mm >= 0 && (state.best_val_mm < 0 || e.val_error_mm < state.best_val_mm))
+      state.best_val_mm = e.val_error_mm;
+    return;
+  }
+  run.save("last", &optimizer);
+  if (e.val_error_mm >= 0 && (state.best_val_mm < 0 || e.val_error_mm < state.best_val_mm)) {
+    state.best_val_mm = e.val_error_mm;
+    state.chosen_on = run.config.data.val_split;
+    state.metric = selection_metric(run.config.train);
+    state.chosen_epoch = e.epoch;
+    run.save("best", &optimizer);
+    run.save("last", &optimizer);  // same best in both
+  } else if (e.val_error_mm < 0) {
+    run.save("best", &optimizer);  // no validation: the latest epoch, nothing chosen
+  }
+  write_selection(run.config, state);
+  const int epochs = run.config.train.epochs;
+  if (run.group)
+    spdlog::info(
+        "epoch {}/{}: loss {:.4g}, val error {:.2f} mm, lr {:.3g}, {:.1f} frames/s on {} ranks, {:.1f} s "
+        "({:.1f}% in gradient exchange)",
+        e.epoch, epochs, e.loss, e.val_error_mm, e.lr, e.frames_per_second, e.ranks, e.seconds,
+        100.0 * e.comm_seconds / std::max(e.seconds, 1e-9));
+  else
+    spdlog::info("epoch {}/{}: loss {:.4g}, val error {:.2f} mm, lr {:.3g}, {:.1f} frames/s, {:.1f} s", e.epoch, epochs,
+                 e.loss, e.val_error_mm, e.lr, e.frames_per_second, e.seconds);
+}
+
+}  // namespace
+
+TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& registry, const TrainOptions& options) {
+  TrainingRun run = open_run(config, registry, options);
+  const std::vector<at::Tensor> params = trainable(*run.s.model);
+  for (const at::Tensor& p : params) run.report.trainable_parameters += p.numel();
+  if (params.empty()) {
+    // Nothing to learn (reference models): the checkpoint holds the
+    // normalisation, so evaluation runs the same way for every model.
+    if (!run.root) return run.report;
+    run.save("last", nullptr);
+    run.save("best", nullptr);
+    write_selection(config, run.state);
+    spdlog::info("model '{}' has no trainable parameters: saved {} without training", run.s.model->name(),
+                 run.report.last_checkpoint);
+    return run.report;
+  }
+  torch::optim::Adam optimizer(params, torch::optim::AdamOptions(config.train.lr));
+  resume_and_sync(run, optimizer);
+  WindowLoader loader(run.s.dataset, loader_options(run));
+  for (int epoch = run.state.epochs_done; epoch < config.train.epochs; ++epoch) {
+    EpochSummary e = train_epoch(run, loader, optimizer, params, epoch);
+    run.s.model->train(false);
+    e.val_error_mm = validate(run.s, run.group);
+    keep_epoch(run, e, optimizer);
+  }
+  run.report.epochs_done = run.state.epochs_done;
+  run.report.steps = run.state.steps;
   // No epoch ran now (e.g. train.epochs: 0): the checkpoints still exist,
   // so evaluating the untrained model works the same way.
-  if (!root) return report;
-  if (!std::filesystem::exists(report.last_checkpoint)) save("last", &optimizer);
-  if (!std::filesystem::exists(report.best_checkpoint)) save("best", &optimizer);
+  if (!run.root) return run.report;
+  if (!std::filesystem::exists(run.report.last_checkpoint)) run.save("last", &optimizer);
+  if (!std::filesystem::exists(run.report.best_checkpoint)) run.save("best", &optimizer);
   if (!std::filesystem::exists(std::filesystem::path(config.run.output) / data::run_layout::kSelection))
-    write_selection(config, state);
-  return report;
+    write_selection(config, run.state);
+  return run.report;
 }
 
 }  // namespace layers::train
