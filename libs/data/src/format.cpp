@@ -69,18 +69,35 @@ const ArraySpec& array_spec(const std::string& path) {
   throw Error("layers-h5 schema: unknown array '" + path + "'");
 }
 
+const std::vector<GarmentTypeInfo>& garment_type_table() {
+  static const std::vector<GarmentTypeInfo> table{
+      // name          layer  self-contact  subset
+      {"jacket", 1, false, ""},    {"jacket_hood", 1, true, ""}, {"dress", 0, true, "L"}, {"dress_belt", 0, true, ""},
+      {"jumpsuit", 0, false, "T"}, {"tshirt", 0, false, ""},     {"pants", 0, false, ""}, {"skirt", 0, true, ""}};
+  return table;
+}
+
+const GarmentTypeInfo* find_garment_type(const std::string& type) {
+  for (const GarmentTypeInfo& t : garment_type_table())
+    if (type == t.name) return &t;
+  return nullptr;
+}
+
 const std::vector<std::string>& garment_types() {
-  static const std::vector<std::string> types{"jacket",   "jacket_hood", "dress", "dress_belt",
-                                              "jumpsuit", "tshirt",      "pants", "skirt"};
-  return types;
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const GarmentTypeInfo& t : garment_type_table()) out.emplace_back(t.name);
+    return out;
+  }();
+  return names;
 }
 
-bool is_garment_type(const std::string& type) {
-  const auto& types = garment_types();
-  return std::find(types.begin(), types.end(), type) != types.end();
-}
+bool is_garment_type(const std::string& type) { return find_garment_type(type) != nullptr; }
 
-int garment_type_layer(const std::string& type) { return type == "jacket" || type == "jacket_hood" ? 1 : 0; }
+int garment_type_layer(const std::string& type) {
+  const GarmentTypeInfo* t = find_garment_type(type);
+  return t ? t->layer : 0;
+}
 
 const std::vector<std::string>& sequence_reserved_attrs() {
   static const std::vector<std::string> names{"n_frames", "motion", "seed", "tags"};

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "layers/core/error.h"
+#include "layers/data/format.h"
 #include "layers/garment/garment_recipes.h"
 #include "layers/geometry/intersect.h"
 #include "layers/geometry/normals.h"
@@ -140,17 +141,12 @@ void validate(const GarmentParams& p) {
     throw InputError(kConfig, "edge_length", "a length in [0.004, 0.1] (m)", std::to_string(p.edge_length));
 }
 
-const std::vector<std::string>& garment_types() {
-  static const std::vector<std::string> types = {"jacket",   "jacket_hood", "dress", "dress_belt",
-                                                 "jumpsuit", "tshirt",      "pants", "skirt"};
-  return types;
-}
+const std::vector<std::string>& garment_types() { return data::garment_types(); }
 
 int garment_layer(const std::string& type) {
-  const auto& types = garment_types();
-  if (std::find(types.begin(), types.end(), type) == types.end())
-    throw InputError(kConfig, "type", "one of " + joined(types), "'" + type + "'");
-  return type.rfind("jacket", 0) == 0 ? 1 : 0;
+  const data::GarmentTypeInfo* t = data::find_garment_type(type);
+  if (!t) throw InputError(kConfig, "type", "one of " + joined(garment_types()), "'" + type + "'");
+  return t->layer;
 }
 
 GarmentMesh build_garment(const std::string& type, const TPoseBody& body, const GarmentParams& params,
@@ -199,7 +195,7 @@ std::vector<GarmentMesh> build_outfit(const std::vector<std::string>& inner, con
   for (const auto& t : inner)
     if (garment_layer(t) != 0) throw InputError(kConfig, "inner", "inner garment types", "'" + t + "'");
   if (!outer.empty() && garment_layer(outer) != 1)
-    throw InputError(kConfig, "outer", "jacket or jacket_hood", "'" + outer + "'");
+    throw InputError(kConfig, "outer", "an outer garment type (layer 1 in the garment-type table)", "'" + outer + "'");
   std::vector<std::string> order = inner;
   if (inner.size() == 2) {
     const bool top_first = inner[0] == "tshirt";

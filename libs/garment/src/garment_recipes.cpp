@@ -182,28 +182,43 @@ void skirt(const FitContext& ctx, const GarmentParams& p, Rng& rng, Pattern& pat
   open_quarters(pattern, q.top);
 }
 
+// The types that share a recipe with a variant.
+void plain_jacket(const FitContext& c, const GarmentParams& p, Rng& r, Pattern& pattern, Style& style) {
+  jacket(c, p, r, pattern, style, false);
+}
+void hooded_jacket(const FitContext& c, const GarmentParams& p, Rng& r, Pattern& pattern, Style& style) {
+  jacket(c, p, r, pattern, style, true);
+}
+void plain_dress(const FitContext& c, const GarmentParams& p, Rng& r, Pattern& pattern, Style& style) {
+  dress(c, p, r, pattern, style, false);
+}
+void belted_dress(const FitContext& c, const GarmentParams& p, Rng& r, Pattern& pattern, Style& style) {
+  dress(c, p, r, pattern, style, true);
+}
+
 }  // namespace
+
+const std::vector<Recipe>& recipes() {
+  static const std::vector<Recipe> table{{"tshirt", tshirt},
+                                         {"jacket", plain_jacket},
+                                         {"jacket_hood", hooded_jacket},
+                                         {"dress", plain_dress},
+                                         {"dress_belt", belted_dress},
+                                         {"jumpsuit", jumpsuit},
+                                         {"pants", pants},
+                                         {"skirt", skirt}};
+  return table;
+}
 
 void make_pattern(const std::string& type, const FitContext& ctx, const GarmentParams& params, Rng& rng,
                   Pattern& pattern, Style& style) {
-  if (type == "tshirt")
-    tshirt(ctx, params, rng, pattern, style);
-  else if (type == "jacket")
-    jacket(ctx, params, rng, pattern, style, false);
-  else if (type == "jacket_hood")
-    jacket(ctx, params, rng, pattern, style, true);
-  else if (type == "dress")
-    dress(ctx, params, rng, pattern, style, false);
-  else if (type == "dress_belt")
-    dress(ctx, params, rng, pattern, style, true);
-  else if (type == "jumpsuit")
-    jumpsuit(ctx, params, rng, pattern, style);
-  else if (type == "pants")
-    pants(ctx, params, rng, pattern, style);
-  else if (type == "skirt")
-    skirt(ctx, params, rng, pattern, style);
-  else
-    throw Error("garment recipe: unknown type '" + type + "'");
+  for (const Recipe& recipe : recipes()) {
+    if (type == recipe.type) {
+      recipe.make(ctx, params, rng, pattern, style);
+      return;
+    }
+  }
+  throw Error("garment recipe: unknown type '" + type + "'");
 }
 
 }  // namespace layers::garment

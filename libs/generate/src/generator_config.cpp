@@ -18,7 +18,7 @@ void check_pair(const std::vector<T>& range, const std::string& file, const std:
                      std::to_string(range.size()) + " values" + (range.size() == 2 ? " with lo > hi" : ""));
 }
 
-bool is_outer(const std::string& type) { return type == "jacket" || type == "jacket_hood"; }
+bool is_outer(const std::string& type) { return data::garment_type_layer(type) == 1; }
 
 std::string joined(const std::vector<std::string>& names) {
   std::string out;

@@ -1,6 +1,8 @@
 // Deterministic sampling of scenes (see scene_spec.h).
 #include "layers/generate/scene_spec.h"
 
+#include "layers/data/format.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -65,12 +67,11 @@ std::vector<std::string> subset_tags(const std::vector<GarmentSpec>& garments, c
   bool jacket = false;
   for (const auto& g : garments) {
     if (g.layer == 0) inner.push_back(g.type);
-    if (g.layer == 1 && (g.type == "jacket" || g.type == "jacket_hood")) jacket = true;
+    if (g.layer == 1 && data::garment_type_layer(g.type) == 1) jacket = true;
   }
   if (!jacket || inner.size() != 1 || wind.empty()) return {};
-  std::string base;
-  if (inner[0] == "jumpsuit") base = "T";
-  if (inner[0] == "dress") base = "L";
+  const data::GarmentTypeInfo* type = data::find_garment_type(inner[0]);
+  const std::string base = type ? type->subset : "";
   if (base.empty()) return {};
   bool calm = true, strong = true;
   for (const auto& span : wind) {

@@ -3,6 +3,8 @@
 // LAYERS-H5 sequence.
 #include "layers/generate/simulate.h"
 
+#include "layers/data/format.h"
+
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -103,7 +105,8 @@ int separate_fitted_garments(std::vector<data::GarmentData>& garments, int max_r
 }  // namespace
 
 bool wants_self_contact(const std::string& type) {
-  return type == "skirt" || type == "dress" || type == "dress_belt" || type == "jacket_hood";
+  const data::GarmentTypeInfo* t = data::find_garment_type(type);
+  return t && t->self_contact;
 }
 
 SceneSimulation::SceneSimulation(const GeneratorConfig& config, const SceneSpec& spec)

@@ -4,8 +4,12 @@
 // openings; and no vertex behind or within the clearance of the skin.
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include "garment_fixture.h"
 #include "layers/core/error.h"
+#include "layers/data/format.h"
+#include "layers/garment/garment_recipes.h"
 
 namespace layers::garment {
 namespace {
@@ -57,6 +61,21 @@ TEST_P(GarmentType, BuildsSewnOutwardMeshes) {
 
 INSTANTIATE_TEST_SUITE_P(AllTypes, GarmentType, ::testing::ValuesIn(garment_types()),
                          [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
+
+// layers::data's garment-type table and the garment builder's recipes name
+// the same types: adding a type is one entry in each.
+TEST(GarmentType, EveryTypeHasARecipeAndEveryRecipeAType) {
+  std::set<std::string> table, made;
+  for (const data::GarmentTypeInfo& t : data::garment_type_table()) EXPECT_TRUE(table.insert(t.name).second) << t.name;
+  for (const Recipe& r : recipes()) EXPECT_TRUE(made.insert(r.type).second) << r.type;
+  EXPECT_EQ(table, made);
+  for (const data::GarmentTypeInfo& t : data::garment_type_table()) {
+    EXPECT_TRUE(t.layer == 0 || t.layer == 1) << t.name;
+    EXPECT_EQ(garment_layer(t.name), t.layer) << t.name;
+    // A subset is the paper's, of an inner garment under a jacket.
+    if (std::string(t.subset) != "") EXPECT_EQ(t.layer, 0) << t.name;
+  }
+}
 
 TEST(GarmentType, LayersAndNames) {
   EXPECT_EQ(garment_types().size(), 8u);

@@ -60,11 +60,24 @@ const std::vector<ArraySpec>& garment_arrays();  // faces, rest, uv, uv_faces, p
 // Looks an array up by path in the three tables; throws layers::Error if unknown.
 const ArraySpec& array_spec(const std::string& path);
 
-// Garment types (docs/format.md "Garment types and layers") and the layer
-// each belongs to.
+// The garment types (docs/format.md "Garment types and layers"): one
+// table, read by the format's checks, the garment builder (one recipe per
+// entry, libs/garment/src/garment_recipes.cpp; a test checks both name the
+// same types), the generator and the scene spec. Adding a type is one
+// entry here plus its recipe.
+struct GarmentTypeInfo {
+  const char* name;
+  int layer;           // 0 inner, 1 outer
+  bool self_contact;   // simulated with self-contact (it can fold onto itself: skirts, hoods)
+  const char* subset;  // the paper's subset of a scene with this inner garment alone ("T", "L"), or ""
+};
+const std::vector<GarmentTypeInfo>& garment_type_table();
+// nullptr for an unknown type.
+const GarmentTypeInfo* find_garment_type(const std::string& type);
+// The names, in the table's order.
 const std::vector<std::string>& garment_types();
 bool is_garment_type(const std::string& type);
-// 1 for outer types (jacket, jacket_hood), 0 for inner ones.
+// 1 for outer types (jacket, jacket_hood), 0 for inner ones (and unknown).
 int garment_type_layer(const std::string& type);
 
 // Attribute names with a fixed meaning (never taken as shape parameters or

@@ -30,8 +30,16 @@ class Rng {
 
 using Style = std::vector<std::pair<std::string, double>>;
 
-// Adds the pieces of `type` to `pattern`, recording the drawn sizes in
-// `style`. The type must be valid (see garment_types()).
+// One recipe per garment type of layers::data's table (data/format.h):
+// the pieces it is made of. A test checks the two name the same types.
+struct Recipe {
+  const char* type;
+  void (*make)(const FitContext& ctx, const GarmentParams& params, Rng& rng, Pattern& pattern, Style& style);
+};
+const std::vector<Recipe>& recipes();
+
+// Adds the pieces of `type` to `pattern` (its recipe), recording the drawn
+// sizes in `style`. The type must be valid (see garment_types()).
 void make_pattern(const std::string& type, const FitContext& ctx, const GarmentParams& params, Rng& rng,
                   Pattern& pattern, Style& style);
 
