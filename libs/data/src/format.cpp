@@ -28,34 +28,40 @@ std::string ArraySpec::shape_text() const {
 }
 
 const std::vector<ArraySpec>& body_arrays() {
+  using R = ValueRule;
   static const std::vector<ArraySpec> specs{
-      {"body/faces", DType::Int32, {"Fb", "3"}},
-      {"body/positions", DType::Float32, {"T", "Vb", "3"}},
-      {"body/root", DType::Float32, {"T", "3"}},
-      {"body/root_rot", DType::Float32, {"T", "4"}},
-      {"body/joints", DType::Float32, {"T", "J", "3", "4"}},
-      {"body/joint_names", DType::String, {"J"}},
-      {"body/joint_parents", DType::Int32, {"J"}},
-      {"body/skin_index", DType::Int32, {"Vb", "4"}},
-      {"body/skin_weight", DType::Float32, {"Vb", "4"}},
-      {"body/tpose_joints", DType::Float32, {"J", "3", "4"}, /*optional=*/true},
+      {"body/faces", DType::Int32, {"Fb", "3"}, R::Indices, "Vb"},
+      {"body/positions", DType::Float32, {"T", "Vb", "3"}, R::Finite, ""},
+      {"body/root", DType::Float32, {"T", "3"}, R::Finite, ""},
+      {"body/root_rot", DType::Float32, {"T", "4"}, R::UnitQuaternion, ""},
+      {"body/joints", DType::Float32, {"T", "J", "3", "4"}, R::Finite, ""},
+      {"body/joint_names", DType::String, {"J"}, R::None, ""},
+      {"body/joint_parents", DType::Int32, {"J"}, R::JointParents, ""},
+      {"body/skin_index", DType::Int32, {"Vb", "4"}, R::Indices, "J"},
+      {"body/skin_weight", DType::Float32, {"Vb", "4"}, R::Finite, ""},
+      {"body/tpose_joints", DType::Float32, {"J", "3", "4"}, R::Finite, "", /*optional=*/true},
   };
   return specs;
 }
 
 const std::vector<ArraySpec>& wind_arrays() {
+  using R = ValueRule;
   static const std::vector<ArraySpec> specs{
-      {"wind/rotation", DType::Float32, {"T", "4"}},
-      {"wind/strength", DType::Float32, {"T"}},
+      {"wind/rotation", DType::Float32, {"T", "4"}, R::UnitQuaternion, ""},
+      {"wind/strength", DType::Float32, {"T"}, R::WindStrength, ""},
   };
   return specs;
 }
 
 const std::vector<ArraySpec>& garment_arrays() {
+  using R = ValueRule;
   static const std::vector<ArraySpec> specs{
-      {"faces", DType::Int32, {"F", "3"}}, {"rest", DType::Float32, {"V", "3"}},
-      {"uv", DType::Float32, {"U", "2"}},  {"uv_faces", DType::Int32, {"F", "3"}},
-      {"panel", DType::Int32, {"F"}},      {"positions", DType::Float32, {"T", "V", "3"}},
+      {"faces", DType::Int32, {"F", "3"}, R::Indices, "V"},
+      {"rest", DType::Float32, {"V", "3"}, R::Finite, ""},
+      {"uv", DType::Float32, {"U", "2"}, R::Finite, ""},
+      {"uv_faces", DType::Int32, {"F", "3"}, R::Indices, "U"},
+      {"panel", DType::Int32, {"F"}, R::Indices, ""},
+      {"positions", DType::Float32, {"T", "V", "3"}, R::Finite, ""},
   };
   return specs;
 }

@@ -72,8 +72,6 @@ std::string value_text(double v) {
   return buffer;
 }
 
-enum class ValueRule { Finite, UnitQuaternion, WindStrength };
-
 // Streams a well-formed float32 array in blocks of rows and reports
 // non-finite values and, per rule, non-unit quaternions or strengths
 // outside 0..400.
@@ -146,42 +144,51 @@ void scan_indices(const std::string& file, const H5::Group& loc, const std::stri
   });
 }
 
-// Value checks of the arrays the structure check found well-formed.
+// One well-formed array's values, by the rule the schema gives it
+// (format.h); `bound` gives the value of a dimension symbol.
+template <class Bound>
+void check_array(const std::string& file, const H5::Group& loc, const ArraySpec& spec, const std::string& object,
+                 const Bound& bound, ProblemSink& sink) {
+  constexpr std::int64_t kNoMax = std::numeric_limits<std::int32_t>::max();
+  switch (spec.values) {
+    case ValueRule::None:
+      return;
+    case ValueRule::Finite:
+    case ValueRule::UnitQuaternion:
+    case ValueRule::WindStrength:
+      scan_floats(file, loc, spec.path, object, spec.values, sink);
+      return;
+    case ValueRule::Indices:
+      scan_indices(file, loc, spec.path, object, 0, spec.below.empty() ? kNoMax : bound(spec.below), sink);
+      return;
+    case ValueRule::JointParents: {
+      const auto parents =
+          h5::read_all<std::int32_t>(h5::Where{file, object}, loc, spec.path, {static_cast<hsize_t>(bound("J"))});
+      if (auto problem = check_joint_parents(parents)) sink.report(Problem{file, object, *problem});
+      return;
+    }
+  }
+}
+
+// Value checks of the arrays the structure check found well-formed, each
+// by its rule in the schema.
 void check_values(const std::string& file, const H5::Group& seq, const SequenceLayout& layout, ProblemSink& sink) {
   const SequenceInfo& info = layout.info;
   const std::string base = "/seq/" + info.id;
   auto ok = [&](const std::string& key) { return layout.well_formed.count(key) > 0; };
-  constexpr std::int64_t kNoMax = std::numeric_limits<std::int32_t>::max();
-
-  const std::pair<const char*, ValueRule> body_floats[] = {
-      {"body/positions", ValueRule::Finite},        {"body/root", ValueRule::Finite},
-      {"body/root_rot", ValueRule::UnitQuaternion}, {"body/joints", ValueRule::Finite},
-      {"body/skin_weight", ValueRule::Finite},      {"body/tpose_joints", ValueRule::Finite},
-      {"wind/rotation", ValueRule::UnitQuaternion}, {"wind/strength", ValueRule::WindStrength}};
-  for (const auto& [rel, rule] : body_floats) {
-    if (ok(rel)) scan_floats(file, seq, rel, base + "/" + rel, rule, sink);
-  }
-  if (ok("body/faces")) scan_indices(file, seq, "body/faces", base + "/body/faces", 0, info.body_vertices, sink);
-  if (ok("body/skin_index")) {
-    scan_indices(file, seq, "body/skin_index", base + "/body/skin_index", 0, info.n_joints, sink);
-  }
-  if (ok("body/joint_parents")) {
-    const std::string object = base + "/body/joint_parents";
-    const auto parents = h5::read_all<std::int32_t>(h5::Where{file, object}, seq, "body/joint_parents",
-                                                    {static_cast<hsize_t>(info.n_joints)});
-    if (auto problem = check_joint_parents(parents)) sink.report(Problem{file, object, *problem});
-  }
+  auto sequence_bound = [&](const std::string& dim) -> std::int64_t {
+    return dim == "Vb" ? info.body_vertices : info.n_joints;  // the symbols the body's rules name
+  };
+  for (const auto* table : {&body_arrays(), &wind_arrays()})
+    for (const ArraySpec& spec : *table)
+      if (ok(spec.path)) check_array(file, seq, spec, base + "/" + spec.path, sequence_bound, sink);
 
   for (const auto& g : info.garments) {
     const std::string key = "garments/" + g.group + "/";
     const H5::Group group = seq.openGroup(key);
-    auto object = [&](const char* rel) { return base + "/" + key + rel; };
-    for (const char* rel : {"positions", "rest", "uv"}) {
-      if (ok(key + rel)) scan_floats(file, group, rel, object(rel), ValueRule::Finite, sink);
-    }
-    if (ok(key + "faces")) scan_indices(file, group, "faces", object("faces"), 0, g.n_vertices, sink);
-    if (ok(key + "uv_faces")) scan_indices(file, group, "uv_faces", object("uv_faces"), 0, g.n_uv, sink);
-    if (ok(key + "panel")) scan_indices(file, group, "panel", object("panel"), 0, kNoMax, sink);
+    auto garment_bound = [&](const std::string& dim) -> std::int64_t { return dim == "V" ? g.n_vertices : g.n_uv; };
+    for (const ArraySpec& spec : garment_arrays())
+      if (ok(key + spec.path)) check_array(file, group, spec, base + "/" + key + spec.path, garment_bound, sink);
   }
 }
 

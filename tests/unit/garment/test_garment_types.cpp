@@ -73,7 +73,9 @@ TEST(GarmentType, EveryTypeHasARecipeAndEveryRecipeAType) {
     EXPECT_TRUE(t.layer == 0 || t.layer == 1) << t.name;
     EXPECT_EQ(garment_layer(t.name), t.layer) << t.name;
     // A subset is the paper's, of an inner garment under a jacket.
-    if (std::string(t.subset) != "") EXPECT_EQ(t.layer, 0) << t.name;
+    if (std::string(t.subset) != "") {
+      EXPECT_EQ(t.layer, 0) << t.name;
+    }
   }
 }
 

@@ -41,13 +41,23 @@ inline constexpr double kQuaternionTolerance = 1e-3;
 enum class DType { Float32, Float64, Int32, String };
 const char* dtype_name(DType type);
 
+// What the validator checks of an array's values (docs/format.md "What
+// readers check"): nothing (strings), finite floats, unit quaternions in
+// every row of 4, wind strengths in [0, kMaxWindStrength], indices in
+// [0, <dimension `below`>) (no upper bound when `below` is empty), or a
+// joint hierarchy (each parent in [-1, J) and not the joint itself).
+enum class ValueRule { None, Finite, UnitQuaternion, WindStrength, Indices, JointParents };
+
 // One array of the format: its path relative to its group (the sequence
 // group for body/ and wind/, a garment group for garment arrays), its
-// element type and its shape in dimension symbols.
+// element type, its shape in dimension symbols and the rule its values
+// follow.
 struct ArraySpec {
   std::string path;
   DType dtype;
   std::vector<std::string> dims;
+  ValueRule values = ValueRule::None;
+  std::string below;      // ValueRule::Indices: the dimension symbol bounding them
   bool optional = false;  // may be absent from a sequence
   bool per_frame() const { return !dims.empty() && dims.front() == "T"; }
   // "[T,Vb,3]"
