@@ -209,7 +209,8 @@ void check_stats_hash(const std::string& folder, const DatasetManifest& manifest
   if (now != manifest.stats_hash)
     sink.report(Problem{stats, "",
                         "expected content hash " + manifest.stats_hash + " (dataset.yaml stats_hash), got " + now +
-                            " (the statistics changed since they were written)"});
+                            " (the statistics changed since they were written; remove the file and run `layers "
+                            "stats` on the folder to compute them again)"});
 }
 
 }  // namespace layers::data
