@@ -192,7 +192,7 @@ TEST_F(Adversarial, S2_EditedStatisticsAreRefused) {
   }
   refused("train", data, "stats.h5: expected content hash ");
   refused("eval", data, "stats.h5: expected content hash ");
-  invalid(data, "(the statistics changed since they were written)");
+  invalid(data, "(the statistics changed since they were written; remove the file and run `layers stats`");
 }
 
 // S3: the contents of a train and a test sequence swapped between shards

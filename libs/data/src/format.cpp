@@ -98,6 +98,13 @@ const std::vector<std::string>& garment_types() {
   return names;
 }
 
+std::vector<std::string> garment_types_of_layer(int layer) {
+  std::vector<std::string> out;
+  for (const GarmentTypeInfo& t : garment_type_table())
+    if (t.layer == layer) out.emplace_back(t.name);
+  return out;
+}
+
 bool is_garment_type(const std::string& type) { return find_garment_type(type) != nullptr; }
 
 int garment_type_layer(const std::string& type) {

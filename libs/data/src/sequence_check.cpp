@@ -6,37 +6,11 @@
 #include "layers/core/error.h"
 #include "layers/data/format.h"
 #include "layers/data/sequence.h"
+#include "sequence_members.h"
 #include "sequence_rules.h"
 
 namespace layers::data {
 namespace {
-
-std::size_t body_array_size(const SequenceData& seq, const std::string& path) {
-  const BodyData& b = seq.body;
-  if (path == "body/faces") return b.faces.size();
-  if (path == "body/positions") return b.positions.size();
-  if (path == "body/root") return b.root.size();
-  if (path == "body/root_rot") return b.root_rot.size();
-  if (path == "body/joints") return b.joints.size();
-  if (path == "body/joint_names") return b.joint_names.size();
-  if (path == "body/joint_parents") return b.joint_parents.size();
-  if (path == "body/skin_index") return b.skin_index.size();
-  if (path == "body/skin_weight") return b.skin_weight.size();
-  if (path == "body/tpose_joints") return b.tpose_joints.size();
-  if (path == "wind/rotation") return seq.wind.rotation.size();
-  if (path == "wind/strength") return seq.wind.strength.size();
-  throw Error("check_sequence: no member for " + path);
-}
-
-std::size_t garment_array_size(const GarmentData& g, const std::string& path) {
-  if (path == "faces") return g.faces.size();
-  if (path == "rest") return g.rest.size();
-  if (path == "uv") return g.uv.size();
-  if (path == "uv_faces") return g.uv_faces.size();
-  if (path == "panel") return g.panel.size();
-  if (path == "positions") return g.positions.size();
-  throw Error("check_sequence: no member for garment " + path);
-}
 
 class Checker {
  public:
@@ -92,7 +66,8 @@ void check_sequence(const SequenceData& seq, const std::string& file) {
   dims.bind("T", seq.n_frames, base + " n_frames");
   for (const auto* table : {&body_arrays(), &wind_arrays()}) {
     for (const auto& spec : *table) {
-      const std::size_t n = body_array_size(seq, spec.path);
+      std::size_t n = 0;
+      with_sequence_array(seq, spec, [&](const auto& v) { n = v.size(); });
       if (spec.optional && n == 0) continue;  // absent
       check.size(dims, spec, n, base + "/" + spec.path);
     }
@@ -112,7 +87,9 @@ void check_sequence(const SequenceData& seq, const std::string& file) {
     DimBinder gdims;
     gdims.bind("T", seq.n_frames, base + " n_frames");
     for (const auto& spec : garment_arrays()) {
-      check.size(gdims, spec, garment_array_size(g, spec.path), gbase + "/" + spec.path);
+      std::size_t n = 0;
+      with_garment_array(g, spec, [&](const auto& v) { n = v.size(); });
+      check.size(gdims, spec, n, gbase + "/" + spec.path);
     }
     check_garment_indices(g, *gdims.get("V"), *gdims.get("U"), gbase, check);
   }

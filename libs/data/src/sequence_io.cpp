@@ -4,6 +4,9 @@
 #include "dims.h"
 #include "h5_io.h"
 #include "layers/data/format.h"
+#include "sequence_members.h"
+
+#include <type_traits>
 
 namespace layers::data {
 namespace {
@@ -42,6 +45,14 @@ class GroupReader {
   std::vector<std::string> strings(const std::string& path) const {
     return h5::read_strings(where(path), loc_, path, to_dims(dims_.resolve(array_spec(path))));
   }
+  // The whole array `spec` into `out` (float, int32 or string).
+  template <class T>
+  void read(const ArraySpec& spec, std::vector<T>& out) const {
+    if constexpr (std::is_same_v<T, std::string>)
+      out = strings(spec.path);
+    else
+      out = all<T>(spec.path);
+  }
   std::vector<float> frames(const std::string& path, std::int64_t first, std::int64_t count) const {
     return h5::read_rows<float>(where(path), loc_, path, to_dims(dims_.resolve(array_spec(path))),
                                 static_cast<hsize_t>(first), static_cast<hsize_t>(count));
@@ -55,6 +66,20 @@ class GroupReader {
   DimBinder dims_;
 };
 
+// One array of the schema into `group` under its name (the path's last
+// part): per-frame arrays of rank 3 and more chunked by frame, an empty
+// optional one left out.
+template <class T>
+void write_array(H5::Group& group, const ArraySpec& spec, const std::vector<T>& values, const DimBinder& dims) {
+  if (spec.optional && values.empty()) return;
+  const std::string name = spec.path.substr(spec.path.rfind('/') + 1);
+  if constexpr (std::is_same_v<T, std::string>) {
+    h5::write_strings(group, name, values);
+  } else {
+    h5::write(group, name, values, to_dims(dims.resolve(spec)), spec.per_frame() && spec.dims.size() >= 3);
+  }
+}
+
 std::string garment_path(const SequenceInfo& info, const GarmentInfo& g) {
   return "/seq/" + info.id + "/garments/" + g.group;
 }
@@ -67,12 +92,10 @@ SequenceStatic read_static(const std::string& file, const H5::Group& seq, const 
   out.id = info.id;
   out.n_frames = info.n_frames;
   const GroupReader body(file, seq, "/seq/" + info.id, sequence_dims(info));
-  out.body.faces = body.all<std::int32_t>("body/faces");
-  out.body.joint_names = body.strings("body/joint_names");
-  out.body.joint_parents = body.all<std::int32_t>("body/joint_parents");
-  out.body.skin_index = body.all<std::int32_t>("body/skin_index");
-  out.body.skin_weight = body.all<float>("body/skin_weight");
-  if (info.has_tpose_joints) out.body.tpose_joints = body.all<float>("body/tpose_joints");
+  for (const ArraySpec& spec : body_arrays()) {
+    if (spec.per_frame() || (spec.optional && !info.has_tpose_joints)) continue;
+    with_body_static(out.body, spec, [&](auto& member) { body.read(spec, member); });
+  }
   for (const auto& gi : info.garments) {
     const H5::Group group =
         h5::guard(file, garment_path(info, gi), [&] { return seq.openGroup("garments/" + gi.group); });
@@ -82,11 +105,10 @@ SequenceStatic read_static(const std::string& file, const H5::Group& seq, const 
     g.type = gi.type;
     g.layer = gi.layer;
     g.attributes = gi.attributes;
-    g.faces = garment.all<std::int32_t>("faces");
-    g.rest = garment.all<float>("rest");
-    g.uv = garment.all<float>("uv");
-    g.uv_faces = garment.all<std::int32_t>("uv_faces");
-    g.panel = garment.all<std::int32_t>("panel");
+    for (const ArraySpec& spec : garment_arrays()) {
+      if (spec.per_frame()) continue;
+      with_garment_static(g, spec, [&](auto& member) { garment.read(spec, member); });
+    }
     out.garments.push_back(std::move(g));
   }
   check_static_indices(out, file);
@@ -97,27 +119,33 @@ void read_frames(const std::string& file, const H5::Group& seq, const SequenceIn
                  std::int64_t count, Window& window) {
   h5::Lock lock;
   const GroupReader reader(file, seq, "/seq/" + info.id, sequence_dims(info));
-  window.body.positions = reader.frames("body/positions", first, count);
-  window.body.root = reader.frames("body/root", first, count);
-  window.body.root_rot = reader.frames("body/root_rot", first, count);
-  window.body.joints = reader.frames("body/joints", first, count);
-  window.wind.rotation = reader.frames("wind/rotation", first, count);
-  window.wind.strength = reader.frames("wind/strength", first, count);
+  for (const auto* table : {&body_arrays(), &wind_arrays()}) {
+    for (const ArraySpec& spec : *table) {
+      if (!spec.per_frame()) continue;
+      with_frames(window.body, window.wind, spec, [&](auto& member) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(member)>, std::vector<float>>)
+          member = reader.frames(spec.path, first, count);
+      });
+    }
+  }
   window.garments.clear();
   for (const auto& gi : info.garments) {
     const H5::Group group =
         h5::guard(file, garment_path(info, gi), [&] { return seq.openGroup("garments/" + gi.group); });
     const GroupReader garment(file, group, garment_path(info, gi), garment_dims(info, gi));
-    window.garments.push_back(garment.frames("positions", first, count));
+    for (const ArraySpec& spec : garment_arrays())
+      if (spec.per_frame()) window.garments.push_back(garment.frames(spec.path, first, count));
   }
 }
 
 void write_sequence(H5::Group& seqs, const SequenceData& seq) {
   h5::Lock lock;
-  const auto T = static_cast<hsize_t>(seq.n_frames);
   const BodyData& b = seq.body;
-  const auto Vb = static_cast<hsize_t>(b.n_vertices());
-  const auto J = static_cast<hsize_t>(b.n_joints());
+  DimBinder dims;
+  dims.bind("T", seq.n_frames, "n_frames");
+  dims.bind("Vb", b.n_vertices(), "body");
+  dims.bind("Fb", b.n_faces(), "body");
+  dims.bind("J", b.n_joints(), "body");
 
   H5::Group group = h5::create_group(seqs, seq.id);
   h5::set_attr(group, "n_frames", static_cast<std::int64_t>(seq.n_frames));
@@ -126,38 +154,27 @@ void write_sequence(H5::Group& seqs, const SequenceData& seq) {
   h5::set_attr(group, "tags", seq.tags);
   for (const auto& [name, value] : seq.shape) h5::set_attr(group, name, value);
 
-  H5::Group body = h5::create_group(group, "body");
-  h5::write(body, "faces", b.faces, {static_cast<hsize_t>(b.n_faces()), 3});
-  h5::write(body, "positions", b.positions, {T, Vb, 3}, true);
-  h5::write(body, "root", b.root, {T, 3});
-  h5::write(body, "root_rot", b.root_rot, {T, 4});
-  h5::write(body, "joints", b.joints, {T, J, 3, 4}, true);
-  h5::write_strings(body, "joint_names", b.joint_names);
-  h5::write(body, "joint_parents", b.joint_parents, {J});
-  h5::write(body, "skin_index", b.skin_index, {Vb, 4});
-  h5::write(body, "skin_weight", b.skin_weight, {Vb, 4});
-  if (!b.tpose_joints.empty()) h5::write(body, "tpose_joints", b.tpose_joints, {J, 3, 4});
-
-  H5::Group wind = h5::create_group(group, "wind");
-  h5::write(wind, "rotation", seq.wind.rotation, {T, 4});
-  h5::write(wind, "strength", seq.wind.strength, {T});
+  for (const auto& [name, table] : {std::pair{"body", &body_arrays()}, std::pair{"wind", &wind_arrays()}}) {
+    H5::Group sub = h5::create_group(group, name);
+    for (const ArraySpec& spec : *table)
+      with_sequence_array(seq, spec, [&](const auto& member) { write_array(sub, spec, member, dims); });
+  }
 
   H5::Group garments = h5::create_ordered_group(group, "garments");
   for (std::size_t k = 0; k < seq.garments.size(); ++k) {
     const GarmentData& g = seq.garments[k];
-    const auto V = static_cast<hsize_t>(g.n_vertices());
-    const auto F = static_cast<hsize_t>(g.n_faces());
     H5::Group gg = h5::create_group(garments, std::to_string(k));
     h5::set_attr(gg, "name", g.name);
     h5::set_attr(gg, "type", g.type);
     h5::set_attr(gg, "layer", static_cast<std::int64_t>(g.layer));
     for (const auto& [name, value] : g.attributes) h5::set_attr(gg, name, value);
-    h5::write(gg, "faces", g.faces, {F, 3});
-    h5::write(gg, "rest", g.rest, {V, 3});
-    h5::write(gg, "uv", g.uv, {static_cast<hsize_t>(g.n_uv()), 2});
-    h5::write(gg, "uv_faces", g.uv_faces, {F, 3});
-    h5::write(gg, "panel", g.panel, {F});
-    h5::write(gg, "positions", g.positions, {T, V, 3}, true);
+    DimBinder gdims;
+    gdims.bind("T", seq.n_frames, "n_frames");
+    gdims.bind("V", g.n_vertices(), "garment");
+    gdims.bind("F", g.n_faces(), "garment");
+    gdims.bind("U", g.n_uv(), "garment");
+    for (const ArraySpec& spec : garment_arrays())
+      with_garment_array(g, spec, [&](const auto& member) { write_array(gg, spec, member, gdims); });
   }
 }
 

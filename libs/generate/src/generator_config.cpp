@@ -86,16 +86,16 @@ void check(const GeneratorConfig& c, const std::string& file) {
                      std::to_string(c.splits.val + c.splits.test));
   if (c.garments.outfits.empty()) throw InputError(file, "garments.outfits", "at least one outfit", "an empty list");
   double total = 0;
-  const auto& types = data::garment_types();
+  std::string inner_types;
+  for (const std::string& t : data::garment_types_of_layer(0)) inner_types += (inner_types.empty() ? "" : ", ") + t;
   for (std::size_t i = 0; i < c.garments.outfits.size(); ++i) {
     const auto& o = c.garments.outfits[i];
     const std::string path = "garments.outfits[" + std::to_string(i) + "]";
     total += o.weight;
     if (o.inner.empty()) throw InputError(file, path + ".inner", "at least one inner garment type", "an empty list");
     for (const auto& t : o.inner) {
-      if (std::find(types.begin(), types.end(), t) == types.end() || is_outer(t))
-        throw InputError(file, path + ".inner",
-                         "inner garment types (dress, dress_belt, jumpsuit, tshirt, pants, skirt)", "'" + t + "'");
+      if (!data::is_garment_type(t) || is_outer(t))
+        throw InputError(file, path + ".inner", "inner garment types (" + inner_types + ")", "'" + t + "'");
     }
   }
   if (total <= 0) throw InputError(file, "garments.outfits", "at least one outfit with a positive weight", "all zero");

@@ -84,8 +84,9 @@ struct GarmentTypeInfo {
 const std::vector<GarmentTypeInfo>& garment_type_table();
 // nullptr for an unknown type.
 const GarmentTypeInfo* find_garment_type(const std::string& type);
-// The names, in the table's order.
+// The names, in the table's order; those of one layer.
 const std::vector<std::string>& garment_types();
+std::vector<std::string> garment_types_of_layer(int layer);
 bool is_garment_type(const std::string& type);
 // 1 for outer types (jacket, jacket_hood), 0 for inner ones (and unknown).
 int garment_type_layer(const std::string& type);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "layers/core/config.h"
+#include "layers/data/format.h"
 #include "layers/garment/garment.h"
 #include "layers/generate/motion_variation.h"
 #include "layers/motion/body_config.h"
@@ -26,8 +27,19 @@ struct OutfitConfig {
 
   template <class V>
   void visit(V& v) {
-    v("inner", inner, cfg::opt().help("inner garment types: dress, dress_belt, jumpsuit, tshirt, pants, skirt"));
-    v("outer", outer, cfg::opt().choices({"jacket", "jacket_hood", "none"}).help("outer garment type"));
+    // The types of each layer come from the garment-type table (data/format.h).
+    static const std::vector<std::string> outer_choices = [] {
+      std::vector<std::string> c = data::garment_types_of_layer(1);
+      c.emplace_back("none");
+      return c;
+    }();
+    static const std::string inner_help = [] {
+      std::string h = "inner garment types:";
+      for (const std::string& t : data::garment_types_of_layer(0)) h += " " + t;
+      return h;
+    }();
+    v("inner", inner, cfg::opt().help(inner_help));
+    v("outer", outer, cfg::opt().choices(outer_choices).help("outer garment type"));
     v("weight", weight, cfg::opt().min(0).help("relative sampling weight"));
   }
 };
