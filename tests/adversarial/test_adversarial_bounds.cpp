@@ -2,8 +2,8 @@
 // inputs within the documented bounds that asked for gigabytes or hours
 // (a BVH, YAML aliases and includes, --frames). Each runs the `layers`
 // binary in its own process and must end with its one-line refusal within
-// 1 GB of peak resident memory (getrusage of that process) and 60 s,
-// while a valid input of the same kind succeeds under the same limits; a
+// 1 GB of peak resident memory (getrusage of that process), while a
+// valid input of the same kind succeeds under the same limit; a
 // bare non-zero exit proves nothing, so the message is checked too.
 #include <gtest/gtest.h>
 
@@ -19,7 +19,6 @@ using namespace layers;
 namespace {
 
 using test::kMaxPeakMiB;
-using test::kMaxSeconds;
 using test::Probe;
 using test::probe;
 
@@ -30,20 +29,18 @@ std::size_t lines(const std::string& text) {
 class Bounds : public ::testing::Test {
  protected:
   // `args` ends with exit `code` and one line holding `expect`, within
-  // the memory and time limits.
+  // the memory limit.
   void refused(const std::string& args, int code, const std::string& expect) {
     const Probe p = probe(args, dir_.file("log-" + std::to_string(++runs_)));
     EXPECT_EQ(p.exit_code, code) << args << "\n" << p.output;
     EXPECT_EQ(lines(p.output), 1u) << args << "\n" << p.output;
     EXPECT_NE(p.output.find(expect), std::string::npos) << args << "\n" << p.output;
     EXPECT_LT(p.peak_mib, kMaxPeakMiB) << args;
-    EXPECT_LT(p.seconds, kMaxSeconds) << args;
   }
   void succeeds(const std::string& args) {
     const Probe p = probe(args, dir_.file("log-" + std::to_string(++runs_)));
     EXPECT_EQ(p.exit_code, 0) << args << "\n" << p.output;
     EXPECT_LT(p.peak_mib, kMaxPeakMiB) << args;
-    EXPECT_LT(p.seconds, kMaxSeconds) << args;
   }
   std::string write(const std::string& name, const std::string& text) { return dir_.write(name, text); }
 

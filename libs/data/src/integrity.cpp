@@ -26,8 +26,8 @@ std::string joined(const std::vector<std::string>& names) {
 }
 
 constexpr const char* kHowToRecord =
-    "record them once with `layers generate --finalize <folder>`, or read it unverified with --allow-unhashed "
-    "(data.allow_unhashed: true in an experiment)";
+    "record them once with `layers validate --record-hashes <folder>`, or read it unverified with "
+    "--allow-unhashed (data.allow_unhashed: true in an experiment)";
 
 }  // namespace
 
