@@ -9,6 +9,7 @@
 #include "config_loading.h"
 #include "dist_join.h"
 #include "layers/data/run_layout.h"
+#include "layers/metrics/registry.h"
 #include "layers/train/evaluator.h"
 #include "plugins.h"
 #include "verbs.h"
@@ -16,11 +17,13 @@
 namespace layers::app {
 namespace {
 
-std::string percent(const zoo::MeanStd& m) {
-  if (m.count == 0) return "-";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.2f%%", 100.0 * m.mean);
-  return buf;
+// One line of the results table: a label, then each registered metric.
+void print_row(const std::string& label, const train::MetricSummary& values) {
+  std::printf("%-14s", label.c_str());
+  for (const metrics::MetricDef& d : metrics::registered())
+    std::printf(" %*s", d.unit == metrics::Unit::Millimetre ? 16 : 12,
+                metrics::format_value(d, values.at(d.key)).c_str());
+  std::printf("\n");
 }
 
 }  // namespace
@@ -56,25 +59,19 @@ VerbRun register_eval(CLI::App& app, const Global&) {
     const std::string chosen = r.chosen_on == "none" ? "chosen by nothing" : "chosen on " + r.chosen_on;
     std::printf("checkpoint: %s, %s, evaluated on %s%s\n", r.checkpoint_kind.c_str(), chosen.c_str(), r.split.c_str(),
                 r.chosen_on == r.split ? " (the same split: optimistic figures, marked in reports)" : "");
-    // L-collision twice (docs/metrics.md): the paper's plain nearest-vertex
-    // rule, comparable with its figures, and ours with the open-edge rule.
-    const char* row = "%-14s %22s %10s %13s %12s %10s %10s\n";
-    std::printf(row, "", "error (mm)", "H-coll", "L-coll paper", "L-coll ours", "H-cross", "L-cross");
-    std::printf(row, "overall", zoo::format(r.overall.error_mm).c_str(), percent(r.overall.h_collision).c_str(),
-                percent(r.overall.l_collision_plain).c_str(), percent(r.overall.l_collision).c_str(),
-                percent(r.overall.h_crossing).c_str(), percent(r.overall.l_crossing).c_str());
-    for (const auto& [type, m] : r.per_type)
-      std::printf(row, type.c_str(), zoo::format(m.error_mm).c_str(), percent(m.h_collision).c_str(),
-                  percent(m.l_collision_plain).c_str(), percent(m.l_collision).c_str(), percent(m.h_crossing).c_str(),
-                  percent(m.l_crossing).c_str());
-    const auto pct = [](double v) { return std::isfinite(v) ? 100.0 * v : 0.0; };
-    std::printf(
-        "ground truth: H-coll %.2f%%, L-coll paper %.2f%%, L-coll ours %.2f%%, H-cross %.2f%%, L-cross %.2f%%\n",
-        pct(r.truth_h_collision), pct(r.truth_l_collision_plain), pct(r.truth_l_collision), pct(r.truth_h_crossing),
-        pct(r.truth_l_crossing));
-    std::printf(
-        "L-coll paper: behind the normal plane of the nearest inner vertex (LayersNet's rule); L-coll ours: the "
-        "same, except beside an open edge (hem, cuff) of the inner garment (docs/metrics.md)\n");
+    // One column per registered metric (docs/metrics.md); the ground
+    // truth's own values below, for the metrics measured on it.
+    std::printf("%-14s", "");
+    for (const metrics::MetricDef& d : metrics::registered())
+      std::printf(" %*s", d.unit == metrics::Unit::Millimetre ? 16 : 12, d.key.c_str());
+    std::printf("\n");
+    print_row("overall", r.overall);
+    for (const auto& [type, m] : r.per_type) print_row(type, m);
+    train::MetricSummary truth = r.truth;
+    for (const metrics::MetricDef& d : metrics::registered()) truth.try_emplace(d.key);  // "-" where not measured
+    print_row("ground truth", truth);
+    for (const metrics::MetricDef& d : metrics::registered())
+      std::printf("%s: %s\n", d.key.c_str(), d.description.c_str());
     std::printf("written: %s/%s, %s%s%s\n", r.out_dir.c_str(), data::run_layout::kMetrics, data::run_layout::kSequences,
                 loaded.typed.eval.save_predictions ? ", " : "",
                 loaded.typed.eval.save_predictions ? data::run_layout::kPredictions : "");

@@ -9,6 +9,7 @@
 #include "layers/data/dataset.h"
 #include "layers/data/export.h"
 #include "layers/data/run_layout.h"
+#include "layers/metrics/registry.h"
 #include "layers/train/evaluator.h"
 #include "plugins.h"
 #include "verbs.h"
@@ -37,7 +38,7 @@ VerbRun register_rollout(CLI::App& app, const Global&) {
     a->options.progress = false;
     const train::EvalReport r = train::run_evaluation(loaded.typed, load_plugins().registry, a->options);
     std::printf("%s: %lld frames predicted, error %s mm, %lld diverged\n", r.model.c_str(),
-                static_cast<long long>(r.frames), zoo::format(r.overall.error_mm).c_str(),
+                static_cast<long long>(r.frames), metrics::format(r.overall.at(metrics::kError)).c_str(),
                 static_cast<long long>(r.diverged));
     const std::string predictions = (std::filesystem::path(r.out_dir) / data::run_layout::kPredictions).string();
     std::printf("written: %s, %s/%s\n", predictions.c_str(), r.out_dir.c_str(), data::run_layout::kMetrics);

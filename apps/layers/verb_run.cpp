@@ -14,6 +14,7 @@
 #include "layers/core/error.h"
 #include "layers/core/text_file.h"
 #include "layers/generate/generator.h"
+#include "layers/metrics/registry.h"
 #include "layers/report/report.h"
 #include "layers/study/study.h"
 #include "layers/train/bench.h"
@@ -58,13 +59,6 @@ bool make_dataset(const study::StudyDataset& d) {
   return true;
 }
 
-std::string percent(const zoo::MeanStd& m) {
-  if (m.count == 0) return "-";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2f%%", 100.0 * m.mean);
-  return buf;
-}
-
 study::StudyActions library_actions() {
   study::StudyActions a;
   a.dataset = make_dataset;
@@ -81,14 +75,12 @@ study::StudyActions library_actions() {
     options.checkpoint = run.checkpoint;
     options.split = split;
     const train::EvalReport r = train::run_evaluation(run.config, load_plugins().registry, options);
-    std::printf(
-        "  %s on %s: error %s mm, H %s, L paper %s, L ours %s, H-cross %s, L-cross %s, %lld of %lld sequences "
-        "diverged, %.2f ms/frame\n",
-        run.name.c_str(), split.c_str(), zoo::format(r.overall.error_mm).c_str(),
-        percent(r.overall.h_collision).c_str(), percent(r.overall.l_collision_plain).c_str(),
-        percent(r.overall.l_collision).c_str(), percent(r.overall.h_crossing).c_str(),
-        percent(r.overall.l_crossing).c_str(), static_cast<long long>(r.diverged), static_cast<long long>(r.sequences),
-        r.ms_per_frame);
+    std::string values;
+    for (const metrics::MetricDef& d : metrics::registered())
+      values += ", " + d.key + " " + metrics::format_value(d, r.overall.at(d.key));
+    std::printf("  %s on %s:%s, %lld of %lld sequences diverged, %.2f ms/frame\n", run.name.c_str(), split.c_str(),
+                values.c_str() + 1, static_cast<long long>(r.diverged), static_cast<long long>(r.sequences),
+                r.ms_per_frame);
   };
   a.bench = [](const study::StudyRun& run, const train::BenchOptions& options) {
     const train::BenchReport r = train::run_bench(run.config, load_plugins().registry, options);

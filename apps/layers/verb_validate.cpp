@@ -28,7 +28,7 @@
 #include "layers/data/validate.h"
 #include "layers/generate/physics_summary.h"
 #include "layers/generate/stored_measures.h"
-#include "layers/zoo/metrics.h"
+#include "layers/metrics/measures.h"
 #include "verbs.h"
 
 namespace layers::app {
@@ -46,7 +46,7 @@ EvalLCollision eval_l_collision(const generate::StoredFrame& f) {
   if (inner.empty() || outer.empty()) return {};
   const geometry::TriMesh inner_mesh = geometry::concatenate(inner);
   const geometry::Points outer_points = geometry::concatenate(outer).vertices;
-  const zoo::LCollisionRates l = zoo::l_collision_rates(outer_points, inner_mesh);
+  const metrics::LCollisionRates l = metrics::l_collision_rates(outer_points, inner_mesh);
   return {l.plain, l.ours};
 }
 

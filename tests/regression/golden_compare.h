@@ -16,12 +16,10 @@ namespace layers::regression {
 // L-collision without an inner + outer pair).
 using Metrics = std::map<std::string, double>;
 
-// The compared metrics of a metrics.json text: overall and per garment type
-// error, H- and L-collision (L twice: ours with the open-edge rule,
-// l_collision, and the paper's, l_collision_plain), H- and L-crossing
-// (means over sequences; a metrics.json without crossings or the paper's
-// L-collision has none of them), the number of
-// diverged sequences and the mean error growth rate. InputError naming
+// The compared metrics of a metrics.json text: every metric of its overall
+// and per garment type summaries (the registry's, layers/metrics: means
+// over sequences), the number of diverged sequences and the mean error
+// growth rate. InputError naming
 // `file` for malformed JSON or a missing overall section.
 Metrics metrics_from_json(const std::string& json_text, const std::string& file);
 
@@ -51,7 +49,8 @@ Golden read_golden(const std::string& file);
 // JSON text of a golden file (written with LAYERS_UPDATE_GOLDENS=1).
 std::string golden_json(const Golden& golden);
 
-// One readable line per metric out of tolerance, missing or unexpected:
+// One readable line per metric out of tolerance, missing or unexpected (a
+// new metric is unexpected only when its kind has a tolerance):
 //   "run 'x' (model m): overall.error_mm moved: golden 7.61, new 9.02,
 //    difference +1.41 (+18.5%), allowed +-0.20"
 // Empty when everything is within tolerance.

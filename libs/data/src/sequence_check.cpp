@@ -1,6 +1,7 @@
 // In-memory consistency checks of a SequenceData before it is written
 // (see check_sequence in sequence.h).
 #include <limits>
+#include <type_traits>
 
 #include "dims.h"
 #include "layers/core/error.h"
@@ -32,20 +33,37 @@ class Checker {
   const std::string& file_;
 };
 
-// The index ranges of a body and a garment: one set of rules for the
-// writer (check_sequence) and the reader (check_static_indices).
-void check_body_indices(const BodyStatic& b, std::int64_t n_vertices, std::int64_t n_joints, const std::string& base,
-                        const Checker& check) {
-  check.rule(check_index_range(b.faces, 0, n_vertices, 3), base + "/body/faces");
-  check.rule(check_index_range(b.skin_index, 0, n_joints, 4), base + "/body/skin_index");
-  check.rule(check_joint_parents(b.joint_parents), base + "/body/joint_parents");
+// Values per row of an array: its second dimension when that is a number
+// (faces: 3, skin_index: 4), else 1.
+std::size_t row_width(const ArraySpec& spec) {
+  if (spec.dims.size() < 2 || spec.dims[1].empty()) return 1;
+  for (char c : spec.dims[1])
+    if (c < '0' || c > '9') return 1;
+  return static_cast<std::size_t>(std::stoul(spec.dims[1]));
 }
 
-void check_garment_indices(const GarmentStatic& g, std::int64_t n_vertices, std::int64_t n_uv, const std::string& base,
-                           const Checker& check) {
-  check.rule(check_index_range(g.faces, 0, n_vertices, 3), base + "/faces");
-  check.rule(check_index_range(g.uv_faces, 0, n_uv, 3), base + "/uv_faces");
-  check.rule(check_index_range(g.panel, 0, std::numeric_limits<std::int32_t>::max(), 1), base + "/panel");
+// The index rules the schema gives the static arrays of a body or of a
+// garment (ValueRule::Indices below a dimension, ValueRule::JointParents),
+// for the writer (check_sequence) and the reader (check_static_indices).
+// `reach(spec, f)` calls f with the spec's member; `dims` holds the
+// dimensions the rules name.
+template <class Reach>
+void check_indices(const std::vector<ArraySpec>& table, Reach&& reach, const DimBinder& dims, const std::string& base,
+                   const Checker& check) {
+  constexpr std::int64_t kNoMax = std::numeric_limits<std::int32_t>::max();
+  for (const ArraySpec& spec : table) {
+    if (spec.per_frame() || (spec.values != ValueRule::Indices && spec.values != ValueRule::JointParents)) continue;
+    reach(spec, [&](const auto& values) {
+      if constexpr (std::is_same_v<std::decay_t<decltype(values)>, std::vector<std::int32_t>>) {
+        const std::string object = base + "/" + spec.path;
+        if (spec.values == ValueRule::JointParents) return check.rule(check_joint_parents(values), object);
+        const std::optional<std::int64_t> bound = spec.below.empty() ? kNoMax : dims.get(spec.below);
+        if (!bound && values.empty()) return;
+        if (!bound) return check.rule("expected indices below " + spec.below + ", got no " + spec.below, object);
+        check.rule(check_index_range(values, 0, *bound, row_width(spec)), object);
+      }
+    });
+  }
 }
 
 }  // namespace
@@ -72,7 +90,8 @@ void check_sequence(const SequenceData& seq, const std::string& file) {
       check.size(dims, spec, n, base + "/" + spec.path);
     }
   }
-  check_body_indices(seq.body, *dims.get("Vb"), *dims.get("J"), base, check);
+  check_indices(
+      body_arrays(), [&](const ArraySpec& spec, auto&& f) { with_body_static(seq.body, spec, f); }, dims, base, check);
 
   for (std::size_t k = 0; k < seq.garments.size(); ++k) {
     const GarmentData& g = seq.garments[k];
@@ -91,17 +110,29 @@ void check_sequence(const SequenceData& seq, const std::string& file) {
       with_garment_array(g, spec, [&](const auto& v) { n = v.size(); });
       check.size(gdims, spec, n, gbase + "/" + spec.path);
     }
-    check_garment_indices(g, *gdims.get("V"), *gdims.get("U"), gbase, check);
+    check_indices(
+        garment_arrays(), [&](const ArraySpec& spec, auto&& f) { with_garment_static(g, spec, f); }, gdims, gbase,
+        check);
   }
 }
 
 void check_static_indices(const SequenceStatic& seq, const std::string& file) {
   const Checker check(file);
   const std::string base = "/seq/" + seq.id;
-  check_body_indices(seq.body, seq.body.n_vertices(), seq.body.n_joints(), base, check);
+  // The dimensions a read sequence's rules name, from what was read.
+  DimBinder dims;
+  dims.bind("Vb", seq.body.n_vertices(), base + "/body");
+  dims.bind("J", seq.body.n_joints(), base + "/body");
+  check_indices(
+      body_arrays(), [&](const ArraySpec& spec, auto&& f) { with_body_static(seq.body, spec, f); }, dims, base, check);
   for (std::size_t k = 0; k < seq.garments.size(); ++k) {
     const GarmentStatic& g = seq.garments[k];
-    check_garment_indices(g, g.n_vertices(), g.n_uv(), base + "/garments/" + std::to_string(k), check);
+    DimBinder gdims;
+    gdims.bind("V", g.n_vertices(), base + "/garments/" + std::to_string(k));
+    gdims.bind("U", g.n_uv(), base + "/garments/" + std::to_string(k));
+    check_indices(
+        garment_arrays(), [&](const ArraySpec& spec, auto&& f) { with_garment_static(g, spec, f); }, gdims,
+        base + "/garments/" + std::to_string(k), check);
   }
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "layers/metrics/registry.h"
 #include "layers/report/seeds.h"
 #include "layers/report/tables.h"
 #include "text.h"
@@ -12,9 +13,39 @@
 namespace layers::report {
 namespace {
 
-// The two L-collisions' column headings (docs/metrics.md).
-constexpr const char* kLPaper = "L-coll (paper: nearest vertex)";
-constexpr const char* kLOurs = "L-coll (ours: open-edge rule)";
+const std::vector<metrics::MetricDef>& registry() { return metrics::registered(); }
+
+// A run's value of a metric in a table cell: mean ± std (mm) or the mean
+// as a percentage (shares).
+std::string cell(const metrics::MetricDef& d, const Stat& s) {
+  if (d.unit == metrics::Unit::Millimetre) return mean_pm_std(s.mean, s.std);
+  return s.count == 0 ? "-" : percent(s.mean);
+}
+
+// The metric headings of a table, its alignment cells, and the ground
+// truth's heading (its metrics joined by " / ").
+std::string metric_headings() {
+  std::string out;
+  for (const metrics::MetricDef& d : registry()) out += " " + d.label + " |";
+  return out;
+}
+std::string metric_alignment() {
+  std::string out;
+  for (std::size_t k = 0; k < registry().size(); ++k) out += "---:|";
+  return out;
+}
+std::string truth_heading() {
+  std::string out;
+  for (const metrics::MetricDef& d : registry())
+    if (d.truth) out += (out.empty() ? "ground truth " : " / ") + d.label;
+  return out;
+}
+std::string truth_cell(const EvalResults& e) {
+  std::string out;
+  for (const metrics::MetricDef& d : registry())
+    if (d.truth) out += (out.empty() ? "" : " / ") + percent(e.truth_of(d.key));
+  return out;
+}
 
 void charts_of(std::ostringstream& md, const ChartSection& section, const std::string& dir) {
   if (!section.missing.empty()) md << "*Chart not drawn: " << section.missing << "*\n\n";
@@ -55,17 +86,19 @@ void seed_row(std::ostringstream& md, const SeedGroup& g, const std::vector<RunR
   std::string mark;
   for (std::size_t i : g.runs)
     if (mark.empty()) mark = selection_mark(runs[i]);
-  const MetricStats& m = g.over_seeds;
-  const double spread = g.over_sequences.error_mm.mean;
   md << "| " << md_cell(g.experiment) << " (" << g.runs.size() << " seeds)" << mark << " | " << md_cell(g.model)
-     << " | " << first.parameters << " | " << md_cell(g.split) << " (" << g.sequences << ") | "
-     << mean_pm_std(m.error_mm.mean, m.error_mm.std)
-     << (std::isfinite(spread) ? " (sequences ± " + fixed(spread, 1) + ")" : std::string()) << " | "
-     << percent_pm(m.h_collision) << " | " << percent_pm(m.l_collision_plain) << " | " << percent_pm(m.l_collision)
-     << " | " << percent(first.truth_h_collision) << " / " << percent(first.truth_l_collision_plain) << " / "
-     << percent(first.truth_l_collision) << " | " << percent_pm(m.h_crossing) << " | " << percent_pm(m.l_crossing)
-     << " | " << percent(first.truth_h_crossing) << " / " << percent(first.truth_l_crossing) << " | " << g.diverged
-     << " of " << g.sequences * static_cast<std::int64_t>(g.runs.size()) << " | " << ms(g.ms_per_frame) << " |  |\n";
+     << " | " << first.parameters << " | " << md_cell(g.split) << " (" << g.sequences << ") |";
+  for (const metrics::MetricDef& d : registry()) {
+    const Stat m = g.over_seeds.get(d.key);
+    const double spread = g.over_sequences.get(d.key).mean;
+    if (d.unit == metrics::Unit::Millimetre)
+      md << " " << mean_pm_std(m.mean, m.std)
+         << (std::isfinite(spread) ? " (sequences ± " + fixed(spread, 1) + ")" : std::string()) << " |";
+    else
+      md << " " << percent_pm(m) << " |";
+  }
+  md << " " << truth_cell(first) << " | " << g.diverged << " of "
+     << g.sequences * static_cast<std::int64_t>(g.runs.size()) << " | " << ms(g.ms_per_frame) << " |  |\n";
 }
 
 // Which split chose each run's checkpoint and which it is evaluated on.
@@ -94,10 +127,9 @@ void selection_table(std::ostringstream& md, const std::vector<RunResults>& runs
 void models_table(std::ostringstream& md, const std::vector<RunResults>& runs) {
   const std::vector<bool> front = runs_on_front(runs);
   md << "## Models\n\n"
-     << "| run | model | parameters | split (sequences) | error (mm) | H-collision | " << kLPaper << " | " << kLOurs
-     << " | ground truth H / L paper / L ours | H-crossing | L-crossing | ground truth H / L crossing | diverged | "
-        "ms / frame | Pareto front |\n"
-     << "|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|:---:|\n";
+     << "| run | model | parameters | split (sequences) |" << metric_headings() << " " << truth_heading()
+     << " | diverged | ms / frame | Pareto front |\n"
+     << "|---|---|---:|---|" << metric_alignment() << "---:|---:|---:|:---:|\n";
   std::vector<const RunResults*> missing;
   const std::vector<SeedGroup> groups = seed_groups(runs);
   for (std::size_t i = 0; i < runs.size(); ++i) {
@@ -112,26 +144,19 @@ void models_table(std::ostringstream& md, const std::vector<RunResults>& runs) {
     }
     const EvalResults& e = *r.eval;
     md << "| " << run_name_cell(r) << " | " << md_cell(r.model) << " | " << e.parameters << " | " << md_cell(e.split)
-       << " (" << e.sequences << ") | " << mean_pm_std(e.overall.error_mm.mean, e.overall.error_mm.std) << " | "
-       << percent(e.overall.h_collision.mean) << " | " << percent(e.overall.l_collision_plain.mean) << " | "
-       << percent(e.overall.l_collision.mean) << " | " << percent(e.truth_h_collision) << " / "
-       << percent(e.truth_l_collision_plain) << " / " << percent(e.truth_l_collision) << " | "
-       << percent(e.overall.h_crossing.mean) << " | " << percent(e.overall.l_crossing.mean) << " | "
-       << percent(e.truth_h_crossing) << " / " << percent(e.truth_l_crossing) << " | " << divergence(e) << " | "
-       << ms(e.ms_per_frame) << " | " << (front[i] ? "yes" : "") << " |\n";
+       << " (" << e.sequences << ") |";
+    for (const metrics::MetricDef& d : registry()) md << " " << cell(d, e.overall.get(d.key)) << " |";
+    md << " " << truth_cell(e) << " | " << divergence(e) << " | " << ms(e.ms_per_frame) << " | "
+       << (front[i] ? "yes" : "") << " |\n";
   }
-  md << "\nError: mean Euclidean distance between predicted and true garment vertices, averaged over each "
-        "rollout, mean ± std over sequences. H-collision: share of garment vertices behind the body surface "
-        "(the normal plane of the nearest body vertex, as in the paper). L-collision: share of outer-garment "
-        "vertices behind the inner garment, twice: the paper's definition (behind the normal plane of the nearest "
-        "inner vertex), comparable with its figures, and ours, the same test except that an outer vertex whose "
-        "nearest inner vertex lies on an open edge of the inner garment (a hem, a cuff) is beside it and does not "
-        "count (\"-\" for the paper's: an evaluation made before it was measured). The ground truth's own rates "
-        "are given for reference (the simulator is not perfect either). H-crossing, L-crossing: exact "
-        "measures (docs/metrics.md), the share of garment vertices on faces that pass through a body face, "
-        "and of outer-garment vertices on faces that pass through an inner-garment face; touching does not count "
-        "(\"-\": an evaluation made before they were measured). ms / frame: time in the model per "
-        "predicted frame during evaluation.\n\n";
+  md << "\n";
+  for (const metrics::MetricDef& d : registry())
+    md << "- **" << d.label << "**: " << d.description << " (docs/metrics.md, " << d.rule << "); "
+       << (d.unit == metrics::Unit::Millimetre ? "mean ± std over sequences" : "mean over sequences") << ", "
+       << (d.better == metrics::Better::Lower ? "lower" : "higher") << " is better.\n";
+  md << "\nThe ground truth's own values are given for reference (the simulator is not perfect either); \"-\": a "
+        "value not measured (an evaluation made before the metric existed, or no inner and outer garment). ms / "
+        "frame: time in the model per predicted frame during evaluation.\n\n";
   if (!groups.empty())
     md << "An experiment repeated over seeds is one row, \"name (n seeds)\": each value is the mean ± std over "
           "the seeds of the seeds' overall values (population std); the error's spread over sequences (mean over "
@@ -140,7 +165,8 @@ void models_table(std::ostringstream& md, const std::vector<RunResults>& runs) {
   for (const SeedGroup& g : groups) {
     md << "- `" << g.experiment << "` per seed, error (mm):";
     for (std::size_t k = 0; k < g.runs.size(); ++k)
-      md << (k ? "," : "") << " seed " << g.seeds[k] << " " << fixed(runs[g.runs[k]].eval->overall.error_mm.mean, 1);
+      md << (k ? "," : "") << " seed " << g.seeds[k] << " "
+         << fixed(runs[g.runs[k]].eval->overall.get(metrics::kError).mean, 1);
     md << "\n";
   }
   if (!groups.empty()) md << "\n";
@@ -157,7 +183,7 @@ void pareto_list(std::ostringstream& md, const std::vector<RunResults>& runs) {
   for (std::size_t k = 0; k < order.size(); ++k) {
     const EvalResults& e = *runs[order[k]].eval;
     md << k + 1 << ". `" << runs[order[k]].name << "` (" << runs[order[k]].model << "): " << ms(e.ms_per_frame)
-       << " ms/frame, " << fixed(e.overall.error_mm.mean, 1) << " mm\n";
+       << " ms/frame, " << fixed(e.overall.get(metrics::kError).mean, 1) << " mm\n";
   }
   md << "\n";
 }
@@ -210,9 +236,8 @@ void divergence_list(std::ostringstream& md, const std::vector<RunResults>& runs
 }
 
 void per_type_table(std::ostringstream& md, const std::vector<RunResults>& runs) {
-  md << "| garment type | run | sequences | error (mm) | H-collision | " << kLPaper << " | " << kLOurs
-     << " | H-crossing | L-crossing |\n"
-     << "|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
+  md << "| garment type | run | sequences |" << metric_headings() << "\n"
+     << "|---|---|---:|" << metric_alignment() << "\n";
   std::vector<std::string> types;
   for (const RunResults& r : runs)
     if (r.eval)
@@ -223,13 +248,17 @@ void per_type_table(std::ostringstream& md, const std::vector<RunResults>& runs)
     for (const RunResults& r : runs) {
       if (!r.eval) continue;
       for (const auto& [t, m] : r.eval->per_type)
-        if (t == type)
-          md << "| " << md_cell(type) << " | " << md_cell(r.name) << " | " << m.error_mm.count << " | "
-             << mean_pm_std(m.error_mm.mean, m.error_mm.std) << " | " << percent(m.h_collision.mean) << " | "
-             << percent(m.l_collision_plain.mean) << " | " << percent(m.l_collision.mean) << " | "
-             << percent(m.h_crossing.mean) << " | " << percent(m.l_crossing.mean) << " |\n";
+        if (t == type) {
+          md << "| " << md_cell(type) << " | " << md_cell(r.name) << " | " << m.get(metrics::kError).count << " |";
+          for (const metrics::MetricDef& d : registry()) md << " " << cell(d, m.get(d.key)) << " |";
+          md << "\n";
+        }
     }
-  md << "\nL-collision and L-crossing belong to the outer garment of a pair (\"-\" for inner garments).\n\n";
+  std::string outer;
+  for (const metrics::MetricDef& d : registry())
+    if (d.scope == metrics::Scope::OuterLayer) outer += (outer.empty() ? "" : ", ") + d.label;
+  if (!outer.empty()) md << "\n" << outer << ": measured on the outer garment of a pair (\"-\" for inner garments).";
+  md << "\n\n";
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 
 #include "layers/core/atomic_file.h"
 #include "layers/core/error.h"
+#include "layers/metrics/registry.h"
 #include "layers/report/charts.h"
 #include "layers/report/tables.h"
 #include "text.h"
@@ -49,7 +50,7 @@ Chart speed_accuracy_chart(const Gnuplot& gp, const std::string& dir, const std:
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const RunResults& r = runs[i];
     if (!r.eval) continue;
-    const double error = r.eval->overall.error_mm.mean;
+    const double error = r.eval->overall.get(metrics::kError).mean;
     if (!measured(r.eval->ms_per_frame) || !std::isfinite(error)) {
       unmeasured.push_back(r.name);
       continue;
@@ -80,7 +81,8 @@ Chart speed_accuracy_chart(const Gnuplot& gp, const std::string& dir, const std:
   }
   if (blocks == 0) throw Error("no run has both an error and a measured ms per frame: nothing to place on the chart");
   for (std::size_t i : runs_front_order(runs))
-    front_data << datum(runs[i].eval->ms_per_frame) << ' ' << datum(runs[i].eval->overall.error_mm.mean) << '\n';
+    front_data << datum(runs[i].eval->ms_per_frame) << ' ' << datum(runs[i].eval->overall.get(metrics::kError).mean)
+               << '\n';
   write_data(dir, name + "_runs.dat", "# ms_per_frame error_mm label; one block per run\n" + points.str());
   write_data(dir, name + "_front.dat", "# the Pareto front, fastest first: ms_per_frame error_mm\n" + front_data.str());
   if (bench_blocks)
@@ -120,44 +122,24 @@ Chart speed_accuracy_chart(const Gnuplot& gp, const std::string& dir, const std:
 }
 
 std::vector<Chart> by_step_charts(const Gnuplot& gp, const std::string& dir, const std::vector<RunResults>& runs) {
-  struct Metric {
-    const char* name;
-    const char* title;
-    const char* ylabel;
-    double StepMetrics::*field;
-    double scale;
-    double EvalResults::*truth;  // the ground truth's own rate; null for the error
-    const char* what;            // for the caption
-  };
-  const Metric metrics[] = {
-      {"by_step_error", "Error against rollout step", "mean Euclidean error (mm)", &StepMetrics::error_mm, 1.0, nullptr,
-       "the Euclidean error (mm)"},
-      {"by_step_h_collision", "H-collision against rollout step", "garment vertices behind the body (%)",
-       &StepMetrics::h_collision, 100.0, &EvalResults::truth_h_collision,
-       "the share of garment vertices behind the body surface (H-collision, %)"},
-      {"by_step_l_collision", "L-collision (ours: open-edge rule) against rollout step",
-       "outer-garment vertices behind the inner garment (%)", &StepMetrics::l_collision, 100.0,
-       &EvalResults::truth_l_collision,
-       "the share of outer-garment vertices behind the inner garment, an outer vertex beside an open edge of the "
-       "inner garment (a hem, a cuff) left out (L-collision, ours, %)"},
-      {"by_step_l_collision_plain", "L-collision (paper: nearest vertex) against rollout step",
-       "outer-garment vertices behind the inner garment (%)", &StepMetrics::l_collision_plain, 100.0,
-       &EvalResults::truth_l_collision_plain,
-       "the share of outer-garment vertices behind the normal plane of their nearest inner vertex (L-collision as "
-       "the paper defines it, %)"}};
-  constexpr std::size_t kMetrics = sizeof metrics / sizeof metrics[0];
+  // One chart per registered metric; shares drawn as percentages.
+  const std::vector<metrics::MetricDef>& defs = metrics::registered();
+  const auto scale = [](const metrics::MetricDef& d) { return d.unit == metrics::Unit::Share ? 100.0 : 1.0; };
 
   // One data file for all metrics: a block per run with steps.
   std::ostringstream data;
-  data << "# step error_mm h_collision_% l_collision_% l_collision_plain_%; one block per run\n";
+  data << "# step";
+  for (const metrics::MetricDef& d : defs) data << ' ' << d.key << (d.unit == metrics::Unit::Share ? "_%" : "");
+  data << "; one block per run\n";
   std::vector<std::size_t> plotted;
   std::int64_t last_step = 1;
   bool diverged = false;
   for (std::size_t i = 0; i < runs.size(); ++i) {
     if (!runs[i].eval || runs[i].eval->by_step.empty()) continue;
     for (const StepMetrics& st : runs[i].eval->by_step) {
-      data << st.step << ' ' << datum(st.error_mm) << ' ' << datum(100.0 * st.h_collision) << ' '
-           << datum(100.0 * st.l_collision) << ' ' << datum(100.0 * st.l_collision_plain) << '\n';
+      data << st.step;
+      for (const metrics::MetricDef& d : defs) data << ' ' << datum(scale(d) * st.get(d.key));
+      data << '\n';
       last_step = std::max(last_step, st.step);
     }
     data << "\n\n";
@@ -168,18 +150,21 @@ std::vector<Chart> by_step_charts(const Gnuplot& gp, const std::string& dir, con
   write_data(dir, "by_step.dat", data.str());
 
   std::vector<Chart> charts;
-  for (std::size_t m = 0; m < kMetrics; ++m) {
-    const Metric& metric = metrics[m];
+  for (std::size_t m = 0; m < defs.size(); ++m) {
+    const metrics::MetricDef& metric = defs[m];
     bool any = false;
     for (std::size_t i : plotted)
-      for (const StepMetrics& st : runs[i].eval->by_step) any = any || std::isfinite(st.*metric.field);
+      for (const StepMetrics& st : runs[i].eval->by_step) any = any || std::isfinite(st.get(metric.key));
     if (!any) continue;
+    const std::string name = "by_step_" + metric.key;
+    const std::string title = metric.label + " against rollout step";
+    const bool bound = metric.diverged == metrics::Diverged::Bound;
     std::ostringstream s;
-    s << gp.preamble(metric.name, 900, 500) << "set title " << gnuplot_string(metric.title) << "\n"
+    s << gp.preamble(name, 900, 500) << "set title " << gnuplot_string(title) << "\n"
       << "set xlabel 'rollout step (predicted frames after the ground-truth start)'\n"
-      << "set ylabel " << gnuplot_string(metric.ylabel) << "\nset grid\nset key outside right top\n"
+      << "set ylabel " << gnuplot_string(metric.axis) << "\nset grid\nset key outside right top\n"
       << "set datafile missing 'NaN'\nset xrange [1:" << std::max<std::int64_t>(last_step, 2) << "]\n"
-      << (m == 0 && diverged ? "set logscale y\n" : "set yrange [0:*]\n");
+      << (bound && diverged ? "set logscale y\n" : "set yrange [0:*]\n");
     for (std::size_t i : plotted) {
       const std::int64_t step = runs[i].eval->first_divergence_step();
       if (step < 0) continue;
@@ -188,32 +173,33 @@ std::vector<Chart> by_step_charts(const Gnuplot& gp, const std::string& dir, con
         << "set label " << gnuplot_string(runs[i].name + " diverges (step " + std::to_string(step) + ")") << " at "
         << step << ", graph 0.98 right rotate by 90 offset char -1.2,0 tc rgb " << gnuplot_string(run_color(i)) << "\n";
     }
-    // The ground truth's own collision rate (mean over sequences) for reference.
+    // The ground truth's own value (mean over sequences) for reference.
     double truth = kAbsent;
     for (std::size_t i : plotted)
-      if (metric.truth && !std::isfinite(truth)) truth = (*runs[i].eval).*metric.truth;
+      if (metric.truth && !std::isfinite(truth)) truth = runs[i].eval->truth_of(metric.key);
     s << "plot ";
     if (std::isfinite(truth))
-      s << exact(100.0 * truth) << " with lines dt 3 lw 1.5 lc rgb '#555555' title 'ground truth', \\\n     ";
+      s << exact(scale(metric) * truth) << " with lines dt 3 lw 1.5 lc rgb '#555555' title 'ground truth', \\\n     ";
     for (std::size_t k = 0; k < plotted.size(); ++k) {
       const std::size_t i = plotted[k];
       s << (k ? ", \\\n     " : "") << "'by_step.dat' index " << k << " using 1:" << m + 2 << " with lines lw 2 lc rgb "
         << gnuplot_string(run_color(i)) << " title " << gnuplot_string(runs[i].name);
     }
     s << "\n";
-    gp.plot(dir, metric.name, s.str());
-    std::string caption = "Mean over " + evaluated_sequences(runs, plotted) + " of " + metric.what +
-                          " at each rollout step: the model's own predictions are fed back, the body and wind "
+    gp.plot(dir, name, s.str());
+    std::string caption = "Mean over " + evaluated_sequences(runs, plotted) + " of the " + metric.label + " (" +
+                          metric.description +
+                          ") at each rollout step: the model's own predictions are fed back, the body and wind "
                           "stay ground truth, so growth along the x axis is accumulated drift." +
-                          (m > 0 ? " The dotted grey line is the ground truth's own rate (mean over the first "
-                                   "run's sequences): the simulator's data is not collision-free either."
-                                 : "");
+                          (metric.truth ? " The dotted grey line is the ground truth's own value (mean over the "
+                                          "first run's sequences): the simulator's data is not perfect either."
+                                        : "");
     if (diverged)
       caption +=
           " A dashed vertical line marks the first step at which any sequence of that run diverged "
-          "(non-finite or above the error bound); from there its error counts as the bound" +
-          std::string(m == 0 ? " (log y axis)." : " and its collision rates are left out.");
-    charts.push_back({std::string(metric.name) + ".png", metric.title, caption});
+          "(non-finite or above the error bound); from there " +
+          std::string(bound ? "it counts as the bound (log y axis)." : "it is left out.");
+    charts.push_back({name + ".png", title, caption});
   }
   return charts;
 }
@@ -237,7 +223,7 @@ Chart per_type_chart(const Gnuplot& gp, const std::string& dir, const std::vecto
     for (std::size_t i : plotted) {
       const auto& pt = runs[i].eval->per_type;
       auto it = std::find_if(pt.begin(), pt.end(), [&](const auto& p) { return p.first == type; });
-      const Stat s = it == pt.end() ? Stat{} : it->second.error_mm;
+      const Stat s = it == pt.end() ? Stat{} : it->second.get(metrics::kError);
       data << ' ' << datum(s.mean) << ' ' << datum(std::isfinite(s.std) ? s.std : 0.0);
     }
     data << '\n';

@@ -12,6 +12,7 @@
 #include "layers/core/error.h"
 #include "layers/core/text_file.h"
 #include "layers/data/run_layout.h"
+#include "layers/metrics/registry.h"
 
 namespace layers::report {
 
@@ -79,14 +80,16 @@ class Reader {
     if (s.count == 0) s.mean = s.std = kAbsent;
     return s;
   }
+  // Every registered metric the object has; error_mm required when asked.
   MetricStats metrics(const json& parent, const std::string& key, const std::string& path, bool require_error) const {
     const json& v = object(parent, key, path);
-    return {stat(v, "error_mm", path + ".error_mm", require_error),
-            stat(v, "h_collision", path + ".h_collision", false),
-            stat(v, "l_collision", path + ".l_collision", false),
-            stat(v, "h_crossing", path + ".h_crossing", false),
-            stat(v, "l_crossing", path + ".l_crossing", false),
-            stat(v, "l_collision_plain", path + ".l_collision_plain", false)};
+    MetricStats out;
+    for (const metrics::MetricDef& d : metrics::registered()) {
+      const bool required_field = require_error && d.key == metrics::kError;
+      if (required_field || (v.contains(d.key) && !v.at(d.key).is_null()))
+        out.by_key[d.key] = stat(v, d.key, path + "." + d.key, required_field);
+    }
+    return out;
   }
 
  private:
@@ -112,11 +115,8 @@ EvalResults parse_metrics_json(const Reader& r, const json& doc, const std::stri
   e.overall = r.metrics(doc, "overall", "overall", /*require_error=*/true);
   if (doc.contains("truth") && !doc.at("truth").is_null()) {
     const json& t = r.object(doc, "truth", "truth");
-    e.truth_h_collision = r.number(t, "h_collision", "truth.h_collision");
-    e.truth_l_collision = r.number(t, "l_collision", "truth.l_collision");
-    e.truth_h_crossing = r.number(t, "h_crossing", "truth.h_crossing");
-    e.truth_l_crossing = r.number(t, "l_crossing", "truth.l_crossing");
-    e.truth_l_collision_plain = r.number(t, "l_collision_plain", "truth.l_collision_plain");
+    for (const metrics::MetricDef& d : metrics::registered())
+      if (d.truth && t.contains(d.key)) e.truth[d.key] = r.number(t, d.key, "truth." + d.key);
   }
   if (doc.contains("per_type") && !doc.at("per_type").is_null()) {
     const json& types = r.object(doc, "per_type", "per_type");
@@ -129,12 +129,8 @@ EvalResults parse_metrics_json(const Reader& r, const json& doc, const std::stri
       const std::string p = "by_step[" + std::to_string(i) + "]";
       StepMetrics s;
       s.step = r.integer(steps[i], "step", p + ".step", static_cast<std::int64_t>(i + 1));
-      s.error_mm = r.number(steps[i], "error_mm", p + ".error_mm");
-      s.h_collision = r.number(steps[i], "h_collision", p + ".h_collision");
-      s.l_collision = r.number(steps[i], "l_collision", p + ".l_collision");
-      s.h_crossing = r.number(steps[i], "h_crossing", p + ".h_crossing");
-      s.l_crossing = r.number(steps[i], "l_crossing", p + ".l_crossing");
-      s.l_collision_plain = r.number(steps[i], "l_collision_plain", p + ".l_collision_plain");
+      for (const metrics::MetricDef& d : metrics::registered())
+        if (steps[i].contains(d.key)) s.by_key[d.key] = r.number(steps[i], d.key, p + "." + d.key);
       s.sequences = r.integer(steps[i], "sequences", p + ".sequences");
       e.by_step.push_back(s);
     }
@@ -159,7 +155,7 @@ EvalResults parse_metrics_json(const Reader& r, const json& doc, const std::stri
       const std::string p = "per_sequence[" + std::to_string(i) + "]";
       SequenceMetrics s;
       s.id = r.text(seqs[i], "id", p + ".id");
-      s.error_mm = r.number(seqs[i], "error_mm", p + ".error_mm");
+      s.error_mm = r.number(seqs[i], metrics::kError, p + "." + metrics::kError);
       s.diverged_at = r.integer(seqs[i], "diverged_at", p + ".diverged_at", -1);
       s.diverge_reason = r.text(seqs[i], "diverge_reason", p + ".diverge_reason");
       e.per_sequence.push_back(s);
@@ -214,6 +210,21 @@ std::string eval_folder(const fs::path& dir, const std::string& split) {
 }
 
 }  // namespace
+
+Stat MetricStats::get(const std::string& key) const {
+  const auto it = by_key.find(key);
+  return it == by_key.end() ? Stat{} : it->second;
+}
+
+double StepMetrics::get(const std::string& key) const {
+  const auto it = by_key.find(key);
+  return it == by_key.end() ? kAbsent : it->second;
+}
+
+double EvalResults::truth_of(const std::string& key) const {
+  const auto it = truth.find(key);
+  return it == truth.end() ? kAbsent : it->second;
+}
 
 std::int64_t EvalResults::first_divergence_step() const {
   std::int64_t first = -1;

@@ -6,22 +6,13 @@
 #include <filesystem>
 #include <sstream>
 
+#include "layers/metrics/registry.h"
 #include "text.h"
 
 namespace layers::report {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Every metric of MetricStats with its column name.
-struct MetricField {
-  const char* name;
-  Stat MetricStats::*stat;
-};
-constexpr MetricField kMetrics[] = {
-    {"error_mm", &MetricStats::error_mm},       {"h_collision", &MetricStats::h_collision},
-    {"l_collision", &MetricStats::l_collision}, {"l_collision_plain", &MetricStats::l_collision_plain},
-    {"h_crossing", &MetricStats::h_crossing},   {"l_crossing", &MetricStats::l_crossing}};
 
 // Mean and population std of the finite values (count 0 when none).
 Stat stat_of(const std::vector<double>& values) {
@@ -46,16 +37,17 @@ std::string experiment_folder(const RunResults& r) {
 }
 
 void summarise(SeedGroup& g, const std::vector<RunResults>& runs) {
-  for (const MetricField& m : kMetrics) {
+  for (const metrics::MetricDef& d : metrics::registered()) {
     std::vector<double> means, spreads;
     for (std::size_t i : g.runs) {
-      means.push_back((runs[i].eval->overall.*m.stat).mean);
-      spreads.push_back((runs[i].eval->overall.*m.stat).std);
+      means.push_back(runs[i].eval->overall.get(d.key).mean);
+      spreads.push_back(runs[i].eval->overall.get(d.key).std);
     }
-    g.over_seeds.*m.stat = stat_of(means);
+    g.over_seeds.by_key[d.key] = stat_of(means);
     const Stat spread = stat_of(spreads);
-    (g.over_sequences.*m.stat).mean = spread.mean;
-    (g.over_sequences.*m.stat).count = spread.count;
+    Stat& over_sequences = g.over_sequences.by_key[d.key];
+    over_sequences.mean = spread.mean;
+    over_sequences.count = spread.count;
   }
   std::vector<double> ms;
   for (std::size_t i : g.runs) {
@@ -110,17 +102,17 @@ int seed_group_of(const std::vector<SeedGroup>& groups, std::size_t run) {
 std::string seeds_csv(const std::vector<RunResults>& runs) {
   std::ostringstream out;
   out << "experiment,model,split,seeds,seed_list,sequences";
-  for (const MetricField& m : kMetrics)
-    out << ',' << m.name << ',' << m.name << "_std_seeds," << m.name << "_std_sequences";
+  for (const metrics::MetricDef& d : metrics::registered())
+    out << ',' << d.key << ',' << d.key << "_std_seeds," << d.key << "_std_sequences";
   out << ",ms_per_frame,diverged\n";
   for (const SeedGroup& g : seed_groups(runs)) {
     std::string seeds;
     for (std::uint64_t s : g.seeds) seeds += (seeds.empty() ? "" : " ") + std::to_string(s);
     out << csv_field(g.experiment) << ',' << csv_field(g.model) << ',' << csv_field(g.split) << ',' << g.runs.size()
         << ',' << seeds << ',' << g.sequences;
-    for (const MetricField& m : kMetrics)
-      out << ',' << exact((g.over_seeds.*m.stat).mean) << ',' << exact((g.over_seeds.*m.stat).std) << ','
-          << exact((g.over_sequences.*m.stat).mean);
+    for (const metrics::MetricDef& d : metrics::registered())
+      out << ',' << exact(g.over_seeds.get(d.key).mean) << ',' << exact(g.over_seeds.get(d.key).std) << ','
+          << exact(g.over_sequences.get(d.key).mean);
     out << ',' << exact(g.ms_per_frame) << ',' << g.diverged << '\n';
   }
   return out.str();

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "layers/metrics/registry.h"
 #include "layers/report/pareto.h"
 #include "layers/report/seeds.h"
 #include "text.h"
@@ -18,17 +19,54 @@ using json = nlohmann::ordered_json;
 std::vector<ParetoPoint> speed_points(const std::vector<RunResults>& runs) {
   std::vector<ParetoPoint> points;
   for (const RunResults& r : runs)
-    points.push_back(r.eval ? ParetoPoint{r.eval->ms_per_frame, r.eval->overall.error_mm.mean}
+    points.push_back(r.eval ? ParetoPoint{r.eval->ms_per_frame, r.eval->overall.get(metrics::kError).mean}
                             : ParetoPoint{kAbsent, kAbsent});
   return points;
 }
 
 json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 json to_json(const Stat& s) { return {{"mean", number(s.mean)}, {"std", number(s.std)}, {"count", s.count}}; }
+// Every registered metric, in registry order.
 json to_json(const MetricStats& m) {
-  return {{"error_mm", to_json(m.error_mm)},       {"h_collision", to_json(m.h_collision)},
-          {"l_collision", to_json(m.l_collision)}, {"l_collision_plain", to_json(m.l_collision_plain)},
-          {"h_crossing", to_json(m.h_crossing)},   {"l_crossing", to_json(m.l_crossing)}};
+  json out = json::object();
+  for (const metrics::MetricDef& d : metrics::registered()) out[d.key] = to_json(m.get(d.key));
+  return out;
+}
+
+json truth_json(const EvalResults& e) {
+  json out = json::object();
+  for (const metrics::MetricDef& d : metrics::registered())
+    if (d.truth) out[d.key] = number(e.truth_of(d.key));
+  return out;
+}
+
+// What each metric is (summary.json's `metrics`).
+json registry_json() {
+  json out = json::array();
+  for (const metrics::MetricDef& d : metrics::registered())
+    out.push_back({{"key", d.key},
+                   {"label", d.label},
+                   {"unit", d.unit == metrics::Unit::Millimetre ? "mm" : "share 0..1"},
+                   {"better", d.better == metrics::Better::Lower ? "lower" : "higher"},
+                   {"scope", d.scope == metrics::Scope::OuterLayer ? "outer garments" : "every garment"},
+                   {"truth", d.truth},
+                   {"description", d.description},
+                   {"rule", "docs/metrics.md: " + d.rule}});
+  return out;
+}
+
+// `,<key>,<key>_std` per registered metric (CSV header cells).
+std::string stat_headers() {
+  std::string out;
+  for (const metrics::MetricDef& d : metrics::registered()) out += "," + d.key + "," + d.key + "_std";
+  return out;
+}
+
+std::string stat_cells(const MetricStats& m) {
+  std::string out;
+  for (const metrics::MetricDef& d : metrics::registered())
+    out += "," + exact(m.get(d.key).mean) + "," + exact(m.get(d.key).std);
+  return out;
 }
 
 std::string counters_text(const std::map<std::string, double>& counters) {
@@ -91,58 +129,50 @@ std::vector<std::size_t> runs_front_order(const std::vector<RunResults>& runs) {
 std::string summary_csv(const std::vector<RunResults>& runs) {
   const std::vector<bool> front = runs_on_front(runs);
   std::ostringstream out;
-  out << "run,model,split,sequences,frames,parameters,ms_per_frame,error_mm_mean,error_mm_std,h_collision,"
-         "h_collision_std,l_collision,l_collision_std,truth_h_collision,truth_l_collision,diverged,"
-         "first_divergence_step,pareto,h_crossing,h_crossing_std,l_crossing,l_crossing_std,truth_h_crossing,"
-         "truth_l_crossing,l_collision_plain,l_collision_plain_std,truth_l_collision_plain,checkpoint,chosen_on,"
-         "evaluated_on,chosen_epoch,epochs,val_error_mm,selection_flag,experiment,seed\n";
+  out << "run,model,split,sequences,frames,parameters,ms_per_frame" << stat_headers();
+  for (const metrics::MetricDef& d : metrics::registered())
+    if (d.truth) out << ",truth_" << d.key;
+  out << ",diverged,first_divergence_step,pareto,checkpoint,chosen_on,evaluated_on,chosen_epoch,epochs,val_error_mm,"
+         "selection_flag,experiment,seed\n";
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const RunResults& r = runs[i];
     if (!r.eval) continue;
     const EvalResults& e = *r.eval;
     const std::int64_t div = e.first_divergence_step();
     out << csv_field(r.name) << ',' << csv_field(r.model) << ',' << csv_field(e.split) << ',' << e.sequences << ','
-        << e.frames << ',' << e.parameters << ',' << exact(e.ms_per_frame) << ',' << exact(e.overall.error_mm.mean)
-        << ',' << exact(e.overall.error_mm.std) << ',' << exact(e.overall.h_collision.mean) << ','
-        << exact(e.overall.h_collision.std) << ',' << exact(e.overall.l_collision.mean) << ','
-        << exact(e.overall.l_collision.std) << ',' << exact(e.truth_h_collision) << ',' << exact(e.truth_l_collision)
-        << ',' << e.diverged << ',' << (div >= 0 ? std::to_string(div) : "") << ',' << (front[i] ? "yes" : "no") << ','
-        << exact(e.overall.h_crossing.mean) << ',' << exact(e.overall.h_crossing.std) << ','
-        << exact(e.overall.l_crossing.mean) << ',' << exact(e.overall.l_crossing.std) << ','
-        << exact(e.truth_h_crossing) << ',' << exact(e.truth_l_crossing) << ','
-        << exact(e.overall.l_collision_plain.mean) << ',' << exact(e.overall.l_collision_plain.std) << ','
-        << exact(e.truth_l_collision_plain) << ',' << selection_cells(r) << '\n';
+        << e.frames << ',' << e.parameters << ',' << exact(e.ms_per_frame) << stat_cells(e.overall);
+    for (const metrics::MetricDef& d : metrics::registered())
+      if (d.truth) out << ',' << exact(e.truth_of(d.key));
+    out << ',' << e.diverged << ',' << (div >= 0 ? std::to_string(div) : "") << ',' << (front[i] ? "yes" : "no") << ','
+        << selection_cells(r) << '\n';
   }
   return out.str();
 }
 
 std::string per_type_csv(const std::vector<RunResults>& runs) {
   std::ostringstream out;
-  out << "run,model,type,sequences,error_mm_mean,error_mm_std,h_collision,h_collision_std,l_collision,"
-         "l_collision_std,h_crossing,h_crossing_std,l_crossing,l_crossing_std,l_collision_plain,l_collision_plain_"
-         "std\n";
+  out << "run,model,type,sequences" << stat_headers() << "\n";
   for (const RunResults& r : runs) {
     if (!r.eval) continue;
     for (const auto& [type, m] : r.eval->per_type)
-      out << csv_field(r.name) << ',' << csv_field(r.model) << ',' << csv_field(type) << ',' << m.error_mm.count << ','
-          << exact(m.error_mm.mean) << ',' << exact(m.error_mm.std) << ',' << exact(m.h_collision.mean) << ','
-          << exact(m.h_collision.std) << ',' << exact(m.l_collision.mean) << ',' << exact(m.l_collision.std) << ','
-          << exact(m.h_crossing.mean) << ',' << exact(m.h_crossing.std) << ',' << exact(m.l_crossing.mean) << ','
-          << exact(m.l_crossing.std) << ',' << exact(m.l_collision_plain.mean) << ',' << exact(m.l_collision_plain.std)
-          << '\n';
+      out << csv_field(r.name) << ',' << csv_field(r.model) << ',' << csv_field(type) << ','
+          << m.get(metrics::kError).count << stat_cells(m) << '\n';
   }
   return out.str();
 }
 
 std::string by_step_csv(const std::vector<RunResults>& runs) {
   std::ostringstream out;
-  out << "run,model,step,error_mm,h_collision,l_collision,sequences,h_crossing,l_crossing,l_collision_plain\n";
+  out << "run,model,step,sequences";
+  for (const metrics::MetricDef& d : metrics::registered()) out << ',' << d.key;
+  out << "\n";
   for (const RunResults& r : runs) {
     if (!r.eval) continue;
-    for (const StepMetrics& s : r.eval->by_step)
-      out << csv_field(r.name) << ',' << csv_field(r.model) << ',' << s.step << ',' << exact(s.error_mm) << ','
-          << exact(s.h_collision) << ',' << exact(s.l_collision) << ',' << s.sequences << ',' << exact(s.h_crossing)
-          << ',' << exact(s.l_crossing) << ',' << exact(s.l_collision_plain) << '\n';
+    for (const StepMetrics& s : r.eval->by_step) {
+      out << csv_field(r.name) << ',' << csv_field(r.model) << ',' << s.step << ',' << s.sequences;
+      for (const metrics::MetricDef& d : metrics::registered()) out << ',' << exact(s.get(d.key));
+      out << '\n';
+    }
   }
   return out.str();
 }
@@ -184,12 +214,7 @@ std::string summary_json(const std::string& title, const std::vector<RunResults>
                       {"parameters", e.parameters},
                       {"ms_per_frame", number(e.ms_per_frame)},
                       {"overall", to_json(e.overall)},
-                      {"truth",
-                       {{"h_collision", number(e.truth_h_collision)},
-                        {"l_collision", number(e.truth_l_collision)},
-                        {"l_collision_plain", number(e.truth_l_collision_plain)},
-                        {"h_crossing", number(e.truth_h_crossing)},
-                        {"l_crossing", number(e.truth_l_crossing)}}},
+                      {"truth", truth_json(e)},
                       {"diverged", e.diverged},
                       {"first_divergence_step", div >= 0 ? json(div) : json(nullptr)},
                       {"pareto", static_cast<bool>(front[i])},
@@ -216,12 +241,13 @@ std::string summary_json(const std::string& title, const std::vector<RunResults>
     pareto.push_back({{"run", runs[i].name},
                       {"model", runs[i].model},
                       {"ms_per_frame", runs[i].eval->ms_per_frame},
-                      {"error_mm", runs[i].eval->overall.error_mm.mean}});
+                      {"error_mm", runs[i].eval->overall.get(metrics::kError).mean}});
   const json doc = {{"title", title},
                     {"units",
                      {{"error", "mm (real world; the paper's mm are 10x)"},
                       {"rates", "share 0..1"},
                       {"time", "ms per predicted frame"}}},
+                    {"metrics", registry_json()},
                     {"runs", rows},
                     {"pareto_front", pareto},
                     {"seeds", seeds_json(runs)},

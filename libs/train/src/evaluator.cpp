@@ -17,6 +17,7 @@
 #include "layers/data/run_layout.h"
 #include "layers/data/shard_writer.h"
 #include "layers/dist/group.h"
+#include "layers/metrics/registry.h"
 #include "layers/train/checkpoint.h"
 #include "layers/train/session.h"
 #include "layers/train/trainer.h"
@@ -28,40 +29,29 @@ namespace {
 using json = nlohmann::ordered_json;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// Mean of the finite values (NaN when none).
-double finite_mean(const std::vector<double>& values) {
-  double sum = 0;
-  std::size_t n = 0;
-  for (double v : values)
-    if (std::isfinite(v)) sum += v, ++n;
-  return n ? sum / static_cast<double>(n) : kNaN;
+json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+json to_json(const metrics::MeanStd& m) {
+  return {{"mean", number(m.mean)}, {"std", number(m.std)}, {"count", m.count}};
 }
 
-std::vector<double> finite_only(const std::vector<double>& values) {
-  std::vector<double> out;
-  for (double v : values)
-    if (std::isfinite(v)) out.push_back(v);
+// Every registered metric's summary, in registry order.
+json to_json(const MetricSummary& s) {
+  json out = json::object();
+  for (const metrics::MetricDef& d : metrics::registered()) out[d.key] = to_json(s.at(d.key));
   return out;
 }
 
-json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+// Per registered metric (registry order), the values of sequences (or of
+// garments) gathered for a summary.
+using Columns = std::vector<std::vector<double>>;
 
-json to_json(const zoo::MeanStd& m) { return {{"mean", number(m.mean)}, {"std", number(m.std)}, {"count", m.count}}; }
-
-json to_json(const MetricSummary& s) {
-  return {{"error_mm", to_json(s.error_mm)},       {"h_collision", to_json(s.h_collision)},
-          {"l_collision", to_json(s.l_collision)}, {"l_collision_plain", to_json(s.l_collision_plain)},
-          {"h_crossing", to_json(s.h_crossing)},   {"l_crossing", to_json(s.l_crossing)}};
+MetricSummary summary_of(const Columns& columns) {
+  MetricSummary out;
+  const std::vector<metrics::MetricDef>& defs = metrics::registered();
+  for (std::size_t k = 0; k < defs.size(); ++k) out[defs[k].key] = metrics::finite_mean_std(columns[k]);
+  return out;
 }
-
-// Per-sequence values gathered for the summaries.
-struct Values {
-  std::vector<double> error, h, l, hx, lx, lp;  // hx, lx: crossings; l: ours, lp: the paper's L-collision
-  MetricSummary summary() const {
-    return {zoo::mean_std(error),           zoo::mean_std(finite_only(h)),  zoo::mean_std(finite_only(l)),
-            zoo::mean_std(finite_only(hx)), zoo::mean_std(finite_only(lx)), zoo::mean_std(finite_only(lp))};
-  }
-};
 
 // The rollout as a LAYERS-H5 sequence: ground-truth body and wind of the
 // rolled-out frames, garments = ground truth at frames 0 and 1, then the predictions.
@@ -106,9 +96,10 @@ std::string csv_number(double v) {
 double error_growth_mm_per_frame(const std::vector<FrameMetrics>& frames) {
   double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
   for (const FrameMetrics& m : frames) {
-    if (m.diverged || !std::isfinite(m.error_mm)) break;
+    const double error = m.error_mm();
+    if (m.diverged || !std::isfinite(error)) break;
     const double x = static_cast<double>(m.frame);
-    n += 1, sx += x, sy += m.error_mm, sxx += x * x, sxy += x * m.error_mm;
+    n += 1, sx += x, sy += error, sxx += x * x, sxy += x * error;
   }
   const double den = n * sxx - sx * sx;
   return n >= 2 && den > 0 ? (n * sxy - sx * sy) / den : kNaN;
@@ -168,11 +159,9 @@ std::string encode(const RolloutResult& r) {
   Bytes b;
   b.put<std::uint64_t>(r.frames.size());
   for (const FrameMetrics& m : r.frames) {
-    b.put(m.frame), b.put(m.error_mm), b.put(m.garment_error_mm), b.put(m.garment_h_collision);
-    b.put(m.h_collision), b.put(m.l_collision), b.put(m.truth_h_collision), b.put(m.truth_l_collision);
-    b.put(m.garment_h_crossing), b.put(m.h_crossing), b.put(m.l_crossing), b.put(m.truth_h_crossing);
-    b.put(m.truth_l_crossing), b.put(m.l_collision_plain), b.put(m.truth_l_collision_plain);
-    b.put<std::uint8_t>(m.diverged);
+    b.put(m.frame), b.put<std::uint8_t>(m.diverged), b.put(m.truth);
+    b.put<std::uint64_t>(m.value.size());
+    for (const metrics::FrameValue& v : m.value) b.put(v.scene), b.put(v.garments);
   }
   b.put(r.diverged_at), b.put(r.diverge_reason), b.put(r.model_seconds);
   b.put<std::uint64_t>(r.predictions.size());
@@ -190,14 +179,9 @@ RolloutResult decode(const std::string& bytes) {
   RolloutResult r;
   r.frames.resize(u.get<std::uint64_t>());
   for (FrameMetrics& m : r.frames) {
-    m.frame = u.get<std::int64_t>(), m.error_mm = u.get<double>();
-    m.garment_error_mm = u.doubles(), m.garment_h_collision = u.doubles();
-    m.h_collision = u.get<double>(), m.l_collision = u.get<double>();
-    m.truth_h_collision = u.get<double>(), m.truth_l_collision = u.get<double>();
-    m.garment_h_crossing = u.doubles(), m.h_crossing = u.get<double>(), m.l_crossing = u.get<double>();
-    m.truth_h_crossing = u.get<double>(), m.truth_l_crossing = u.get<double>();
-    m.l_collision_plain = u.get<double>(), m.truth_l_collision_plain = u.get<double>();
-    m.diverged = u.get<std::uint8_t>() != 0;
+    m.frame = u.get<std::int64_t>(), m.diverged = u.get<std::uint8_t>() != 0, m.truth = u.doubles();
+    m.value.resize(u.get<std::uint64_t>());
+    for (metrics::FrameValue& v : m.value) v.scene = u.get<double>(), v.garments = u.doubles();
   }
   r.diverged_at = u.get<std::int64_t>(), r.diverge_reason = u.text(), r.model_seconds = u.get<double>();
   r.predictions.resize(u.get<std::uint64_t>());
@@ -233,10 +217,13 @@ json selection_of(const CheckpointState& state, const std::string& file, const s
 // What the evaluation keeps of each sequence as it goes: the inputs of
 // the summaries (per sequence, per garment type, per rollout step), the
 // per-sequence entries of metrics.json and the rows of sequences.csv.
+// Every metric is the registry's (its rules: metrics/registry.h).
 struct EvalTally {
-  Values overall, truth;
-  std::map<std::string, Values> per_type;
-  std::vector<std::vector<double>> step_error, step_h, step_l, step_hx, step_lx, step_lp;  // [step][sequence]
+  const std::vector<metrics::MetricDef>& defs = metrics::registered();
+  Columns overall = Columns(defs.size()), truth = Columns(defs.size());
+  std::map<std::string, Columns> per_type;  // garment type -> a value per garment and sequence
+  std::vector<Columns> by_step;             // [step][metric][sequence]
+  std::vector<std::size_t> step_sequences;  // sequences that reached each step
   json sequences = json::array();
   std::ostringstream csv;
   std::vector<double> growth_rates;  // mm per frame, per sequence (error growth)
@@ -244,9 +231,9 @@ struct EvalTally {
   std::int64_t frames = 0, diverged = 0;
 
   EvalTally() {
-    // New columns go at the end: scripts read the older ones by position.
-    csv << "sequence,motion,tags,garment,type,layer,error_mm,h_collision,l_collision,diverged_at,h_crossing,l_crossing,"
-           "l_collision_plain\n";
+    csv << "sequence,motion,tags,garment,type,layer,diverged_at";
+    for (const metrics::MetricDef& d : defs) csv << ',' << d.key;
+    csv << '\n';
   }
 
   // One evaluated sequence, in the split's order.
@@ -256,98 +243,67 @@ struct EvalTally {
     model_seconds += res.model_seconds;
     frames += static_cast<std::int64_t>(res.frames.size());
     if (res.diverged_at >= 0) ++diverged;
-    std::vector<double> e, h, l, th, tl, hx, lx, thx, tlx, lp, tlp;
-    for (std::size_t k = 0; k < res.frames.size(); ++k) {
-      const FrameMetrics& m = res.frames[k];
-      e.push_back(m.error_mm), h.push_back(m.h_collision), l.push_back(m.l_collision);
-      th.push_back(m.truth_h_collision), tl.push_back(m.truth_l_collision);
-      hx.push_back(m.h_crossing), lx.push_back(m.l_crossing);
-      thx.push_back(m.truth_h_crossing), tlx.push_back(m.truth_l_crossing);
-      lp.push_back(m.l_collision_plain), tlp.push_back(m.truth_l_collision_plain);
-      if (step_error.size() <= k) {
-        step_error.resize(k + 1), step_h.resize(k + 1), step_l.resize(k + 1);
-        step_hx.resize(k + 1), step_lx.resize(k + 1), step_lp.resize(k + 1);
-      }
-      step_error[k].push_back(m.error_mm), step_h[k].push_back(m.h_collision), step_l[k].push_back(m.l_collision);
-      step_hx[k].push_back(m.h_crossing), step_lx[k].push_back(m.l_crossing);
-      step_lp[k].push_back(m.l_collision_plain);
+    if (by_step.size() < res.frames.size()) {
+      by_step.resize(res.frames.size(), Columns(defs.size()));
+      step_sequences.resize(res.frames.size(), 0);
     }
-    const double seq_error = zoo::sequence_mean(e), seq_h = finite_mean(h), seq_l = finite_mean(l);
-    const double seq_hx = finite_mean(hx), seq_lx = finite_mean(lx), seq_lp = finite_mean(lp);
+    std::vector<double> sequence(defs.size()), sequence_truth(defs.size(), kNaN);
+    for (std::size_t k = 0; k < defs.size(); ++k) {
+      std::vector<double> values, truths;
+      for (std::size_t f = 0; f < res.frames.size(); ++f) {
+        values.push_back(res.frames[f].value[k].scene);
+        truths.push_back(res.frames[f].truth[k]);
+        by_step[f][k].push_back(res.frames[f].value[k].scene);
+      }
+      sequence[k] = metrics::reduce_frames(defs[k], values);
+      if (defs[k].truth) sequence_truth[k] = metrics::reduce_frames(defs[k], truths);
+      overall[k].push_back(sequence[k]);
+      if (defs[k].truth) truth[k].push_back(sequence_truth[k]);
+    }
+    for (std::size_t f = 0; f < res.frames.size(); ++f) ++step_sequences[f];
     const double growth = error_growth_mm_per_frame(res.frames);
     if (std::isfinite(growth)) growth_rates.push_back(growth);
-    overall.error.push_back(seq_error), overall.h.push_back(seq_h), overall.l.push_back(seq_l);
-    overall.hx.push_back(seq_hx), overall.lx.push_back(seq_lx), overall.lp.push_back(seq_lp);
-    truth.h.push_back(finite_mean(th)), truth.l.push_back(finite_mean(tl));
-    truth.hx.push_back(finite_mean(thx)), truth.lx.push_back(finite_mean(tlx)), truth.lp.push_back(finite_mean(tlp));
     const data::SequenceInfo& info = dataset.info(id);
     std::string tags;
     for (const std::string& t : info.tags) tags += (tags.empty() ? "" : " ") + t;
     json garments = json::array();
     for (std::size_t g = 0; g < r.statics->garments.size(); ++g) {
       const zoo::GarmentStatic& gs = r.statics->garments[g];
-      std::vector<double> ge, gh, ghx;
-      for (const FrameMetrics& m : res.frames) {
-        ge.push_back(m.garment_error_mm[g]);
-        gh.push_back(m.diverged ? kNaN : m.garment_h_collision[g]);
-        ghx.push_back(m.diverged ? kNaN : m.garment_h_crossing[g]);
-      }
-      const double g_error = zoo::sequence_mean(ge), g_h = finite_mean(gh), g_hx = finite_mean(ghx);
-      // L-collision (both rules) and L-crossing belong to the outer garment
-      const bool outer = gs.layer == 1;
-      const double g_l = outer ? seq_l : kNaN, g_lx = outer ? seq_lx : kNaN, g_lp = outer ? seq_lp : kNaN;
-      Values& type = per_type[gs.type];
-      type.error.push_back(g_error), type.h.push_back(g_h), type.l.push_back(g_l);
-      type.hx.push_back(g_hx), type.lx.push_back(g_lx), type.lp.push_back(g_lp);
-      garments.push_back({{"name", gs.name},
-                          {"type", gs.type},
-                          {"layer", gs.layer},
-                          {"error_mm", number(g_error)},
-                          {"h_collision", number(g_h)},
-                          {"l_collision", number(g_l)},
-                          {"l_collision_plain", number(g_lp)},
-                          {"h_crossing", number(g_hx)},
-                          {"l_crossing", number(g_lx)}});
+      json garment = {{"name", gs.name}, {"type", gs.type}, {"layer", gs.layer}};
+      Columns& type = per_type.try_emplace(gs.type, Columns(defs.size())).first->second;
       csv << id << ',' << info.motion << ',' << tags << ',' << gs.name << ',' << gs.type << ',' << gs.layer << ','
-          << csv_number(g_error) << ',' << csv_number(g_h) << ',' << csv_number(g_l) << ','
-          << (res.diverged_at >= 0 ? std::to_string(res.diverged_at) : "") << ',' << csv_number(g_hx) << ','
-          << csv_number(g_lx) << ',' << csv_number(g_lp) << '\n';
+          << (res.diverged_at >= 0 ? std::to_string(res.diverged_at) : "");
+      for (std::size_t k = 0; k < defs.size(); ++k) {
+        std::vector<double> values;
+        for (const FrameMetrics& m : res.frames)
+          values.push_back(g < m.value[k].garments.size() ? m.value[k].garments[g] : kNaN);
+        const double value = metrics::reduce_frames(defs[k], values);
+        type[k].push_back(value);
+        garment[defs[k].key] = number(value);
+        csv << ',' << csv_number(value);
+      }
+      csv << '\n';
+      garments.push_back(garment);
     }
-    sequences.push_back({{"id", id},
-                         {"motion", info.motion},
-                         {"tags", info.tags},
-                         {"frames", res.frames.size()},
-                         {"error_mm", number(seq_error)},
-                         {"h_collision", number(seq_h)},
-                         {"l_collision", number(seq_l)},
-                         {"l_collision_plain", number(seq_lp)},
-                         {"truth_h_collision", number(truth.h.back())},
-                         {"truth_l_collision", number(truth.l.back())},
-                         {"truth_l_collision_plain", number(truth.lp.back())},
-                         {"h_crossing", number(seq_hx)},
-                         {"l_crossing", number(seq_lx)},
-                         {"truth_h_crossing", number(truth.hx.back())},
-                         {"truth_l_crossing", number(truth.lx.back())},
-                         {"diverged_at", res.diverged_at >= 0 ? json(res.diverged_at) : json(nullptr)},
-                         {"diverge_reason", res.diverge_reason},
-                         {"error_growth_mm_per_frame", number(growth)},
-                         {"garments", garments}});
+    json entry = {{"id", id}, {"motion", info.motion}, {"tags", info.tags}, {"frames", res.frames.size()}};
+    for (std::size_t k = 0; k < defs.size(); ++k) entry[defs[k].key] = number(sequence[k]);
+    for (std::size_t k = 0; k < defs.size(); ++k)
+      if (defs[k].truth) entry["truth_" + defs[k].key] = number(sequence_truth[k]);
+    entry["diverged_at"] = res.diverged_at >= 0 ? json(res.diverged_at) : json(nullptr);
+    entry["diverge_reason"] = res.diverge_reason;
+    entry["error_growth_mm_per_frame"] = number(growth);
+    entry["garments"] = garments;
+    sequences.push_back(entry);
   }
 };
 
 // The report's summaries from the tally.
 void summarise(const EvalTally& tally, EvalReport& report) {
-  const Values& overall = tally.overall;
-  const Values& truth = tally.truth;
   report.frames = tally.frames;
   report.diverged = tally.diverged;
-  report.overall = overall.summary();
-  for (const auto& [type, values] : tally.per_type) report.per_type.emplace_back(type, values.summary());
-  report.truth_h_collision = finite_mean(truth.h);
-  report.truth_l_collision = finite_mean(truth.l);
-  report.truth_h_crossing = finite_mean(truth.hx);
-  report.truth_l_crossing = finite_mean(truth.lx);
-  report.truth_l_collision_plain = finite_mean(truth.lp);
+  report.overall = summary_of(tally.overall);
+  report.truth = summary_of(tally.truth);
+  for (const auto& [type, columns] : tally.per_type) report.per_type.emplace_back(type, summary_of(columns));
   report.ms_per_frame = report.frames ? 1000.0 * tally.model_seconds / static_cast<double>(report.frames) : 0;
 }
 
@@ -355,18 +311,21 @@ void summarise(const EvalTally& tally, EvalReport& report) {
 json metrics_json(const EvalReport& report, const EvalTally& tally, const CheckpointState& state, const json& selection,
                   const ExperimentConfig& config, int horizon, std::int64_t parameters) {
   json by_step = json::array();
-  for (std::size_t k = 0; k < tally.step_error.size(); ++k) {
-    by_step.push_back({{"step", k + 1},
-                       {"error_mm", number(zoo::mean_std(tally.step_error[k]).mean)},
-                       {"h_collision", number(finite_mean(tally.step_h[k]))},
-                       {"l_collision", number(finite_mean(tally.step_l[k]))},
-                       {"l_collision_plain", number(finite_mean(tally.step_lp[k]))},
-                       {"h_crossing", number(finite_mean(tally.step_hx[k]))},
-                       {"l_crossing", number(finite_mean(tally.step_lx[k]))},
-                       {"sequences", tally.step_error[k].size()}});
+  for (std::size_t f = 0; f < tally.by_step.size(); ++f) {
+    json step = {{"step", f + 1}};
+    for (std::size_t k = 0; k < tally.defs.size(); ++k)
+      step[tally.defs[k].key] = number(metrics::finite_mean(tally.by_step[f][k]));
+    step["sequences"] = tally.step_sequences[f];
+    by_step.push_back(step);
   }
   json types = json::object();
   for (const auto& [type, summary] : report.per_type) types[type] = to_json(summary);
+  json truth = json::object();
+  for (const metrics::MetricDef& d : tally.defs)
+    if (d.truth) {
+      const metrics::MeanStd& t = report.truth.at(d.key);
+      truth[d.key] = t.count ? number(t.mean) : json(nullptr);
+    }
   return {{"model", report.model},
           {"checkpoint", report.checkpoint},
           // Ties these results to the exact checkpoint bytes they came from.
@@ -388,13 +347,8 @@ json metrics_json(const EvalReport& report, const EvalTally& tally, const Checkp
           {"ms_per_frame", report.ms_per_frame},
           {"parameters", parameters},
           {"overall", to_json(report.overall)},
-          {"error_growth_mm_per_frame", to_json(zoo::mean_std(tally.growth_rates))},
-          {"truth",
-           {{"h_collision", number(report.truth_h_collision)},
-            {"l_collision", number(report.truth_l_collision)},
-            {"l_collision_plain", number(report.truth_l_collision_plain)},
-            {"h_crossing", number(report.truth_h_crossing)},
-            {"l_crossing", number(report.truth_l_crossing)}}},
+          {"error_growth_mm_per_frame", to_json(metrics::mean_std(tally.growth_rates))},
+          {"truth", truth},
           {"per_type", types},
           {"by_step", by_step},
           {"per_sequence", tally.sequences}};
@@ -499,7 +453,8 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
       tally.add(r, s.dataset);
       if (writer) writer->append(prediction_sequence(s.dataset, r, s.selection));
       char extra[64];
-      std::snprintf(extra, sizeof extra, "error %.1f mm", zoo::mean_std(tally.overall.error).mean);
+      std::snprintf(extra, sizeof extra, "error %.1f mm",
+                    metrics::finite_mean(tally.overall[metrics::index_of(metrics::kError)]));
       if (options.progress && progress) progress->advance(1, extra);
     }
   }

@@ -20,11 +20,11 @@
 #include "layers/data/run_layout.h"
 #include "layers/dist/group.h"
 #include "layers/dist/tensors.h"
+#include "layers/metrics/measures.h"
 #include "layers/train/checkpoint.h"
 #include "layers/train/frame_loss.h"
 #include "layers/train/session.h"
 #include "layers/train/window_loader.h"
-#include "layers/zoo/metrics.h"
 
 namespace layers::train {
 namespace {
@@ -97,8 +97,8 @@ double validate(Session& s, dist::Group* group) {
     const SequenceRollout r = rollout_sequence(s, ids[k], t.val_horizon, s.config.eval.diverge_mm,
                                                /*keep_predictions=*/false, /*rates=*/false);
     std::vector<double> per_frame;
-    for (const FrameMetrics& m : r.result.frames) per_frame.push_back(m.error_mm);
-    sum_count[0] += zoo::sequence_mean(per_frame);
+    for (const FrameMetrics& m : r.result.frames) per_frame.push_back(m.error_mm());
+    sum_count[0] += metrics::sequence_mean(per_frame);
     sum_count[1] += 1;
   }
   if (group) group->allreduce_sum(sum_count);

@@ -270,6 +270,28 @@ TEST(DataWriter, RejectsInconsistentSequencesWithPreciseMessages) {
   EXPECT_NE(message.find("/seq/x/garments/1/faces"), std::string::npos) << message;
   EXPECT_NE(message.find("100000"), std::string::npos) << message;
 
+  // Every index rule of the schema: body skin indices below J, a joint
+  // hierarchy without self-parents, panels not negative, UV faces below U.
+  seq = make_sequence("x", 1);
+  ASSERT_FALSE(seq.body.skin_index.empty());
+  seq.body.skin_index[2] = 100000;
+  message = test::error_of<InputError>([&] { check_sequence(seq, "out.h5"); });
+  EXPECT_NE(message.find("/seq/x/body/skin_index"), std::string::npos) << message;
+  seq = make_sequence("x", 1);
+  ASSERT_GT(seq.body.joint_parents.size(), 1u);
+  seq.body.joint_parents[1] = 1;
+  message = test::error_of<InputError>([&] { check_sequence(seq, "out.h5"); });
+  EXPECT_NE(message.find("/seq/x/body/joint_parents"), std::string::npos) << message;
+  EXPECT_NE(message.find("own parent"), std::string::npos) << message;
+  seq = make_sequence("x", 1);
+  seq.garments[0].panel[0] = -1;
+  message = test::error_of<InputError>([&] { check_sequence(seq, "out.h5"); });
+  EXPECT_NE(message.find("/seq/x/garments/0/panel"), std::string::npos) << message;
+  seq = make_sequence("x", 1);
+  seq.garments[0].uv_faces[0] = static_cast<std::int32_t>(seq.garments[0].uv.size() / 2);
+  message = test::error_of<InputError>([&] { check_sequence(seq, "out.h5"); });
+  EXPECT_NE(message.find("/seq/x/garments/0/uv_faces"), std::string::npos) << message;
+
   seq = make_sequence("x", 1);
   seq.garments[0].type = "cape";
   message = test::error_of<InputError>([&] { check_sequence(seq, "out.h5"); });

@@ -84,9 +84,15 @@ TEST(Charts, EveryChartIsANonEmptyPng) {
   // The only missing piece: fast_run has no bench.json.
   ASSERT_EQ(result.problems.size(), 1u) << ::testing::PrintToString(result.problems);
   EXPECT_NE(result.problems[0].find("fast_run: no bench.json"), std::string::npos) << result.problems[0];
-  const std::vector<std::string> expected = {
-      "speed_accuracy", "by_step_error", "by_step_h_collision", "by_step_l_collision", "by_step_l_collision_plain",
-      "per_type",       "frames"};
+  const std::vector<std::string> expected = {"speed_accuracy",
+                                             "by_step_error_mm",
+                                             "by_step_h_collision",
+                                             "by_step_l_collision",
+                                             "by_step_l_collision_plain",
+                                             "by_step_h_crossing",
+                                             "by_step_l_crossing",
+                                             "per_type",
+                                             "frames"};
   ASSERT_EQ(result.charts.size(), expected.size()) << ::testing::PrintToString(result.charts);
   std::ifstream md_in(result.report);
   std::stringstream md;

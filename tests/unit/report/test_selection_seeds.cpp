@@ -161,12 +161,12 @@ TEST(Seeds, MeanAndStdOverSeedsBesideTheSpreadOverSequences) {
   EXPECT_EQ(g.experiment, "net");
   EXPECT_EQ(g.seeds, (std::vector<std::uint64_t>{0, 1, 2}));
   const double std_over_seeds = std::sqrt(8.0 / 3.0);  // population std of 10, 12, 14
-  EXPECT_NEAR(g.over_seeds.error_mm.mean, 12.0, 1e-9);
-  EXPECT_NEAR(g.over_seeds.error_mm.std, std_over_seeds, 1e-9);
-  EXPECT_EQ(g.over_seeds.error_mm.count, 3);
-  EXPECT_NEAR(g.over_sequences.error_mm.mean, 2.0, 1e-9);  // mean of the seeds' stds over sequences
-  EXPECT_NEAR(g.over_seeds.h_collision.mean, 0.02, 1e-9);
-  EXPECT_NEAR(g.over_seeds.h_collision.std, std::sqrt(2.0 / 3.0) * 0.01, 1e-9);
+  EXPECT_NEAR(g.over_seeds.get("error_mm").mean, 12.0, 1e-9);
+  EXPECT_NEAR(g.over_seeds.get("error_mm").std, std_over_seeds, 1e-9);
+  EXPECT_EQ(g.over_seeds.get("error_mm").count, 3);
+  EXPECT_NEAR(g.over_sequences.get("error_mm").mean, 2.0, 1e-9);  // mean of the seeds' stds over sequences
+  EXPECT_NEAR(g.over_seeds.get("h_collision").mean, 0.02, 1e-9);
+  EXPECT_NEAR(g.over_seeds.get("h_collision").std, std::sqrt(2.0 / 3.0) * 0.01, 1e-9);
   EXPECT_NEAR(g.ms_per_frame, 2.0, 1e-9);
 
   const std::string md = read_text_file(r.report);
@@ -208,7 +208,7 @@ TEST(Seeds, MeanAndStdOverSeedsBesideTheSpreadOverSequences) {
   EXPECT_EQ(summary[2].at("run"), "net/seed-2");
   EXPECT_EQ(summary[2].at("experiment"), "net");
   EXPECT_EQ(summary[2].at("seed"), "2");
-  EXPECT_NEAR(std::stod(summary[2].at("error_mm_mean")), 14.0, 1e-6);
+  EXPECT_NEAR(std::stod(summary[2].at("error_mm")), 14.0, 1e-6);
   EXPECT_EQ(summary[3].at("seed"), "");
 }
 

@@ -13,6 +13,8 @@
 
 #include "layers/core/error.h"
 #include "layers/core/source_revision.h"
+#include "layers/core/text_file.h"
+#include "layers/report/report.h"
 #include "layers/train/checkpoint.h"
 #include "layers/train/compute_threads.h"
 #include "layers/train/evaluator.h"
@@ -23,6 +25,12 @@
 
 namespace layers::train {
 namespace {
+
+// A frame's value of a registered metric, and the ground truth's.
+const metrics::FrameValue& value_of(const FrameMetrics& m, const std::string& key) {
+  return m.value.at(metrics::index_of(key));
+}
+double truth_of(const FrameMetrics& m, const std::string& key) { return m.truth.at(metrics::index_of(key)); }
 
 struct Fixture : ::testing::Test {
   test::TempDir dir;
@@ -269,7 +277,7 @@ TEST_F(Fixture, DivergenceIsRecordedNotThrown) {
   ASSERT_EQ(r.result.frames.size(), 10u);  // 12 frames: 0 and 1 given
   ASSERT_GE(r.result.diverged_at, 2);
   EXPECT_FALSE(r.result.diverge_reason.empty());
-  EXPECT_DOUBLE_EQ(r.result.frames.back().error_mm, 1000.0);
+  EXPECT_DOUBLE_EQ(value_of(r.result.frames.back(), "error_mm").scene, 1000.0);
   EXPECT_TRUE(r.result.frames.back().diverged);
   ASSERT_EQ(r.result.predictions.size(), 2u);
   EXPECT_TRUE(at::isfinite(r.result.predictions[0]).all().item<bool>());
@@ -286,7 +294,7 @@ TEST_F(Fixture, EvaluationWritesMetricsAndPredictions) {
   EXPECT_EQ(r.sequences, 1);
   EXPECT_EQ(r.frames, 6);
   EXPECT_EQ(r.per_type.size(), 2u);  // tshirt and jacket
-  EXPECT_GT(r.overall.error_mm.mean, 0.0);
+  EXPECT_GT(r.overall.at("error_mm").mean, 0.0);
   std::ifstream in(r.out_dir + "/metrics.json");
   const nlohmann::json j = nlohmann::json::parse(in);
   EXPECT_EQ(j["model"], "tiny");
@@ -296,7 +304,7 @@ TEST_F(Fixture, EvaluationWritesMetricsAndPredictions) {
   std::getline(ckpt, header);
   EXPECT_EQ(header.substr(28, 16), j["checkpoint_fnv1a64"].get<std::string>());
   EXPECT_EQ(j["by_step"].size(), 6u);
-  EXPECT_NEAR(j["overall"]["error_mm"]["mean"].get<double>(), r.overall.error_mm.mean, 1e-9);
+  EXPECT_NEAR(j["overall"]["error_mm"]["mean"].get<double>(), r.overall.at("error_mm").mean, 1e-9);
   const data::Dataset pred = data::Dataset::open(r.out_dir + "/predictions.h5");
   ASSERT_TRUE(pred.contains("s4"));
   EXPECT_EQ(pred.info("s4").n_frames, 8);  // 2 given + 6 predicted
@@ -316,25 +324,25 @@ TEST_F(Fixture, RolloutMeasuresPlantedCrossings) {
   const RolloutResult body = roll("through_body");
   ASSERT_EQ(body.frames.size(), 3u);
   for (const FrameMetrics& m : body.frames) {
-    EXPECT_GT(m.h_crossing, 0.05) << "frame " << m.frame;
-    EXPECT_LT(m.h_crossing, 1.0);
-    EXPECT_DOUBLE_EQ(m.l_crossing, 0.0) << "both layers moved together";
-    ASSERT_EQ(m.garment_h_crossing.size(), 2u);
-    EXPECT_GT(m.garment_h_crossing[0], 0.0);
-    EXPECT_GT(m.garment_h_crossing[1], 0.0);
-    EXPECT_DOUBLE_EQ(m.truth_h_crossing, 0.0);
-    EXPECT_DOUBLE_EQ(m.truth_l_crossing, 0.0);
-    EXPECT_TRUE(std::isfinite(m.h_collision));
+    EXPECT_GT(value_of(m, "h_crossing").scene, 0.05) << "frame " << m.frame;
+    EXPECT_LT(value_of(m, "h_crossing").scene, 1.0);
+    EXPECT_DOUBLE_EQ(value_of(m, "l_crossing").scene, 0.0) << "both layers moved together";
+    ASSERT_EQ(value_of(m, "h_crossing").garments.size(), 2u);
+    EXPECT_GT(value_of(m, "h_crossing").garments[0], 0.0);
+    EXPECT_GT(value_of(m, "h_crossing").garments[1], 0.0);
+    EXPECT_DOUBLE_EQ(truth_of(m, "h_crossing"), 0.0);
+    EXPECT_DOUBLE_EQ(truth_of(m, "l_crossing"), 0.0);
+    EXPECT_TRUE(std::isfinite(value_of(m, "h_collision").scene));
   }
   const RolloutResult inner = roll("through_inner");
   for (const FrameMetrics& m : inner.frames) {
-    EXPECT_GT(m.l_crossing, 0.05) << "frame " << m.frame;
+    EXPECT_GT(value_of(m, "l_crossing").scene, 0.05) << "frame " << m.frame;
     // Both L-collisions are measured; ours leaves out what the paper's counts beside an open edge.
-    EXPECT_TRUE(std::isfinite(m.l_collision_plain)) << "frame " << m.frame;
-    EXPECT_GE(m.l_collision_plain, m.l_collision) << "frame " << m.frame;
-    EXPECT_GE(m.truth_l_collision_plain, m.truth_l_collision) << "frame " << m.frame;
-    EXPECT_DOUBLE_EQ(m.h_crossing, 0.0) << "both layers stay clear of the body";
-    EXPECT_DOUBLE_EQ(m.truth_l_crossing, 0.0);
+    EXPECT_TRUE(std::isfinite(value_of(m, "l_collision_plain").scene)) << "frame " << m.frame;
+    EXPECT_GE(value_of(m, "l_collision_plain").scene, value_of(m, "l_collision").scene) << "frame " << m.frame;
+    EXPECT_GE(truth_of(m, "l_collision_plain"), truth_of(m, "l_collision")) << "frame " << m.frame;
+    EXPECT_DOUBLE_EQ(value_of(m, "h_crossing").scene, 0.0) << "both layers stay clear of the body";
+    EXPECT_DOUBLE_EQ(truth_of(m, "l_crossing"), 0.0);
   }
   // Without rates (training's validation): the same errors, every rate NaN.
   {
@@ -342,17 +350,74 @@ TEST_F(Fixture, RolloutMeasuresPlantedCrossings) {
     Session s = open_session(c, registry);
     const RolloutResult plain = rollout_sequence(s, "s4", 3, 1e6, false, /*rates=*/false).result;
     ASSERT_EQ(plain.frames.size(), 3u);
-    EXPECT_DOUBLE_EQ(plain.frames[0].error_mm, body.frames[0].error_mm);
-    EXPECT_TRUE(std::isnan(plain.frames[0].h_crossing));
-    EXPECT_TRUE(std::isnan(plain.frames[0].h_collision));
-    EXPECT_TRUE(std::isnan(plain.frames[0].truth_l_crossing));
+    EXPECT_DOUBLE_EQ(value_of(plain.frames[0], "error_mm").scene, value_of(body.frames[0], "error_mm").scene);
+    EXPECT_TRUE(std::isnan(value_of(plain.frames[0], "h_crossing").scene));
+    EXPECT_TRUE(std::isnan(value_of(plain.frames[0], "h_collision").scene));
+    EXPECT_TRUE(std::isnan(truth_of(plain.frames[0], "l_crossing")));
   }
   // After divergence no crossing rate, like the collision rates.
   const RolloutResult boom = roll("exploding", 0, 1000.0);
   ASSERT_TRUE(boom.frames.back().diverged);
-  EXPECT_TRUE(std::isnan(boom.frames.back().h_crossing));
-  EXPECT_TRUE(std::isnan(boom.frames.back().l_crossing));
-  EXPECT_TRUE(std::isnan(boom.frames.back().l_collision_plain));
+  EXPECT_TRUE(std::isnan(value_of(boom.frames.back(), "h_crossing").scene));
+  EXPECT_TRUE(std::isnan(value_of(boom.frames.back(), "l_crossing").scene));
+  EXPECT_TRUE(std::isnan(value_of(boom.frames.back(), "l_collision_plain").scene));
+}
+
+// A metric added to the registry reaches every output without touching the
+// evaluator or the report: metrics.json (overall, per type, per sequence
+// and garment, by step), sequences.csv, and the report's tables.
+TEST_F(Fixture, ARegisteredMetricReachesMetricsJsonAndTheReport) {
+  metrics::MetricDef speed;
+  speed.key = "garment_speed_mm";
+  speed.label = "garment speed (mm/frame)";
+  speed.description = "mean distance a garment vertex moves from the previous frame";
+  speed.rule = "none (a test metric)";
+  speed.unit = metrics::Unit::Millimetre;
+  speed.compute = [](const metrics::FrameScene& s) {
+    metrics::FrameValue v{0, {}};
+    double sum = 0, count = 0;
+    for (std::size_t g = 0; g < s.size(); ++g) {
+      const double d = metrics::euclidean_error_mm(s.garment(g).vertices, s.previous(g));
+      v.garments.push_back(d);
+      sum += d * s.garment(g).num_vertices();
+      count += s.garment(g).num_vertices();
+    }
+    v.scene = sum / count;
+    return v;
+  };
+  const metrics::ScopedMetric added(speed);
+  ExperimentConfig c = config("speed");
+  c.train.epochs = 1;
+  run_training(c, registry, quiet());
+  EvalOptions o;
+  o.progress = false;
+  const EvalReport r = run_evaluation(c, registry, o);
+  ASSERT_EQ(r.overall.count("garment_speed_mm"), 1u);
+  EXPECT_GT(r.overall.at("garment_speed_mm").mean, 0.0) << "the garments move in the fixture";
+  std::ifstream in(r.out_dir + "/metrics.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_NEAR(j["overall"]["garment_speed_mm"]["mean"].get<double>(), r.overall.at("garment_speed_mm").mean, 1e-12);
+  EXPECT_EQ(j["per_type"]["jacket"]["garment_speed_mm"]["count"], 1);
+  EXPECT_TRUE(j["per_sequence"][0]["garment_speed_mm"].is_number());
+  EXPECT_TRUE(j["per_sequence"][0]["garments"][0]["garment_speed_mm"].is_number());
+  EXPECT_TRUE(j["by_step"][0]["garment_speed_mm"].is_number());
+  EXPECT_FALSE(j["truth"].contains("garment_speed_mm")) << "not measured on the ground truth";
+  std::ifstream csv(r.out_dir + "/sequences.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_NE(header.find(",garment_speed_mm"), std::string::npos) << header;
+
+  const report::RunResults run = report::load_run(c.run.output);
+  ASSERT_TRUE(run.eval.has_value());
+  EXPECT_NEAR(run.eval->overall.get("garment_speed_mm").mean, r.overall.at("garment_speed_mm").mean, 1e-12);
+  report::ReportInputs inputs;
+  inputs.charts = false;
+  const report::ReportResult made = report::write_report({run}, inputs, dir.path() + "/report");
+  const std::string md = read_text_file(made.report);
+  EXPECT_NE(md.find("| garment speed (mm/frame) |"), std::string::npos) << "a column of the models table";
+  EXPECT_NE(md.find("mean distance a garment vertex moves"), std::string::npos) << "its description";
+  const std::string summary = read_text_file(dir.path() + "/report/summary.csv");
+  EXPECT_NE(summary.find(",garment_speed_mm,garment_speed_mm_std,"), std::string::npos);
 }
 
 TEST_F(Fixture, EvaluationReportsPlantedCrossings) {
@@ -368,34 +433,34 @@ TEST_F(Fixture, EvaluationReportsPlantedCrossings) {
   EvalOptions o;
   o.progress = false;
   const EvalReport r = run_evaluation(c, registry, o);
-  EXPECT_GT(r.overall.l_crossing.mean, 0.05);
-  EXPECT_EQ(r.overall.l_crossing.count, 1);
-  EXPECT_DOUBLE_EQ(r.overall.h_crossing.mean, 0.0);
-  EXPECT_DOUBLE_EQ(r.truth_h_crossing, 0.0);
-  EXPECT_DOUBLE_EQ(r.truth_l_crossing, 0.0);
+  EXPECT_GT(r.overall.at("l_crossing").mean, 0.05);
+  EXPECT_EQ(r.overall.at("l_crossing").count, 1);
+  EXPECT_DOUBLE_EQ(r.overall.at("h_crossing").mean, 0.0);
+  EXPECT_DOUBLE_EQ(r.truth.at("h_crossing").mean, 0.0);
+  EXPECT_DOUBLE_EQ(r.truth.at("l_crossing").mean, 0.0);
   std::ifstream in(r.out_dir + "/metrics.json");
   const nlohmann::json j = nlohmann::json::parse(in);
-  EXPECT_NEAR(j["overall"]["l_crossing"]["mean"].get<double>(), r.overall.l_crossing.mean, 1e-12);
+  EXPECT_NEAR(j["overall"]["l_crossing"]["mean"].get<double>(), r.overall.at("l_crossing").mean, 1e-12);
   EXPECT_EQ(j["overall"]["h_crossing"]["count"], 1);
   EXPECT_EQ(j["truth"]["l_crossing"], 0.0);
   EXPECT_TRUE(j["per_type"]["jacket"]["l_crossing"]["mean"].get<double>() > 0.05);
   EXPECT_EQ(j["per_type"]["tshirt"]["l_crossing"]["count"], 0) << "L belongs to the outer garment";
   EXPECT_TRUE(j["by_step"][0]["l_crossing"].get<double>() > 0.05);
   const nlohmann::json& seq = j["per_sequence"][0];
-  EXPECT_NEAR(seq["l_crossing"].get<double>(), r.overall.l_crossing.mean, 1e-12);
+  EXPECT_NEAR(seq["l_crossing"].get<double>(), r.overall.at("l_crossing").mean, 1e-12);
   EXPECT_EQ(seq["truth_l_crossing"], 0.0);
   EXPECT_TRUE(seq["garments"][1].contains("h_crossing"));
   // The paper's L-collision (plain nearest vertex) beside ours everywhere
   // ours is; the open-edge rule only leaves vertices out.
-  EXPECT_EQ(r.overall.l_collision_plain.count, 1);
-  EXPECT_GE(r.overall.l_collision_plain.mean, r.overall.l_collision.mean);
-  EXPECT_GE(r.truth_l_collision_plain, r.truth_l_collision);
-  EXPECT_NEAR(j["overall"]["l_collision_plain"]["mean"].get<double>(), r.overall.l_collision_plain.mean, 1e-12);
-  EXPECT_NEAR(j["truth"]["l_collision_plain"].get<double>(), r.truth_l_collision_plain, 1e-12);
+  EXPECT_EQ(r.overall.at("l_collision_plain").count, 1);
+  EXPECT_GE(r.overall.at("l_collision_plain").mean, r.overall.at("l_collision").mean);
+  EXPECT_GE(r.truth.at("l_collision_plain").mean, r.truth.at("l_collision").mean);
+  EXPECT_NEAR(j["overall"]["l_collision_plain"]["mean"].get<double>(), r.overall.at("l_collision_plain").mean, 1e-12);
+  EXPECT_NEAR(j["truth"]["l_collision_plain"].get<double>(), r.truth.at("l_collision_plain").mean, 1e-12);
   EXPECT_EQ(j["per_type"]["jacket"]["l_collision_plain"]["count"], 1);
   EXPECT_EQ(j["per_type"]["tshirt"]["l_collision_plain"]["count"], 0) << "L belongs to the outer garment";
   EXPECT_TRUE(j["by_step"][0]["l_collision_plain"].is_number());
-  EXPECT_NEAR(seq["l_collision_plain"].get<double>(), r.overall.l_collision_plain.mean, 1e-12);
+  EXPECT_NEAR(seq["l_collision_plain"].get<double>(), r.overall.at("l_collision_plain").mean, 1e-12);
   EXPECT_TRUE(seq["truth_l_collision_plain"].is_number());
   EXPECT_TRUE(seq["garments"][1]["l_collision_plain"].is_number());
   EXPECT_TRUE(seq["garments"][0]["l_collision_plain"].is_null());
@@ -403,9 +468,9 @@ TEST_F(Fixture, EvaluationReportsPlantedCrossings) {
   std::string header;
   std::getline(csv, header);
   EXPECT_EQ(header,
-            "sequence,motion,tags,garment,type,layer,error_mm,h_collision,l_collision,diverged_at,h_crossing,"
-            "l_crossing,l_collision_plain")
-      << "new columns at the end";
+            "sequence,motion,tags,garment,type,layer,diverged_at,error_mm,h_collision,l_collision,l_collision_plain,"
+            "h_crossing,l_crossing")
+      << "the registered metrics, in registry order";
 }
 
 TEST_F(Fixture, MissingDatasetIsAClearError) {

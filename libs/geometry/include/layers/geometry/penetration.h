@@ -9,8 +9,8 @@
 // A surface made with OpenEdges::Ignore gives no verdict (offset NaN, not
 // behind) for a point whose nearest vertex lies on an open edge of the mesh
 // (a hem, a cuff, a neckline): such a point is beside the surface, not
-// behind it. Our L-collision (zoo::l_collision_rate) tests outer garments
-// that way; the paper's (zoo::l_collision_plain_rate) counts every point
+// behind it. Our L-collision (metrics::l_collision_rate) tests outer garments
+// that way; the paper's (metrics::l_collision_plain_rate) counts every point
 // (OpenEdges::Count).
 #pragma once
 

@@ -5,9 +5,9 @@
 //                    with an evaluation, the Pareto front marked and
 //                    labelled; one more point per benchmarked scene size
 //                    when the run has a bench.json
-//   by_step_error, by_step_h_collision, by_step_l_collision (ours: open-
-//   edge rule), by_step_l_collision_plain (the paper's L-collision)
-//                    each metric against the rollout step for every run,
+//   by_step_<key>    each registered metric (layers/metrics/registry.h:
+//                    by_step_error_mm, by_step_h_collision, ...) against
+//                    the rollout step for every run,
 //                    each run's first divergence marked; a metric no run
 //                    has (e.g. evaluations from before it was measured) is
 //                    not drawn

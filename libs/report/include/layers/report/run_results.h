@@ -7,12 +7,12 @@
 // Missing pieces are not errors: load_run records a readable message in
 // RunResults::problems and leaves the piece empty. A file that exists but
 // is malformed is reported the same way, with the InputError's text.
-// Rates are shares 0..1, errors real-world mm, times ms; NaN = absent.
-// The exact crossing rates (h_crossing, l_crossing) and the paper's
-// L-collision (l_collision_plain, beside our l_collision with its open-edge
-// rule) are optional: a metrics.json written before the evaluator measured
-// them still loads, with those values absent; so is its `selection` (what
-// chose the checkpoint), read as "unknown" when absent.
+// The metrics are the registry's (layers/metrics/registry.h): each one
+// registered is read where the file has it and is absent otherwise (an
+// evaluation made before it was measured); one the file has but this
+// build does not register is not read. Rates are shares 0..1, errors
+// real-world mm, times ms; NaN = absent. `selection` (what chose the
+// checkpoint) reads as "unknown" when absent.
 //
 // A folder named seed-<s> is one repetition of a study experiment repeated
 // over seeds (<study>/<name>/seed-<s>): it is labelled "<name>/seed-<s>",
@@ -36,20 +36,19 @@ struct Stat {
   std::int64_t count = 0;  // sequences the value is over; 0 = absent
 };
 
+// {mean, std, count} of each metric, by registry key.
 struct MetricStats {
-  Stat error_mm, h_collision, l_collision;  // l_collision: ours (open-edge rule)
-  Stat h_crossing, l_crossing;              // exact crossings; count 0 when the file has none
-  Stat l_collision_plain;                   // the paper's L-collision; count 0 when the file has none
+  std::map<std::string, Stat> by_key;
+  Stat get(const std::string& key) const;  // absent: count 0, NaN
 };
 
 // One row of metrics.json's by_step: means over the sequences still rolling
 // out at that step (step 1 = the first predicted frame).
 struct StepMetrics {
   std::int64_t step = 0;
-  double error_mm = kAbsent, h_collision = kAbsent, l_collision = kAbsent;
-  double h_crossing = kAbsent, l_crossing = kAbsent;
-  double l_collision_plain = kAbsent;
+  std::map<std::string, double> by_key;
   std::int64_t sequences = 0;
+  double get(const std::string& key) const;  // kAbsent when absent
 };
 
 struct SequenceMetrics {
@@ -80,9 +79,8 @@ struct EvalResults {
   std::int64_t sequences = 0, frames = 0, diverged = 0, parameters = 0, horizon = 0;
   double ms_per_frame = kAbsent, diverge_mm = kAbsent;
   MetricStats overall;
-  double truth_h_collision = kAbsent, truth_l_collision = kAbsent;
-  double truth_h_crossing = kAbsent, truth_l_crossing = kAbsent;
-  double truth_l_collision_plain = kAbsent;
+  std::map<std::string, double> truth;                        // the ground truth's, by metric key
+  double truth_of(const std::string& key) const;              // kAbsent when absent
   std::vector<std::pair<std::string, MetricStats>> per_type;  // garment type -> stats
   std::vector<StepMetrics> by_step;
   std::vector<SequenceMetrics> per_sequence;

@@ -3,24 +3,25 @@
 // errors mm, times ms; an empty cell (CSV) or null (JSON) is a value the
 // run does not have.
 //
-//   summary.csv   one row per run: model, parameters, ms/frame, error mean
-//                 and std, H/L-collision, ground-truth rates, divergence,
-//                 Pareto membership, then the exact H/L-crossing (mean, std)
-//                 and the ground truth's, then the paper's L-collision
-//                 (l_collision_plain; l_collision is ours, with the
-//                 open-edge rule) and the ground truth's, then what chose
-//                 the checkpoint (checkpoint, chosen_on, evaluated_on,
-//                 chosen_epoch, epochs, selection_flag: run_results.h
-//                 selection_flag) and the seed columns (experiment, seed:
-//                 empty unless a seed-<s> run) (new columns go at the end:
-//                 scripts read the older ones by position)
-//   per_type.csv  one row per run and garment type (crossings, then the
-//                 paper's L-collision last)
-//   by_step.csv   one row per run and rollout step (the same order)
+// Every registered metric (layers/metrics/registry.h) is a pair of columns
+// <key>, <key>_std (mean and std over sequences), in registry order; read
+// CSV columns by their header, not by position.
+//
+//   summary.csv   one row per run: run, model, split, sequences, frames,
+//                 parameters, ms_per_frame, each metric, the ground
+//                 truth's (truth_<key>, for the metrics measured on it),
+//                 diverged, first_divergence_step, pareto, what chose the
+//                 checkpoint (checkpoint, chosen_on, evaluated_on,
+//                 chosen_epoch, epochs, val_error_mm, selection_flag:
+//                 run_results.h selection_flag) and the seed columns
+//                 (experiment, seed: empty unless a seed-<s> run)
+//   per_type.csv  one row per run and garment type: each metric
+//   by_step.csv   one row per run and rollout step: each metric's mean
 //   bench.csv     one row per run and benchmarked scene size
-//   summary.json  all of the above but by_step, plus the Pareto front in
-//                 speed order, the experiments over seeds (seeds.h), the
-//                 problems met and the charts made
+//   summary.json  all of the above but by_step, plus what each metric is
+//                 (`metrics`: key, unit, better, scope, rule), the Pareto
+//                 front in speed order, the experiments over seeds
+//                 (seeds.h), the problems met and the charts made
 #pragma once
 
 #include <string>

@@ -17,20 +17,20 @@
 // `metric`. A checkpoint chosen on data.test_split is refused (InputError);
 // one evaluated on the split that chose it is evaluated with a warning
 // (its figures are optimistic; `layers report` marks it).
-// Errors are real-world millimetres (the paper's figures are at 10x
-// scale). Collisions are the paper's vertex-normal H/L rates (L as the
-// paper defines it, `l_collision_plain`, and ours with the open-edge rule,
-// `l_collision`), crossings the exact H/L measures of geometry/intersect.h
-// (docs/metrics.md). The ground truth's own rates are reported beside the
-// model's.
+// Every metric of the registry (layers/metrics/registry.h) is measured,
+// aggregated and written by the rules it declares: overall, per garment
+// type, per sequence and garment, by rollout step, and for the ground
+// truth where the metric asks. Errors are real-world millimetres (the
+// paper's figures are at 10x scale).
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
+#include "layers/metrics/measures.h"
 #include "layers/train/experiment_config.h"
-#include "layers/zoo/metrics.h"
 
 namespace layers::zoo {
 class Registry;
@@ -54,11 +54,9 @@ struct EvalOptions {
   dist::Group* group = nullptr;
 };
 
-struct MetricSummary {
-  zoo::MeanStd error_mm, h_collision, l_collision;  // rates as shares 0..1; l_collision: ours (open-edge rule)
-  zoo::MeanStd h_crossing, l_crossing;              // exact crossings, shares 0..1
-  zoo::MeanStd l_collision_plain;                   // the paper's L-collision (plain nearest vertex)
-};
+// Every registered metric's mean +- std over sequences, by key
+// (layers/metrics/registry.h); count 0: no sequence measured it.
+using MetricSummary = std::map<std::string, metrics::MeanStd>;
 
 struct EvalReport {
   std::string model, checkpoint, split, out_dir;
@@ -66,9 +64,7 @@ struct EvalReport {
   std::int64_t sequences = 0, frames = 0, diverged = 0;
   MetricSummary overall;
   std::vector<std::pair<std::string, MetricSummary>> per_type;  // garment type -> summary
-  double truth_h_collision = 0, truth_l_collision = 0;          // ground truth, mean over sequences
-  double truth_h_crossing = 0, truth_l_crossing = 0;            // ground truth, mean over sequences
-  double truth_l_collision_plain = 0;                           // ground truth, the paper's L-collision
+  MetricSummary truth;                                          // the ground truth's, for MetricDef::truth metrics
   double ms_per_frame = 0;                                      // Model::step time per predicted frame
 };
 

@@ -1,13 +1,12 @@
 // layers/train/rollout.h -- autoregressive rollouts (docs/metrics.md):
 // start from ground truth, feed predictions back, body and wind stay ground
-// truth; per-frame metrics (Euclidean error, the paper's vertex-normal H-
-// and L-collision and our L-collision with its open-edge rule, the exact
-// H- and L-crossing of geometry/intersect.h;
-// also of the ground truth for reference) and divergence detection: a non-finite
-// prediction or a frame error above the bound stops the rollout and is
-// recorded with its frame, never a crash. Frames after divergence count
-// with the bound as their error (a diverged model cannot look better by
-// stopping early) and are left out of the collision and crossing rates.
+// truth; every metric of the registry (layers/metrics/registry.h) per
+// frame, also of the ground truth where the metric says so, and divergence
+// detection: a non-finite prediction or a frame error above the bound
+// stops the rollout and is recorded with its frame, never a crash. Frames
+// after divergence count as each metric's registry entry says (the error
+// as the bound: a diverged model cannot look better by stopping early;
+// the rates left out).
 #pragma once
 
 #include <cstdint>
@@ -17,6 +16,7 @@
 
 #include <ATen/ATen.h>
 
+#include "layers/metrics/registry.h"
 #include "layers/train/scene_tensors.h"
 
 namespace layers::train {
@@ -26,31 +26,18 @@ struct RolloutOptions {
   std::int64_t steps = -1;   // predicted frames; < 0: to the end of `frames`
   double diverge_mm = 1000;  // error bound of divergence
   bool keep_predictions = false;
-  bool truth_collisions = true;  // also measure the ground truth's H/L collision and crossing rates
-  bool rates = true;             // false: errors only, every rate NaN (training's validation)
+  bool truth_collisions = true;  // also measure the ground truth, for the metrics that ask (MetricDef::truth)
+  bool rates = true;             // false: the error only, every other metric NaN (training's validation)
 };
 
+// One predicted frame: a value per registered metric, in registry order.
 struct FrameMetrics {
-  std::int64_t frame = 0;                   // absolute frame
-  double error_mm = 0;                      // mean over all garment vertices
-  std::vector<double> garment_error_mm;     // per garment
-  std::vector<double> garment_h_collision;  // per garment, share behind the body
-  double h_collision = 0;                   // all garment vertices
-  // L-collision, ours (open-edge rule) and the paper's (plain nearest
-  // vertex): zoo/metrics.h. NaN: no inner+outer pair.
-  double l_collision = std::numeric_limits<double>::quiet_NaN();
-  double l_collision_plain = std::numeric_limits<double>::quiet_NaN();
-  double truth_h_collision = std::numeric_limits<double>::quiet_NaN();
-  double truth_l_collision = std::numeric_limits<double>::quiet_NaN();
-  double truth_l_collision_plain = std::numeric_limits<double>::quiet_NaN();
-  // Exact crossings (docs/metrics.md): share of garment vertices on faces
-  // through the body, of outer vertices on faces through the inner layer.
-  std::vector<double> garment_h_crossing;                        // per garment
-  double h_crossing = 0;                                         // all garment vertices
-  double l_crossing = std::numeric_limits<double>::quiet_NaN();  // NaN: no inner+outer pair
-  double truth_h_crossing = std::numeric_limits<double>::quiet_NaN();
-  double truth_l_crossing = std::numeric_limits<double>::quiet_NaN();
-  bool diverged = false;  // after divergence: error = bound, collisions and crossings NaN
+  std::int64_t frame = 0;                  // absolute frame
+  std::vector<metrics::FrameValue> value;  // the prediction's (scene NaN, no garments: not measured)
+  std::vector<double> truth;               // the ground truth's scene values (NaN: not measured)
+  bool diverged = false;                   // at or after divergence
+  // The registry's error_mm: mean over all garment vertices.
+  double error_mm() const;
 };
 
 struct RolloutResult {

@@ -1,6 +1,7 @@
-// layers/zoo/metrics.h -- the evaluation metrics (docs/metrics.md), per
-// frame, plus mean +- std aggregation over sequences: the paper's
-// definitions, and beside them our L-collision with its open-edge rule.
+// layers/metrics/measures.h -- the measures behind the evaluation metrics
+// (docs/metrics.md), per frame, plus mean +- std aggregation over
+// sequences: the paper's definitions, and beside them our L-collision with
+// its open-edge rule. registry.h declares the metrics built from them.
 // Positions are metres; errors are reported in real-world millimetres
 // (the paper's "mm" are at 10x scale, i.e. 10x these numbers). Torch-free.
 #pragma once
@@ -12,7 +13,7 @@
 #include "layers/geometry/mesh.h"
 #include "layers/geometry/penetration.h"
 
-namespace layers::zoo {
+namespace layers::metrics {
 
 // Mean over vertices of |predicted - truth|, in mm. Row counts must match
 // (layers::Error otherwise); a non-finite prediction gives a non-finite
@@ -67,4 +68,4 @@ std::string format(const MeanStd& value, int decimals = 1);
 // mean over its frames), then mean_std over sequences.
 double sequence_mean(const std::vector<double>& per_frame);
 
-}  // namespace layers::zoo
+}  // namespace layers::metrics

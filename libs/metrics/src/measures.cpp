@@ -1,5 +1,5 @@
-// Evaluation metrics (see metrics.h).
-#include "layers/zoo/metrics.h"
+// The measures of the evaluation metrics (see measures.h).
+#include "layers/metrics/measures.h"
 
 #include <cmath>
 #include <cstdio>
@@ -7,7 +7,7 @@
 #include "layers/core/error.h"
 #include "layers/geometry/topology.h"
 
-namespace layers::zoo {
+namespace layers::metrics {
 
 double euclidean_error_mm(const geometry::Points& predicted, const geometry::Points& truth) {
   if (predicted.rows() != truth.rows()) {
@@ -80,4 +80,4 @@ double sequence_mean(const std::vector<double>& per_frame) {
   return mean_std(per_frame).mean;
 }
 
-}  // namespace layers::zoo
+}  // namespace layers::metrics

@@ -6,10 +6,10 @@
 
 #include "grid_mesh.h"
 #include "layers/core/error.h"
-#include "layers/zoo/metrics.h"
+#include "layers/metrics/measures.h"
 
 namespace g = layers::geometry;
-namespace zoo = layers::zoo;
+namespace metrics = layers::metrics;
 
 namespace {
 
@@ -26,23 +26,23 @@ TEST(Metrics, TranslationBy3mmGives3mm) {
   g::Points truth = g::Points::Zero(5, 3);
   g::Points pred = truth;
   pred.col(1).setConstant(0.003f);
-  EXPECT_NEAR(zoo::euclidean_error_mm(pred, truth), 3.0, 1e-6);
+  EXPECT_NEAR(metrics::euclidean_error_mm(pred, truth), 3.0, 1e-6);
 
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> u(-0.5f, 0.5f);
   g::Points body_like(1000, 3);
   for (int i = 0; i < 1000; ++i) body_like.row(i) << u(rng), u(rng) + 1.0f, u(rng);
   g::Points moved = body_like.rowwise() + Eigen::RowVector3f(0.0018f, 0.0f, -0.0024f);  // |d| = 3 mm
-  EXPECT_NEAR(zoo::euclidean_error_mm(moved, body_like), 3.0, 1e-3);
-  EXPECT_DOUBLE_EQ(zoo::euclidean_error_mm(body_like, body_like), 0.0);
+  EXPECT_NEAR(metrics::euclidean_error_mm(moved, body_like), 3.0, 1e-3);
+  EXPECT_DOUBLE_EQ(metrics::euclidean_error_mm(body_like, body_like), 0.0);
 }
 
 TEST(Metrics, ErrorChecksShapesAndPropagatesNaN) {
-  EXPECT_THROW(zoo::euclidean_error_mm(g::Points::Zero(3, 3), g::Points::Zero(4, 3)), layers::Error);
-  EXPECT_THROW(zoo::euclidean_error_mm(g::Points(0, 3), g::Points(0, 3)), layers::Error);
+  EXPECT_THROW(metrics::euclidean_error_mm(g::Points::Zero(3, 3), g::Points::Zero(4, 3)), layers::Error);
+  EXPECT_THROW(metrics::euclidean_error_mm(g::Points(0, 3), g::Points(0, 3)), layers::Error);
   g::Points pred = g::Points::Zero(2, 3);
   pred(1, 0) = std::nanf("");
-  EXPECT_TRUE(std::isnan(zoo::euclidean_error_mm(pred, g::Points::Zero(2, 3))));
+  EXPECT_TRUE(std::isnan(metrics::euclidean_error_mm(pred, g::Points::Zero(2, 3))));
 }
 
 TEST(Metrics, HCollisionAgainstABodyPlane) {
@@ -57,20 +57,20 @@ TEST(Metrics, HCollisionAgainstABodyPlane) {
                               {0.45f, 0.05f, -0.001f},
                               {0.95f, 0.95f, 0.01f},
                               {0.05f, 0.5f, 0.2f}});
-  EXPECT_DOUBLE_EQ(zoo::h_collision_rate(garment, body), 0.3);
+  EXPECT_DOUBLE_EQ(metrics::h_collision_rate(garment, body), 0.3);
   garment(1, 0) = std::nanf("");  // a diverged vertex counts as not behind
-  EXPECT_DOUBLE_EQ(zoo::h_collision_rate(garment, body), 0.2);
+  EXPECT_DOUBLE_EQ(metrics::h_collision_rate(garment, body), 0.2);
 }
 
 TEST(Metrics, LCollisionAgainstAnInnerPlane) {
   g::TriMesh inner = layers::test::unit_square_grid(6, 0.1f);
   g::Points outer = points({{0.5f, 0.5f, 0.12f}, {0.2f, 0.3f, 0.08f}, {0.7f, 0.1f, 0.15f}, {0.9f, 0.9f, 0.11f}});
-  EXPECT_DOUBLE_EQ(zoo::l_collision_rate(outer, inner), 0.25);
+  EXPECT_DOUBLE_EQ(metrics::l_collision_rate(outer, inner), 0.25);
   // Two inner garments joined into one surface: the second, higher one
   // (z = 0.13) is nearest to the first outer vertex, now behind it.
   g::TriMesh upper = layers::test::unit_square_grid(6, 0.13f);
   g::TriMesh both = g::concatenate({inner, upper});
-  EXPECT_DOUBLE_EQ(zoo::l_collision_rate(outer, both), 0.5);
+  EXPECT_DOUBLE_EQ(metrics::l_collision_rate(outer, both), 0.5);
 }
 
 TEST(Metrics, LCollisionIgnoresOuterVerticesBesideAnOpenEdge) {
@@ -79,9 +79,9 @@ TEST(Metrics, LCollisionIgnoresOuterVerticesBesideAnOpenEdge) {
   // behind it; one vertex under the middle of the inner garment is.
   g::TriMesh inner = layers::test::unit_square_grid(6, 0.1f);
   g::Points outer = points({{1.1f, 0.5f, 0.05f}, {-0.1f, 0.3f, 0.0f}, {0.5f, 0.5f, 0.05f}, {0.3f, 0.7f, 0.2f}});
-  EXPECT_DOUBLE_EQ(zoo::l_collision_rate(outer, inner), 0.25);
+  EXPECT_DOUBLE_EQ(metrics::l_collision_rate(outer, inner), 0.25);
   // The plain nearest-vertex test (the paper's L-collision) counts the first two as well.
-  EXPECT_DOUBLE_EQ(zoo::l_collision_plain_rate(outer, inner), 0.75);
+  EXPECT_DOUBLE_EQ(metrics::l_collision_plain_rate(outer, inner), 0.75);
 }
 
 namespace {
@@ -117,42 +117,43 @@ TEST(Metrics, PlainLCollisionCountsBeyondTheHemOursDoesNot) {
   // Below the hem and nearer the axis than the hem vertex (0.15, 0, 0):
   // behind that vertex's normal plane, but beside the garment.
   const g::Points beyond_hem = points({{0.12f, -0.03f, 0.0f}});
-  EXPECT_DOUBLE_EQ(zoo::l_collision_plain_rate(beyond_hem, inner), 1.0) << "the paper's rule counts it";
-  EXPECT_DOUBLE_EQ(zoo::l_collision_rate(beyond_hem, inner), 0.0) << "the open-edge rule does not";
+  EXPECT_DOUBLE_EQ(metrics::l_collision_plain_rate(beyond_hem, inner), 1.0) << "the paper's rule counts it";
+  EXPECT_DOUBLE_EQ(metrics::l_collision_rate(beyond_hem, inner), 0.0) << "the open-edge rule does not";
   // Clearly outside the tube at mid height: in front for both rules.
   const g::Points in_front = points({{0.25f, 0.1f, 0.0f}});
-  EXPECT_DOUBLE_EQ(zoo::l_collision_plain_rate(in_front, inner), 0.0);
-  EXPECT_DOUBLE_EQ(zoo::l_collision_rate(in_front, inner), 0.0);
+  EXPECT_DOUBLE_EQ(metrics::l_collision_plain_rate(in_front, inner), 0.0);
+  EXPECT_DOUBLE_EQ(metrics::l_collision_rate(in_front, inner), 0.0);
   // Together with one inside the tube at mid height (nearest vertex not on
   // an open edge: behind for both) and one in front on the other side.
   const g::Points all = points({{0.12f, -0.03f, 0.0f}, {0.25f, 0.1f, 0.0f}, {0.12f, 0.1f, 0.0f}, {-0.3f, 0.1f, 0.0f}});
-  EXPECT_DOUBLE_EQ(zoo::l_collision_plain_rate(all, inner), 0.5);
-  EXPECT_DOUBLE_EQ(zoo::l_collision_rate(all, inner), 0.25);
+  EXPECT_DOUBLE_EQ(metrics::l_collision_plain_rate(all, inner), 0.5);
+  EXPECT_DOUBLE_EQ(metrics::l_collision_rate(all, inner), 0.25);
   // The plain rate is the plain nearest-vertex test, as H-collision's.
-  EXPECT_DOUBLE_EQ(zoo::l_collision_plain_rate(all, inner), zoo::behind_share(all, g::Surface::from_mesh(inner)));
+  EXPECT_DOUBLE_EQ(metrics::l_collision_plain_rate(all, inner),
+                   metrics::behind_share(all, g::Surface::from_mesh(inner)));
 }
 
 TEST(Metrics, CollisionRateNeedsVerticesAndValidFaces) {
-  EXPECT_THROW(zoo::h_collision_rate(g::Points(0, 3), layers::test::unit_square_grid(3, 0.0f)), layers::Error);
+  EXPECT_THROW(metrics::h_collision_rate(g::Points(0, 3), layers::test::unit_square_grid(3, 0.0f)), layers::Error);
   g::TriMesh bad = layers::test::unit_square_grid(3, 0.0f);
   bad.faces(0, 2) = 100;
-  EXPECT_THROW(zoo::h_collision_rate(g::Points::Zero(1, 3), bad), layers::InputError);
+  EXPECT_THROW(metrics::h_collision_rate(g::Points::Zero(1, 3), bad), layers::InputError);
 }
 
 TEST(Metrics, MeanStdOverSequences) {
-  zoo::MeanStd s = zoo::mean_std({1.0, 2.0, 3.0, 4.0});
+  metrics::MeanStd s = metrics::mean_std({1.0, 2.0, 3.0, 4.0});
   EXPECT_DOUBLE_EQ(s.mean, 2.5);
   EXPECT_DOUBLE_EQ(s.std, std::sqrt(1.25));
   EXPECT_EQ(s.count, 4u);
-  EXPECT_EQ(zoo::format(s), "2.5 +- 1.1");
-  EXPECT_EQ(zoo::format(zoo::mean_std({611.25, 611.35}), 2), "611.30 +- 0.05");
-  zoo::MeanStd empty = zoo::mean_std({});
+  EXPECT_EQ(metrics::format(s), "2.5 +- 1.1");
+  EXPECT_EQ(metrics::format(metrics::mean_std({611.25, 611.35}), 2), "611.30 +- 0.05");
+  metrics::MeanStd empty = metrics::mean_std({});
   EXPECT_EQ(empty.count, 0u);
   EXPECT_EQ(empty.mean, 0.0);
   // Per-frame values -> per-sequence means -> mean +- std.
-  double a = zoo::sequence_mean({2.0, 4.0}), b = zoo::sequence_mean({5.0, 7.0, 9.0});
-  zoo::MeanStd over = zoo::mean_std({a, b});
+  double a = metrics::sequence_mean({2.0, 4.0}), b = metrics::sequence_mean({5.0, 7.0, 9.0});
+  metrics::MeanStd over = metrics::mean_std({a, b});
   EXPECT_DOUBLE_EQ(over.mean, 5.0);
   EXPECT_DOUBLE_EQ(over.std, 2.0);
-  EXPECT_THROW(zoo::sequence_mean({}), layers::Error);
+  EXPECT_THROW(metrics::sequence_mean({}), layers::Error);
 }
