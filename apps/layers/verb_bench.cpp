@@ -32,6 +32,11 @@ VerbRun register_bench(CLI::App& app, const Global&) {
       ->capture_default_str();
   cmd->add_flag("--no-far-body", a->no_far, "skip the runs with a far-away copy of the body");
   cmd->add_flag("--no-train", a->no_train, "time inference only");
+  cmd->add_flag("--profile", a->options.profile,
+                "also profile a step by phase and operator (bench.json rows' profile; docs/benchmarks.md)");
+  cmd->add_option("--profile-steps", a->options.profile_steps, "steps profiled per scene")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
   return [a]() {
     LoadedConfig loaded = load_config(a->config);
     a->options.far_body = !a->no_far;
@@ -49,6 +54,19 @@ VerbRun register_bench(CLI::App& app, const Global&) {
                   static_cast<long long>(row.body_vertices), row.far_body ? "yes" : "no", row.ms_per_frame,
                   row.train_ms_per_frame, counters.c_str());
     }
+    for (const auto& row : r.rows) {
+      const auto phases = [](const char* what, const std::vector<std::pair<std::string, double>>& list, double gflops) {
+        if (list.empty()) return;
+        std::printf("  %s:", what);
+        for (const auto& [name, ms] : list) std::printf(" %s %.2f ms,", name.c_str(), ms);
+        std::printf(" %.1f GFLOP/s\n", gflops);
+      };
+      if (row.infer_phases.empty()) continue;
+      std::printf("level %d profile (ms per step by phase):\n", row.level);
+      phases("infer", row.infer_phases, row.infer_gflops);
+      phases("train", row.train_phases, row.train_gflops);
+    }
+    if (r.matmul_peak_gflops > 0) std::printf("matrix-product peak: %.1f GFLOP/s\n", r.matmul_peak_gflops);
     std::printf("written: %s\n", r.out.c_str());
     return static_cast<int>(kOk);
   };

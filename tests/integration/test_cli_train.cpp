@@ -195,6 +195,33 @@ TEST(CliTrain, SelectionNeverReadsTheTestSplitAndIsRecorded) {
     // The weights timed are the run's best checkpoint, and bench.json says so.
     EXPECT_EQ(nlohmann::json::parse(read_bytes(out))["checkpoint"], run + "/checkpoint-best.pt");
   }
+  // --profile: where an inference and a training step spend their time,
+  // by phase (every millisecond of the step in one phase or outside the
+  // profiled ranges) and operator, beside the machine's matrix-product peak.
+  {
+    const std::string out = dir.file("bench-profile.json");
+    const std::string profiled = "LAYERS_PLUGIN_PATH=" + test::plugin_dir() + " " + test::layers_bin() + " bench " +
+                                 experiment + " --levels 0 --min-time 0.01 --no-far-body --profile --profile-steps 2 " +
+                                 "--out " + out;
+    auto timed = run_command(profiled);
+    ASSERT_EQ(timed.exit_code, 0) << timed.output;
+    EXPECT_NE(timed.output.find("matrix-product peak:"), std::string::npos) << timed.output;
+    const nlohmann::json doc = nlohmann::json::parse(read_bytes(out));
+    EXPECT_GT(doc["matmul_peak_gflops"].get<double>(), 0.0);
+    for (const char* kind : {"infer", "train"}) {
+      const nlohmann::json& p = doc["rows"][0]["profile"][kind];
+      ASSERT_TRUE(p.is_object()) << kind << ": " << doc.dump(1);
+      EXPECT_EQ(p["steps"], 2);
+      EXPECT_GT(p["ops"].get<double>(), 0.0) << kind;
+      double phases = 0;
+      for (const auto& phase : p["phases"]) phases += phase["ms"].get<double>();
+      EXPECT_NEAR(phases, p["ms"].get<double>(), 1e-6 * p["ms"].get<double>()) << kind;
+      EXPECT_FALSE(p["top_ops"].empty()) << kind;
+    }
+    bool backward = false;
+    for (const auto& phase : doc["rows"][0]["profile"]["train"]["phases"]) backward |= phase["phase"] == "backward";
+    EXPECT_TRUE(backward) << "a training step's backward pass is a phase of its own";
+  }
   // A checkpoint file that is not there is an error, not the initial weights.
   auto missing = run_command(bench + dir.file("bench-missing.json") + " --checkpoint " + dir.file("none.pt"));
   EXPECT_EQ(missing.exit_code, 1) << missing.output;

@@ -18,6 +18,8 @@
 #include "layers/train/session.h"
 #include "layers/train/trainer.h"
 #include "layers/train/window_loader.h"
+#include "layers/zoo/phase.h"
+#include "op_profile.h"
 
 namespace layers::train {
 namespace {
@@ -61,6 +63,30 @@ void add_far_body(Scene& s) {
     for (std::size_t i = 0; i < per_frame; ++i) positions.push_back(frame[i] + (i % 3 == 0 ? 100.0f : 0.0f));
   }
   s.window.body.positions = std::move(positions);
+}
+
+// One inference step of the scene (rows t-1, t predict t+1).
+void infer_step(zoo::Model& model, const FrameTensors& frames) {
+  torch::NoGradGuard no_grad;
+  zoo::StepOutput out = model.step(step_input(frames, 1, true_states(frames, 1)));
+  benchmark::DoNotOptimize(out.garments.front().data_ptr());
+}
+
+// One training step of the scene: forward, the experiment's losses,
+// backward (gradients cleared after, not applied).
+void train_step(zoo::Model& model, const FrameTensors& frames, const LossConfig& loss_config) {
+  zoo::StepOutput out = model.step(step_input(frames, 1, true_states(frames, 1)));
+  std::vector<at::Tensor> truth;
+  for (const at::Tensor& g : frames.garments) truth.push_back(g[2]);
+  LossSum loss;
+  {
+    const zoo::Phase phase("phase:loss");
+    loss = frame_loss(model.sequence(), out.garments, truth, frames.body[2], loss_config);
+  }
+  loss.total.backward();
+  const zoo::Phase phase("phase:zero_grad");
+  for (at::Tensor p : model.parameters())
+    if (p.grad().defined()) p.mutable_grad().zero_();
 }
 
 // Collects the timings Google Benchmark measures.
@@ -138,11 +164,7 @@ BenchReport run_bench(const ExperimentConfig& config, const zoo::Registry& regis
                                  [&model, &statics = statics, &frames = frames](benchmark::State& st) {
                                    model.train(false);
                                    model.prepare(statics);
-                                   torch::NoGradGuard no_grad;
-                                   for (auto _ : st) {
-                                     zoo::StepOutput out = model.step(step_input(frames, 1, true_states(frames, 1)));
-                                     benchmark::DoNotOptimize(out.garments.front().data_ptr());
-                                   }
+                                   for (auto _ : st) infer_step(model, frames);
                                  })
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime()
@@ -152,16 +174,7 @@ BenchReport run_bench(const ExperimentConfig& config, const zoo::Registry& regis
                                    [&, &statics = statics, &frames = frames](benchmark::State& st) {
                                      model.train(true);
                                      model.prepare(statics);
-                                     for (auto _ : st) {
-                                       zoo::StepOutput out = model.step(step_input(frames, 1, true_states(frames, 1)));
-                                       std::vector<at::Tensor> truth;
-                                       for (const at::Tensor& g : frames.garments) truth.push_back(g[2]);
-                                       LossSum loss = frame_loss(model.sequence(), out.garments, truth, frames.body[2],
-                                                                 config.loss);
-                                       loss.total.backward();
-                                       for (at::Tensor p : model.parameters())
-                                         if (p.grad().defined()) p.mutable_grad().zero_();
-                                     }
+                                     for (auto _ : st) train_step(model, frames, config.loss);
                                      model.train(false);
                                    })
           ->Unit(benchmark::kMillisecond)
@@ -188,10 +201,38 @@ BenchReport run_bench(const ExperimentConfig& config, const zoo::Registry& regis
     report.rows.push_back(row);
   }
 
+  // Where the time goes (--profile): each scene without the far body.
+  std::vector<nlohmann::ordered_json> profiles(cases.size());
+  double peak = 0;
+  if (options.profile) {
+    peak = report.matmul_peak_gflops = matmul_peak_gflops();
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      if (cases[i].second.far_body) continue;
+      zoo::Model& model = *s.model;
+      const FrameTensors& frames = scenes[i].second;
+      model.train(false);
+      model.prepare(scenes[i].first);
+      const StepProfile infer = profile_steps([&] { infer_step(model, frames); }, options.profile_steps);
+      profiles[i]["infer"] = to_json(infer);
+      report.rows[i].infer_phases = phase_list(infer);
+      report.rows[i].infer_gflops = infer.step_gflops;
+      if (options.train && trainable) {
+        model.train(true);
+        model.prepare(scenes[i].first);
+        const StepProfile train = profile_steps([&] { train_step(model, frames, config.loss); }, options.profile_steps);
+        profiles[i]["train"] = to_json(train);
+        report.rows[i].train_phases = phase_list(train);
+        report.rows[i].train_gflops = train.step_gflops;
+        model.train(false);
+      }
+    }
+  }
+
   report.out = options.out.empty() ? (std::filesystem::path(config.run.output) / data::run_layout::kBench).string()
                                    : options.out;
   nlohmann::ordered_json rows = nlohmann::ordered_json::array();
-  for (const BenchRow& r : report.rows) {
+  for (std::size_t i = 0; i < report.rows.size(); ++i) {
+    const BenchRow& r = report.rows[i];
     rows.push_back({{"level", r.level},
                     {"far_body", r.far_body},
                     {"garment_vertices", r.garment_vertices},
@@ -199,11 +240,13 @@ BenchReport run_bench(const ExperimentConfig& config, const zoo::Registry& regis
                     {"counters", r.counters},
                     {"ms_per_frame", r.ms_per_frame},
                     {"train_ms_per_frame", r.train_ms_per_frame}});
+    if (!profiles[i].is_null()) rows.back()["profile"] = profiles[i];
   }
   nlohmann::ordered_json doc = {
       {"model", report.model},          {"parameters", report.parameters}, {"threads", report.threads},
       {"sequence", report.sequence},    {"split", report.split},           {"checkpoint", report.checkpoint},
       {"dataset", config.data.dataset}, {"experiment", config.source},     {"rows", rows}};
+  if (options.profile) doc["matmul_peak_gflops"] = peak;
   std::filesystem::create_directories(std::filesystem::path(report.out).parent_path().empty()
                                           ? std::filesystem::path(".")
                                           : std::filesystem::path(report.out).parent_path());

@@ -10,6 +10,7 @@
 #include "garment_graph.h"
 #include "layers/core/error.h"
 #include "layers/zoo/losses.h"
+#include "layers/zoo/phase.h"
 #include "layers/zoo/skinning.h"
 #include "pose_features.h"
 
@@ -117,6 +118,7 @@ std::shared_ptr<const zoo::Model::Derived> DeepsdModel::derive(const zoo::Sequen
 const DeepsdModel::Inputs& DeepsdModel::inputs() const { return derived<Inputs>(); }
 
 GarmentHeads DeepsdModel::heads(std::size_t garment) {
+  const zoo::Phase phase_garment_heads("phase:garment_heads");
   const Inputs::Garment& g = inputs().garments.at(garment);
   at::Tensor h = g.features;
   for (auto& layer : graph_) h = layer->forward(h, g.graph);
@@ -155,6 +157,7 @@ std::vector<GarmentHeads> DeepsdModel::all_heads(bool& reused) {
 }
 
 at::Tensor DeepsdModel::pose_embedding(const zoo::StepInput& in) {
+  const zoo::Phase phase_pose("phase:pose");
   if (!in.joints_next.defined())
     fail("step input joints_next", "the joint transforms at t+1 [J,3,4] (LAYERS-H5 body/joints)", "nothing");
   const Inputs& inputs = this->inputs();
@@ -171,6 +174,7 @@ zoo::StepOutput DeepsdModel::predict(const zoo::StepInput& in) {
   last_.sequence = sequence().id;
   bool reused = false;
   last_.heads = all_heads(reused);
+  const zoo::Phase phase_skinning("phase:skinning");
   zoo::StepOutput out;
   std::int64_t vertices = 0;
   for (std::size_t k = 0; k < inputs.garments.size(); ++k) {

@@ -11,6 +11,7 @@
 #include "integration.h"
 #include "joint_binding.h"
 #include "layers/core/error.h"
+#include "layers/zoo/phase.h"
 #include "layers/zoo/skinning.h"
 #include "tokens.h"
 #include "topology.h"
@@ -118,6 +119,7 @@ struct LayersNet::Encoded {
 };
 
 LayersNet::StepContext LayersNet::context(const zoo::StepInput& in) const {
+  const zoo::Phase phase_context("phase:context");
   const SceneTopology& t = derived<Cached>().topology;
   const at::TensorOptions f32 = at::TensorOptions().dtype(at::kFloat).device(device());
   // Root-relative garment state (velocities: differences of root-relative positions).
@@ -137,6 +139,7 @@ LayersNet::StepContext LayersNet::context(const zoo::StepInput& in) const {
 }
 
 LayersNet::Encoded LayersNet::encode(const StepContext& c, const zoo::StepInput& in) {
+  const zoo::Phase phase_graph("phase:graph");
   const SceneTopology& t = c.t;
   const at::Device dev = c.f32.device();
   const std::int64_t P = t.patches();
@@ -146,10 +149,14 @@ LayersNet::Encoded LayersNet::encode(const StepContext& c, const zoo::StepInput&
   const at::Tensor centroid = patch_mean(t, c.x.detach());
   const at::Tensor eye = at::eye(P, c.f32.dtype(at::kBool));
   e.world = (at::cdist(centroid, centroid) < params_.world_radius) & t.mesh_mask.logical_not() & eye.logical_not();
-  e.contacts = find_body_contacts(c.body_next, centroid, c.x, params_.body_radius, params_.max_body_senders);
+  {
+    const zoo::Phase phase_body_search("phase:body_search");
+    e.contacts = find_body_contacts(c.body_next, centroid, c.x, params_.body_radius, params_.max_body_senders);
+  }
   const at::Tensor body_ids = e.contacts.ids.to(dev), slot_valid = e.contacts.slot_valid.to(dev);
 
   // Tokens.
+  const zoo::Phase phase_tokens("phase:tokens");
   e.patches = encode_state_->forward(at::cat({e.patch_state, t.patch_kind}, 1));
   const std::int64_t B = body_ids.numel();
   const at::Tensor body_kind = at::tensor({0.0f, 0.0f, 1.0f}, c.f32).expand({B, kKinds});
@@ -181,6 +188,7 @@ void LayersNet::process(Encoded& e) {
 }
 
 at::Tensor LayersNet::integrate(const StepContext& c, const Encoded& e, const zoo::StepInput& in) {
+  const zoo::Phase phase_decoder("phase:decoder");
   const SceneTopology& t = c.t;
   const at::Device dev = c.f32.device();
   const auto radius = static_cast<float>(params_.body_radius);

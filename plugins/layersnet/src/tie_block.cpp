@@ -1,6 +1,7 @@
 // One LayersNet processor block (see tie_block.h).
 #include "tie_block.h"
 
+#include "layers/zoo/phase.h"
 #include "tie_attention.h"
 
 namespace layers::layersnet {
@@ -20,6 +21,7 @@ TieBlockImpl::TieBlockImpl(const TieBlockOptions& options)
 
 at::Tensor TieBlockImpl::forward(const at::Tensor& patches, const at::Tensor& abstract, const at::Tensor& body,
                                  const SenderGraph& graph) {
+  const zoo::Phase phase_attention("phase:attention");
   TieSenders senders;
   senders.dense = sender_->forward(at::cat({patches, abstract}, 0));
   senders.dense_mask = graph.dense_mask;
@@ -32,6 +34,7 @@ at::Tensor TieBlockImpl::forward(const at::Tensor& patches, const at::Tensor& ab
   TieWeights w{key_->weight, key_->bias, value_->weight, value_->bias, heads_};
   const at::Tensor attended = tie_attention(query_->forward(patches), receiver_->forward(patches), senders, w);
   at::Tensor x = norm_attn_->forward(patches + out_->forward(attended));
+  const zoo::Phase phase_block_mlp("phase:block_mlp");
   return norm_ffn_->forward(x + ffn_out_->forward(at::relu(ffn_in_->forward(x))));
 }
 

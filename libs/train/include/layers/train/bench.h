@@ -33,7 +33,13 @@ struct BenchOptions {
   bool far_body = true;   // also measure with the far body copy
   bool train = true;      // also time a training step (forward + losses + backward)
   double min_time = 0.5;  // seconds per measurement
-  std::string out;        // JSON file (default <run.output>/bench.json)
+  // Also profile (bench.json rows' `profile`): where the time of an
+  // inference and of a training step goes, by phase and operator, over
+  // `profile_steps` steps of each scene without the far body, beside the
+  // machine's matrix-product peak (`matmul_peak_gflops`).
+  bool profile = false;
+  int profile_steps = 5;
+  std::string out;  // JSON file (default <run.output>/bench.json)
   // best, last (the run's own; missing: the model's initial weights, which
   // time the same) or a checkpoint file, which must exist (a study sets its
   // run's checkpoint, a lent one included).
@@ -55,6 +61,10 @@ struct BenchRow {
   std::map<std::string, double> counters;  // Model::step_counters()
   double ms_per_frame = 0;                 // inference, batch 1
   double train_ms_per_frame = 0;           // 0 when not measured or nothing to train
+  // --profile: ms per step by phase (largest first) of an inference and a
+  // training step; empty when not profiled.
+  std::vector<std::pair<std::string, double>> infer_phases, train_phases;
+  double infer_gflops = 0, train_gflops = 0;  // the profiler's flop count over the step's time
 };
 
 struct BenchReport {
@@ -64,6 +74,7 @@ struct BenchReport {
   std::int64_t parameters = 0;
   int threads = 0;
   std::vector<BenchRow> rows;
+  double matmul_peak_gflops = 0;  // --profile: a 1024 x 1024 product on these threads
 };
 
 BenchReport run_bench(const ExperimentConfig& config, const zoo::Registry& registry, const BenchOptions& options);
