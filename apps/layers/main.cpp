@@ -11,6 +11,7 @@
 
 #include "layers/core/error.h"
 #include "layers/core/log.h"
+#include "layers/core/memory.h"
 #include "layers/core/source_revision.h"
 #include "verbs.h"
 
@@ -21,6 +22,8 @@ int main(int argc, char** argv) {
   // on a busy 2-core host). Set before torch starts OpenMP; a user's own
   // setting wins.
   setenv("OMP_WAIT_POLICY", "PASSIVE", /*overwrite=*/0);
+  // Freed tensors stay with the process for the next step's (memory.h).
+  layers::keep_freed_memory();
   using namespace layers;
   CLI::App app{
       "layers: generate multi-layered garment datasets, train and compare learned garment "

@@ -107,7 +107,7 @@ BenchReport run_bench(const ExperimentConfig& config, const zoo::Registry& regis
   BenchReport report;
   report.model = s.model->name();
   report.parameters = s.model->info().parameters;
-  report.threads = at::get_num_threads();
+  report.threads = config.run.threads;
   // The run's own best or last may not exist yet (the initial weights are
   // timed); a named file must.
   const std::string checkpoint = resolve_checkpoint(config, options.checkpoint);

@@ -5,6 +5,9 @@
 #include <ATen/Parallel.h>
 #include <dlfcn.h>
 
+#include <algorithm>
+#include <thread>
+
 namespace layers::train {
 namespace {
 
@@ -16,9 +19,17 @@ F blas_symbol(const char* name) {
 }  // namespace
 
 void set_compute_threads(int threads) {
-  if (threads <= 0) return;
-  at::set_num_threads(threads);
-  if (auto set = blas_symbol<void (*)(int)>("openblas_set_num_threads")) set(threads);
+  if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  auto set_blas = blas_symbol<void (*)(int)>("openblas_set_num_threads");
+  if (!set_blas) {
+    at::set_num_threads(threads);
+    return;
+  }
+  // The matrix products (OpenBLAS) get the threads, torch's own operators
+  // one: with both pools at two threads on two cores a model step ran 3-5x
+  // slower than on one thread (docs/benchmarks.md, "Threads").
+  set_blas(threads);
+  at::set_num_threads(1);
 }
 
 int blas_threads() {

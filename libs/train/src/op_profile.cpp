@@ -136,19 +136,26 @@ nlohmann::ordered_json to_json(const StepProfile& p, std::size_t top) {
   };
   json phases = json::array(), ops = json::array();
   for (const auto& [name, t] : by_time(p.phases)) {
-    json top_in_phase = json::array();
+    json top_in_phase = json::array(), most_called = json::array();
     const auto it = p.phase_ops.find(name);
-    if (it != p.phase_ops.end())
+    if (it != p.phase_ops.end()) {
       for (const auto& [op, o] : by_time(it->second)) {
         if (top_in_phase.size() >= 5) break;
         top_in_phase.push_back({{"op", op}, {"ms", o.ms}, {"calls", o.calls}});
       }
+      std::vector<std::pair<std::string, OpTotals>> calls(it->second.begin(), it->second.end());
+      std::sort(calls.begin(), calls.end(),
+                [](const auto& a, const auto& b) { return a.second.calls > b.second.calls; });
+      for (std::size_t k = 0; k < calls.size() && k < 5; ++k)
+        most_called.push_back({{"op", calls[k].first}, {"calls", calls[k].second.calls}});
+    }
     phases.push_back({{"phase", name},
                       {"ms", t.ms},
                       {"share", p.ms > 0 ? t.ms / p.ms : 0.0},
                       {"ops", t.calls},
                       {"gflop", t.gflop},
-                      {"top_ops", top_in_phase}});
+                      {"top_ops", top_in_phase},
+                      {"most_called", most_called}});
   }
   for (const auto& [name, t] : by_time(p.ops)) {
     if (is_phase(name)) continue;

@@ -5,6 +5,7 @@
 #include <ATen/core/grad_mode.h>
 
 #include <array>
+#include <memory>
 #include <string>
 
 #include "garment_graph.h"
@@ -53,6 +54,12 @@ struct DeepsdModel::Inputs : Derived {
   mutable std::vector<at::Tensor> prior_targets;   // [V,J] per garment, once made
   mutable std::vector<GarmentHeads> cached_heads;  // made without gradients, at cached_version
   mutable std::int64_t cached_version = -1;
+  // Made with gradients: shared by the steps of one backward pass (a
+  // training window's loss steps), until that pass reaches them (a hook on
+  // each head clears `graph_alive`) or a parameter changes.
+  mutable std::vector<GarmentHeads> graph_heads;
+  mutable std::int64_t graph_version = -1;
+  mutable std::shared_ptr<bool> graph_alive = std::make_shared<bool>(false);
 };
 
 DeepsdModel::DeepsdModel(const DeepsdParams& params) : Model(kDeepsd.name), params_(params) {
@@ -139,21 +146,33 @@ std::int64_t DeepsdModel::parameters_version() const {
 
 std::vector<GarmentHeads> DeepsdModel::all_heads(bool& reused) {
   const Inputs& in = inputs();
-  // Without gradients the heads depend on the parameters only (no dropout
-  // or batch statistics), so they are reused until a parameter changes.
-  const bool reuse = !at::GradMode::is_enabled();
-  reused = reuse && in.cached_version == parameters_version();
-  if (reused) return in.cached_heads;
-  std::vector<GarmentHeads> out;
-  for (std::size_t k = 0; k < in.garments.size(); ++k) out.push_back(heads(k));
-  if (reuse) {
-    in.cached_heads = out;
-    in.cached_version = parameters_version();
-  } else {
+  // The heads depend on the parameters only (no dropout or batch
+  // statistics). Without gradients they are reused until a parameter
+  // changes; with gradients, by the steps before the next backward pass
+  // through them (the same values, one graph: the pass sums their
+  // gradients as it would over separate copies).
+  const std::int64_t version = parameters_version();
+  if (!at::GradMode::is_enabled()) {
+    reused = in.cached_version == version;
+    if (reused) return in.cached_heads;
     in.cached_heads.clear();
-    in.cached_version = -1;
+    for (std::size_t k = 0; k < in.garments.size(); ++k) in.cached_heads.push_back(heads(k));
+    in.cached_version = version;
+    return in.cached_heads;
   }
-  return out;
+  reused = *in.graph_alive && in.graph_version == version;
+  if (reused) return in.graph_heads;
+  in.graph_heads.clear();
+  in.graph_alive = std::make_shared<bool>(true);
+  const std::shared_ptr<bool> alive = in.graph_alive;
+  for (std::size_t k = 0; k < in.garments.size(); ++k) {
+    GarmentHeads h = heads(k);
+    for (at::Tensor* t : {&h.weights, &h.basis})
+      if (t->requires_grad()) t->register_hook([alive](const at::Tensor&) { *alive = false; });
+    in.graph_heads.push_back(std::move(h));
+  }
+  in.graph_version = version;
+  return in.graph_heads;
 }
 
 at::Tensor DeepsdModel::pose_embedding(const zoo::StepInput& in) {

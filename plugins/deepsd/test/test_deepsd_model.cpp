@@ -219,6 +219,39 @@ TEST(DeepsdModel, WithoutGradientsTheHeadsAreReusedUntilAParameterChanges) {
   EXPECT_TRUE(at::allclose(model.step(in).garments[0].detach(), changed, 0, 1e-6));
 }
 
+// With gradients, the steps before a backward pass share one computation
+// of the heads (a training window's loss steps); the gradient is the one
+// of computing them afresh for each step, and after the pass they are made
+// again.
+TEST(DeepsdModel, WithGradientsTheStepsBeforeABackwardPassShareTheHeads) {
+  const Scene scene;
+  DeepsdModel model(small_params());
+  model.prepare(scene.statics());
+  const zoo::StepInput first = scene.input(posed(0.5)), second = scene.input(posed(0.7));
+  const auto gradients = [&] {
+    std::vector<at::Tensor> all;
+    for (at::Tensor p : model.parameters()) {
+      all.push_back(p.grad().defined() ? p.grad().detach().clone().flatten() : at::zeros({p.numel()}));
+      if (p.grad().defined()) p.mutable_grad().zero_();
+    }
+    return at::cat(all);
+  };
+  const at::Tensor a = model.step(first).garments[0];
+  EXPECT_EQ(model.step_counters().at("heads_reused"), 0.0);
+  const at::Tensor b = model.step(second).garments[0];
+  EXPECT_EQ(model.step_counters().at("heads_reused"), 1.0);
+  (a.square().sum() + b.square().sum()).backward();
+  const at::Tensor shared = gradients();
+
+  model.step(first).garments[0].square().sum().backward();
+  EXPECT_EQ(model.step_counters().at("heads_reused"), 0.0) << "made again after the backward pass";
+  model.step(second).garments[0].square().sum().backward();
+  EXPECT_EQ(model.step_counters().at("heads_reused"), 0.0);
+  const at::Tensor separate = gradients();
+  EXPECT_GT(shared.abs().sum().item<double>(), 0.0);
+  EXPECT_TRUE(at::allclose(shared, separate, 1e-4, 1e-6)) << (shared - separate).abs().max().item<double>();
+}
+
 TEST(DeepsdModel, ClearErrorsForMissingDataAndBadParameters) {
   const Scene scene;
   DeepsdModel model(small_params());

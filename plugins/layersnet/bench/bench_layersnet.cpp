@@ -14,6 +14,8 @@
 #include <string>
 
 #include "layers/core/config_node.h"
+#include "layers/core/memory.h"
+#include "layers/train/compute_threads.h"
 #include "layersnet.h"
 #include "synthetic_scene.h"
 
@@ -127,4 +129,14 @@ BENCHMARK(BM_LayersNetTrainStep)
     ->Unit(benchmark::kMillisecond)
     ->MinTime(2.0);
 
-BENCHMARK_MAIN();
+// One thread for the matrix products and torch's operators, as `run.threads:
+// 1` gives a run, and freed memory kept for the next step, as in `layers`.
+int main(int argc, char** argv) {
+  layers::train::set_compute_threads(1);
+  layers::keep_freed_memory();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -84,8 +84,11 @@ at::Tensor tie_attention(const at::Tensor& q, const at::Tensor& r, const TieSend
     const std::int64_t K = senders.local_index.size(1);
     const at::Tensor flat = senders.local_index.reshape({-1});
     auto gather = [&](const at::Tensor& t) { return t.index_select(0, flat).reshape({P, K, -1}); };
-    const Centred lc(senders.local);                                                   // [B,d], [B]
-    const at::Tensor cross = at::bmm(gather(lc.x), rc.x.unsqueeze(2)).squeeze(2) / d;  // [P,K]
+    const Centred lc(senders.local);  // [B,d], [B]
+    // A product per (patch, slot) pair, as one element-wise product and sum:
+    // bmm over P batches of [K,d] x [d,1] runs one small product per patch
+    // on the CPU (about 260 operator calls per block, twice that backward).
+    const at::Tensor cross = (gather(lc.x) * rc.x.unsqueeze(1)).sum(2) / d;  // [P,K]
     sd_l = spread(rc.var.unsqueeze(1) + gather(lc.var.unsqueeze(1)).squeeze(2), cross, w.eps);
     const at::Tensor kl = gather(at::linear(lc.x, w.wk)).reshape({P, K, H, dh});
     const at::Tensor q_kl = (kl * q.reshape({P, 1, H, dh})).sum(-1).permute({2, 0, 1});  // [H,P,K]

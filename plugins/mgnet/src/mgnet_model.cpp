@@ -12,6 +12,7 @@
 #include "layers/mgnet/params.h"
 #include "layers/mgnet/uv_network.h"
 #include "layers/zoo/model.h"
+#include "layers/zoo/phase.h"
 #include "spec.h"
 
 namespace layers::mgnet {
@@ -45,9 +46,13 @@ class MGNet : public zoo::Model {
     zoo::StepOutput out;
     if (layout.sizes.empty()) return out;
     const zoo::Normalization& norm = normalization();
+    const zoo::Phase phase_maps("phase:uv_maps");
     const StepMaps maps = step_maps(layout, in, norm, base_);
+    const zoo::Phase phase_network("phase:uv_network");
     const at::Tensor code = at::cat({state_encoder_->forward(maps.state), dynamic_encoder_->forward(maps.dynamic)}, 1);
-    const at::Tensor local = sample(layout.splat, decoder_->forward(code));
+    const at::Tensor decoded = decoder_->forward(code);
+    const zoo::Phase phase_sample("phase:uv_sample");
+    const at::Tensor local = sample(layout.splat, decoded);
     // The decoder speaks normalised accelerations; the frame mixes the
     // world axes, so one scale: the mean of the per-axis deviations.
     const at::Tensor displacement = from_frame(maps.frames, local) * norm.garment_acceleration.std.mean();

@@ -11,7 +11,7 @@ namespace layers {
 
 struct RunConfig {
   std::uint64_t seed = 0;
-  int threads = 2;              // intra-op threads (torch/BLAS); 0 = all cores
+  int threads = 2;              // threads of the numeric work (train/compute_threads.h); 0 = all cores
   std::string device = "cpu";   // cpu or cuda
   std::string output = "runs";  // where runs write checkpoints, metrics, reports
   int dist_timeout_s = 60;      // data-parallel runs: longest wait for another rank (layers/dist)
@@ -19,7 +19,9 @@ struct RunConfig {
   template <class V>
   void visit(V& v) {
     v("seed", seed, cfg::opt().help("random seed of the whole run"));
-    v("threads", threads, cfg::opt().range(0, 256).help("intra-op threads; 0 = all cores"));
+    v("threads", threads,
+      cfg::opt().range(0, 256).help(
+          "threads of the matrix products (OpenBLAS; torch's own operators use one); 0 = all cores"));
     v("device", device, cfg::opt().choices({"cpu", "cuda"}));
     v("output", output, cfg::opt().help("output folder"));
     v("dist_timeout_s", dist_timeout_s,
