@@ -99,16 +99,17 @@ VerbRun register_train(CLI::App& app, const Global&) {
     if (!root) return static_cast<int>(kOk);
     std::printf("trained %d epochs (%lld steps), %lld trainable parameters\n", r.epochs_done,
                 static_cast<long long>(r.steps), static_cast<long long>(r.trainable_parameters));
-    for (const auto& e : r.epochs)
-      std::printf(
-          "  epoch %d: loss %.5g  val error %.2f mm  %.1f frames/s  %.1f s%s\n", e.epoch, e.loss, e.val_error_mm,
-          e.frames_per_second, e.seconds,
-          e.ranks > 1
-              ? (" on " + std::to_string(e.ranks) + " ranks, " +
-                 std::to_string(static_cast<int>(std::lround(100.0 * e.comm_seconds / std::max(e.seconds, 1e-9)))) +
-                 "% in gradient exchange")
-                    .c_str()
-              : "");
+    for (const auto& e : r.epochs) {
+      const auto share = [&](double part) {
+        return std::to_string(static_cast<int>(std::lround(100.0 * part / std::max(e.seconds, 1e-9)))) + "%";
+      };
+      const std::string ranks =
+          e.ranks > 1 ? " on " + std::to_string(e.ranks) + " ranks, " + share(e.comm_seconds) + " in gradient exchange"
+                      : "";
+      std::printf("  epoch %d: loss %.5g  val error %.2f mm  %.1f frames/s  %.1f s%s (data %s, optimiser %s)\n",
+                  e.epoch, e.loss, e.val_error_mm, e.frames_per_second, e.seconds, ranks.c_str(),
+                  share(e.data_seconds).c_str(), share(e.optimizer_seconds).c_str());
+    }
     std::printf("checkpoints: %s, %s\n", r.last_checkpoint.c_str(), r.best_checkpoint.c_str());
     return static_cast<int>(kOk);
   };

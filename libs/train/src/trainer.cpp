@@ -259,7 +259,12 @@ EpochSummary train_epoch(TrainingRun& run, WindowLoader& loader, torch::optim::A
   double loss_sum = 0;
   std::int64_t frames = 0;
   std::size_t seen = 0;
-  while (std::optional<Batch> batch = loader.next()) {
+  double data_seconds = 0, optimizer_seconds = 0;
+  for (;;) {
+    Timer wait;
+    std::optional<Batch> batch = loader.next();
+    data_seconds += wait.seconds();
+    if (!batch) break;
     optimizer.zero_grad();
     const zoo::TrainingContext context{epoch, run.state.steps};
     double batch_loss = 0;
@@ -276,8 +281,10 @@ EpochSummary train_epoch(TrainingRun& run, WindowLoader& loader, torch::optim::A
       batch_loss = sums[0] / group->size();
       batch_frames = static_cast<std::int64_t>(sums[1]);
     }
+    Timer step;
     if (t.grad_clip > 0) torch::nn::utils::clip_grad_norm_(params, t.grad_clip);
     optimizer.step();
+    optimizer_seconds += step.seconds();
     ++run.state.steps;
     ++seen;
     if (run.first_batch) run.report.first_loss = batch_loss;
@@ -298,6 +305,8 @@ EpochSummary train_epoch(TrainingRun& run, WindowLoader& loader, torch::optim::A
   e.lr = lr;
   e.comm_seconds = group ? group->comm_seconds() - comm_before : 0;
   e.ranks = group ? group->size() : 1;
+  e.data_seconds = data_seconds;
+  e.optimizer_seconds = optimizer_seconds;
   return e;
 }
 
@@ -340,8 +349,11 @@ void keep_epoch(TrainingRun& run, const EpochSummary& e, torch::optim::Adam& opt
         e.epoch, epochs, e.loss, e.val_error_mm, e.lr, e.frames_per_second, e.ranks, e.seconds,
         100.0 * e.comm_seconds / std::max(e.seconds, 1e-9));
   else
-    spdlog::info("epoch {}/{}: loss {:.4g}, val error {:.2f} mm, lr {:.3g}, {:.1f} frames/s, {:.1f} s", e.epoch, epochs,
-                 e.loss, e.val_error_mm, e.lr, e.frames_per_second, e.seconds);
+    spdlog::info(
+        "epoch {}/{}: loss {:.4g}, val error {:.2f} mm, lr {:.3g}, {:.1f} frames/s, {:.1f} s ({:.1f}% waiting for "
+        "data, {:.1f}% in the optimiser)",
+        e.epoch, epochs, e.loss, e.val_error_mm, e.lr, e.frames_per_second, e.seconds,
+        100.0 * e.data_seconds / std::max(e.seconds, 1e-9), 100.0 * e.optimizer_seconds / std::max(e.seconds, 1e-9));
 }
 
 }  // namespace

@@ -58,6 +58,8 @@ struct EpochSummary {
   double seconds = 0;
   double frames_per_second = 0;  // predicted training frames (with gradient) per second, all ranks
   double comm_seconds = 0;       // of `seconds`, in gradient exchanges (data-parallel)
+  double data_seconds = 0;       // of `seconds`, waiting for the loader's next batch
+  double optimizer_seconds = 0;  // of `seconds`, clipping gradients and the optimiser's step
   int ranks = 1;
   double lr = 0;
 };
