@@ -182,6 +182,9 @@ void add(MetricDef def) {
   for (const MetricDef& d : table())
     if (d.key == def.key) throw Error("metric '" + def.key + "' is registered already");
   if (!def.compute) throw Error("metric '" + def.key + "': no function to measure a frame");
+  if (def.diverged == Diverged::Bound && def.unit != Unit::Millimetre)
+    throw Error("metric '" + def.key +
+                "': a diverged frame counts as the divergence bound (mm) only for a metric in mm");
   if (def.label.empty()) def.label = def.key;
   if (def.axis.empty()) def.axis = def.label;
   table().push_back(std::move(def));

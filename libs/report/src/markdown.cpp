@@ -43,7 +43,12 @@ std::string truth_heading() {
 std::string truth_cell(const EvalResults& e) {
   std::string out;
   for (const metrics::MetricDef& d : registry())
-    if (d.truth) out += (out.empty() ? "" : " / ") + percent(e.truth_of(d.key));
+    if (d.truth) {
+      const double v = e.truth_of(d.key);
+      out += (out.empty() ? "" : " / ") + (d.unit != metrics::Unit::Millimetre ? percent(v)
+                                           : std::isfinite(v)                  ? fixed(v, 1)
+                                                                               : "-");
+    }
   return out;
 }
 

@@ -35,10 +35,10 @@ json to_json(const metrics::MeanStd& m) {
   return {{"mean", number(m.mean)}, {"std", number(m.std)}, {"count", m.count}};
 }
 
-// Every registered metric's summary, in registry order.
-json to_json(const MetricSummary& s) {
+// Every metric's summary, in the order of `defs`.
+json to_json(const MetricSummary& s, const std::vector<metrics::MetricDef>& defs) {
   json out = json::object();
-  for (const metrics::MetricDef& d : metrics::registered()) out[d.key] = to_json(s.at(d.key));
+  for (const metrics::MetricDef& d : defs) out[d.key] = to_json(s.at(d.key));
   return out;
 }
 
@@ -46,9 +46,8 @@ json to_json(const MetricSummary& s) {
 // garments) gathered for a summary.
 using Columns = std::vector<std::vector<double>>;
 
-MetricSummary summary_of(const Columns& columns) {
+MetricSummary summary_of(const Columns& columns, const std::vector<metrics::MetricDef>& defs) {
   MetricSummary out;
-  const std::vector<metrics::MetricDef>& defs = metrics::registered();
   for (std::size_t k = 0; k < defs.size(); ++k) out[defs[k].key] = metrics::finite_mean_std(columns[k]);
   return out;
 }
@@ -219,7 +218,7 @@ json selection_of(const CheckpointState& state, const std::string& file, const s
 // per-sequence entries of metrics.json and the rows of sequences.csv.
 // Every metric is the registry's (its rules: metrics/registry.h).
 struct EvalTally {
-  const std::vector<metrics::MetricDef>& defs = metrics::registered();
+  const std::vector<metrics::MetricDef> defs = metrics::registered();  // the list as the evaluation starts
   Columns overall = Columns(defs.size()), truth = Columns(defs.size());
   std::map<std::string, Columns> per_type;  // garment type -> a value per garment and sequence
   std::vector<Columns> by_step;             // [step][metric][sequence]
@@ -243,6 +242,11 @@ struct EvalTally {
     model_seconds += res.model_seconds;
     frames += static_cast<std::int64_t>(res.frames.size());
     if (res.diverged_at >= 0) ++diverged;
+    for (const FrameMetrics& m : res.frames)
+      if (m.value.size() != defs.size() || m.truth.size() != defs.size())
+        throw Error("evaluation of '" + id + "': a rollout measured " + std::to_string(m.value.size()) +
+                    " metrics, the evaluation registers " + std::to_string(defs.size()) +
+                    " (a metric registered while it ran, or ranks built differently)");
     if (by_step.size() < res.frames.size()) {
       by_step.resize(res.frames.size(), Columns(defs.size()));
       step_sequences.resize(res.frames.size(), 0);
@@ -301,9 +305,10 @@ struct EvalTally {
 void summarise(const EvalTally& tally, EvalReport& report) {
   report.frames = tally.frames;
   report.diverged = tally.diverged;
-  report.overall = summary_of(tally.overall);
-  report.truth = summary_of(tally.truth);
-  for (const auto& [type, columns] : tally.per_type) report.per_type.emplace_back(type, summary_of(columns));
+  report.overall = summary_of(tally.overall, tally.defs);
+  report.truth = summary_of(tally.truth, tally.defs);
+  for (const auto& [type, columns] : tally.per_type)
+    report.per_type.emplace_back(type, summary_of(columns, tally.defs));
   report.ms_per_frame = report.frames ? 1000.0 * tally.model_seconds / static_cast<double>(report.frames) : 0;
 }
 
@@ -319,7 +324,7 @@ json metrics_json(const EvalReport& report, const EvalTally& tally, const Checkp
     by_step.push_back(step);
   }
   json types = json::object();
-  for (const auto& [type, summary] : report.per_type) types[type] = to_json(summary);
+  for (const auto& [type, summary] : report.per_type) types[type] = to_json(summary, tally.defs);
   json truth = json::object();
   for (const metrics::MetricDef& d : tally.defs)
     if (d.truth) {
@@ -346,7 +351,7 @@ json metrics_json(const EvalReport& report, const EvalTally& tally, const Checkp
           {"diverged", report.diverged},
           {"ms_per_frame", report.ms_per_frame},
           {"parameters", parameters},
-          {"overall", to_json(report.overall)},
+          {"overall", to_json(report.overall, tally.defs)},
           {"error_growth_mm_per_frame", to_json(metrics::mean_std(tally.growth_rates))},
           {"truth", truth},
           {"per_type", types},

@@ -47,6 +47,12 @@ void add_thread(const std::vector<prof::LegacyEvent>& events, StepProfile& p) {
       continue;
     }
     if (e.kind() != prof::EventKind::PopRange || stack.empty()) continue;
+    // The range this pop closes: the innermost open one with its handle
+    // (ranges opened inside it and never closed end with it).
+    std::size_t at = stack.size();
+    while (at > 0 && stack[at - 1].event->handle() != e.handle()) --at;
+    if (at == 0) continue;  // a pop of a range opened before profiling
+    while (stack.size() > at) stack.pop_back();
     Open open = std::move(stack.back());
     stack.pop_back();
     const double total_us = open.event->cpuElapsedUs(e);

@@ -41,7 +41,7 @@ RolloutResult rollout(zoo::Model& model, const zoo::SequenceStatic& seq, const F
     throw Error("rollout of sequence '" + seq.id + "': start row " + std::to_string(options.start) + " and " +
                 std::to_string(steps) + " steps do not fit a window of " + std::to_string(frames.frames()) + " frames");
   torch::NoGradGuard no_grad;
-  const std::vector<metrics::MetricDef>& defs = metrics::registered();
+  const std::vector<metrics::MetricDef> defs = metrics::registered();  // the list as the rollout starts
   const std::size_t error = metrics::index_of(metrics::kError);
   const geometry::Faces body_faces = faces_of(seq.body_faces);
   std::vector<geometry::Faces> garment_faces;

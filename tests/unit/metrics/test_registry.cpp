@@ -102,6 +102,10 @@ TEST(MetricRegistry, AddedMetricsFollowTheBuiltInOnesAndLeave) {
   EXPECT_THROW(metrics::add(bad), layers::Error);
   bad.key = "truth_x";
   EXPECT_THROW(metrics::add(bad), layers::Error);
+  bad.key = "bound_share";
+  bad.diverged = metrics::Diverged::Bound;  // the bound is in mm; this metric is a share
+  EXPECT_THROW(metrics::add(bad), layers::Error);
+  bad.diverged = metrics::Diverged::LeftOut;
   bad.key = "no_function";
   bad.compute = nullptr;
   EXPECT_THROW(metrics::add(bad), layers::Error);

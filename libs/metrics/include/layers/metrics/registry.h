@@ -72,9 +72,10 @@ const std::vector<MetricDef>& registered();
 std::size_t index_of(const std::string& key);
 const MetricDef& metric(const std::string& key);
 
-// Adds a metric at the end (layers::Error for a bad or taken key, or a
-// missing compute). Registration is for start-up and tests: evaluations
-// read the list as it is when they start.
+// Adds a metric at the end (layers::Error for a bad or taken key, a
+// missing compute, or Diverged::Bound on a metric not in mm). Registration
+// is for start-up and tests: an evaluation works on a copy of the list
+// taken when it starts, and refuses rollouts measured with another list.
 void add(MetricDef def);
 // Removes an added metric (the built-in ones stay).
 void remove(const std::string& key);
