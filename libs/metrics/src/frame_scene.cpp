@@ -50,25 +50,19 @@ const BodyFrame& FrameScene::body() const {
   return *body_;
 }
 
-const LCollisionRates& FrameScene::l_collision() const {
-  if (!l_collision_) {
-    // The outer garments' vertices, in order, against the inner ones as one mesh.
-    Eigen::Index outer_rows = 0;
-    for (std::size_t g = 0; g < size(); ++g)
-      if (outer(g)) outer_rows += garments_[g].num_vertices();
-    geometry::Points outer_points(outer_rows, 3);
-    Eigen::Index row = 0;
-    std::vector<geometry::TriMesh> inner;
-    for (std::size_t g = 0; g < size(); ++g) {
-      if (!outer(g)) {
-        inner.push_back(garments_[g]);
-        continue;
-      }
-      outer_points.middleRows(row, garments_[g].num_vertices()) = garments_[g].vertices;
-      row += garments_[g].num_vertices();
-    }
-    l_collision_ = l_collision_rates(outer_points, geometry::concatenate(inner));
+const FrameScene::Layers& FrameScene::split() const {
+  if (!split_) {
+    split_.emplace();
+    for (std::size_t g = 0; g < size(); ++g) (outer(g) ? split_->outer : split_->inner).push_back(garments_[g]);
   }
+  return *split_;
+}
+
+const LCollisionRates& FrameScene::l_collision() const {
+  // The outer garments' vertices, in order, against the inner ones as one mesh.
+  if (!l_collision_)
+    l_collision_ =
+        l_collision_rates(geometry::concatenate(split().outer).vertices, geometry::concatenate(split().inner));
   return *l_collision_;
 }
 
@@ -78,11 +72,7 @@ const geometry::MeshCrossings& FrameScene::body_crossings() const {
 }
 
 const geometry::MeshCrossings& FrameScene::layer_crossings() const {
-  if (!layer_crossings_) {
-    std::vector<geometry::TriMesh> outer_meshes, inner;
-    for (std::size_t g = 0; g < size(); ++g) (outer(g) ? outer_meshes : inner).push_back(garments_[g]);
-    layer_crossings_ = geometry::layer_crossings(outer_meshes, inner);
-  }
+  if (!layer_crossings_) layer_crossings_ = geometry::layer_crossings(split().outer, split().inner);
   return *layer_crossings_;
 }
 

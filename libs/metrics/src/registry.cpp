@@ -17,32 +17,13 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Mean distance to the ground truth (mm), per garment and over every vertex.
 FrameValue error_of(const FrameScene& s) {
-  FrameValue v;
-  double sum = 0, count = 0;
-  for (std::size_t g = 0; g < s.size(); ++g) {
-    const double e = euclidean_error_mm(s.garment(g).vertices, s.truth(g));
-    const double n = static_cast<double>(s.truth(g).rows());
-    v.garments.push_back(e);
-    sum += e * n;
-    count += n;
-  }
-  v.scene = sum / count;
-  return v;
+  return vertex_weighted(s, [&](std::size_t g) { return euclidean_error_mm(s.garment(g).vertices, s.truth(g)); });
 }
 
 // Share of garment vertices behind the body surface.
 FrameValue h_collision_of(const FrameScene& s) {
-  FrameValue v;
-  double behind = 0, total = 0;
-  for (std::size_t g = 0; g < s.size(); ++g) {
-    const double share = behind_share(s.garment(g).vertices, s.body().surface());
-    const double n = static_cast<double>(s.garment(g).num_vertices());
-    v.garments.push_back(share);
-    behind += share * n;
-    total += n;
-  }
-  v.scene = total > 0 ? behind / total : 0.0;
-  return v;
+  return vertex_weighted(
+      s, [&](std::size_t g) { return behind_share(s.garment(g).vertices, s.body().surface()); }, 0.0);
 }
 
 // A scene value given to the outer garments (Scope::OuterLayer).
@@ -164,6 +145,21 @@ bool snake_case(const std::string& key) {
 }
 
 }  // namespace
+
+FrameValue vertex_weighted(const FrameScene& s, const std::function<double(std::size_t)>& per_garment,
+                           double if_empty) {
+  FrameValue v;
+  double sum = 0, count = 0;
+  for (std::size_t g = 0; g < s.size(); ++g) {
+    const double value = per_garment(g);
+    const double n = static_cast<double>(s.garment(g).num_vertices());
+    v.garments.push_back(value);
+    sum += value * n;
+    count += n;
+  }
+  v.scene = count > 0 ? sum / count : if_empty;
+  return v;
+}
 
 const std::vector<MetricDef>& registered() { return table(); }
 

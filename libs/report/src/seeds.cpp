@@ -14,19 +14,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Mean and population std of the finite values (count 0 when none).
+// Mean and std of the finite values, as the evaluator aggregates
+// (metrics::finite_mean_std); count 0 and NaN when none.
 Stat stat_of(const std::vector<double>& values) {
-  Stat s;
-  double sum = 0;
-  for (double v : values)
-    if (std::isfinite(v)) sum += v, ++s.count;
-  if (s.count == 0) return s;
-  s.mean = sum / static_cast<double>(s.count);
-  double squares = 0;
-  for (double v : values)
-    if (std::isfinite(v)) squares += (v - s.mean) * (v - s.mean);
-  s.std = std::sqrt(squares / static_cast<double>(s.count));
-  return s;
+  const metrics::MeanStd m = metrics::finite_mean_std(values);
+  if (m.count == 0) return Stat{};
+  return Stat{m.mean, m.std, static_cast<std::int64_t>(m.count)};
 }
 
 // The folder that holds a seed run's seed-<s> folder (its experiment).

@@ -48,6 +48,15 @@ struct Fixture : ::testing::Test {
     o.progress = false;
     return o;
   }
+  // The tiny model trained one epoch as run `run`, then evaluated on the test split.
+  EvalReport trained_and_evaluated(const std::string& run) {
+    ExperimentConfig c = config(run);
+    c.train.epochs = 1;
+    run_training(c, registry, quiet());
+    EvalOptions o;
+    o.progress = false;
+    return run_evaluation(c, registry, o);
+  }
 };
 
 at::Tensor params_of(const ExperimentConfig& c, zoo::Registry& registry) {
@@ -286,12 +295,7 @@ TEST_F(Fixture, DivergenceIsRecordedNotThrown) {
 }
 
 TEST_F(Fixture, EvaluationWritesMetricsAndPredictions) {
-  ExperimentConfig c = config("eval");
-  c.train.epochs = 1;
-  run_training(c, registry, quiet());
-  EvalOptions o;
-  o.progress = false;
-  const EvalReport r = run_evaluation(c, registry, o);
+  const EvalReport r = trained_and_evaluated("eval");
   EXPECT_EQ(r.split, "test");
   EXPECT_EQ(r.sequences, 1);
   EXPECT_EQ(r.frames, 6);
@@ -376,24 +380,12 @@ TEST_F(Fixture, ARegisteredMetricReachesMetricsJsonAndTheReport) {
   speed.rule = "none (a test metric)";
   speed.unit = metrics::Unit::Millimetre;
   speed.compute = [](const metrics::FrameScene& s) {
-    metrics::FrameValue v{0, {}};
-    double sum = 0, count = 0;
-    for (std::size_t g = 0; g < s.size(); ++g) {
-      const double d = metrics::euclidean_error_mm(s.garment(g).vertices, s.previous(g));
-      v.garments.push_back(d);
-      sum += d * s.garment(g).num_vertices();
-      count += s.garment(g).num_vertices();
-    }
-    v.scene = sum / count;
-    return v;
+    return metrics::vertex_weighted(
+        s, [&](std::size_t g) { return metrics::euclidean_error_mm(s.garment(g).vertices, s.previous(g)); });
   };
   const metrics::ScopedMetric added(speed);
-  ExperimentConfig c = config("speed");
-  c.train.epochs = 1;
-  run_training(c, registry, quiet());
-  EvalOptions o;
-  o.progress = false;
-  const EvalReport r = run_evaluation(c, registry, o);
+  const EvalReport r = trained_and_evaluated("speed");
+  const std::string run_folder = dir.path() + "/speed";
   ASSERT_EQ(r.overall.count("test_garment_speed_mm"), 1u);
   EXPECT_GT(r.overall.at("test_garment_speed_mm").mean, 0.0) << "the garments move in the fixture";
   std::ifstream in(r.out_dir + "/metrics.json");
@@ -410,7 +402,7 @@ TEST_F(Fixture, ARegisteredMetricReachesMetricsJsonAndTheReport) {
   std::getline(csv, header);
   EXPECT_NE(header.find(",test_garment_speed_mm"), std::string::npos) << header;
 
-  const report::RunResults run = report::load_run(c.run.output);
+  const report::RunResults run = report::load_run(run_folder);
   ASSERT_TRUE(run.eval.has_value());
   EXPECT_NEAR(run.eval->overall.get("test_garment_speed_mm").mean, r.overall.at("test_garment_speed_mm").mean, 1e-12);
   report::ReportInputs inputs;

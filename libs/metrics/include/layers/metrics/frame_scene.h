@@ -67,6 +67,12 @@ class FrameScene {
   const std::vector<geometry::Points>* truth_;
   const std::vector<geometry::Points>* previous_;
   const BodyFrame* body_;
+  // The outer and the inner garments, split once for the L measures.
+  struct Layers {
+    std::vector<geometry::TriMesh> outer, inner;
+  };
+  const Layers& split() const;
+  mutable std::optional<Layers> split_;
   mutable std::optional<LCollisionRates> l_collision_;
   mutable std::optional<geometry::MeshCrossings> body_crossings_, layer_crossings_;
 };

@@ -24,6 +24,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -91,6 +92,12 @@ class ScopedMetric {
  private:
   std::string key_;
 };
+
+// The usual frame value of a per-garment measure: each garment's value,
+// and the scene's as their mean weighted by vertex count (`if_empty` for a
+// scene without vertices).
+FrameValue vertex_weighted(const FrameScene& s, const std::function<double(std::size_t garment)>& per_garment,
+                           double if_empty = std::numeric_limits<double>::quiet_NaN());
 
 // A sequence's value from its frames' values (the frames rule above).
 double reduce_frames(const MetricDef& def, const std::vector<double>& values);
