@@ -1,9 +1,11 @@
 // `layers bench <experiment.yaml>`: inference and training speed of the
 // experiment's model on a real scene scaled by subdivision (see
 // libs/train/include/layers/train/bench.h); writes <run.output>/bench.json.
+#include <cmath>
 #include <cstdio>
 
 #include "config_loading.h"
+#include "layers/generate/resimulate.h"
 #include "layers/train/bench.h"
 #include "plugins.h"
 #include "verbs.h"
@@ -15,7 +17,8 @@ VerbRun register_bench(CLI::App& app, const Global&) {
   struct Args {
     ConfigArgs config;
     train::BenchOptions options;
-    bool no_far = false, no_train = false;
+    bool no_far = false, no_train = false, simulator = false;
+    int simulator_frames = 4;
   };
   auto a = std::make_shared<Args>();
   add_config_options(*cmd, a->config, /*required=*/true);
@@ -37,10 +40,28 @@ VerbRun register_bench(CLI::App& app, const Global&) {
   cmd->add_option("--profile-steps", a->options.profile_steps, "steps profiled per scene")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
+  cmd->add_flag("--simulator", a->simulator,
+                "also time our simulator on the same scene at each level (the dataset's generator config, edge "
+                "length halved per level)");
+  cmd->add_option("--simulator-frames", a->simulator_frames, "recorded frames the simulator runs per level")
+      ->capture_default_str()
+      ->check(CLI::Range(2, 1000));
   return [a]() {
     LoadedConfig loaded = load_config(a->config);
     a->options.far_body = !a->no_far;
     a->options.train = !a->no_train;
+    if (a->simulator) {
+      const int frames = a->simulator_frames;
+      // One midpoint subdivision per level is about 4x the garment
+      // vertices; half the fit's edge length is the simulator's same step.
+      a->options.simulator = [frames](const std::string& dataset, const std::string& sequence, int level) {
+        generate::ResimulateOptions o;
+        o.edge_scale = std::ldexp(1.0, -level);
+        o.keep_positions = false;
+        const generate::Resimulation r = generate::resimulate(dataset, sequence, frames, o);
+        return train::SimulatorTiming{r.garment_vertices, r.wall_ms_per_frame};
+      };
+    }
     const train::BenchReport r = train::run_bench(loaded.typed, load_plugins().registry, a->options);
     const std::string scene = r.split.empty() ? r.sequence : r.sequence + " (" + r.split + ")";
     std::printf("%s (%lld parameters, %d threads, %s) on %s\n", r.model.c_str(), static_cast<long long>(r.parameters),
@@ -66,6 +87,13 @@ VerbRun register_bench(CLI::App& app, const Global&) {
       phases("infer", row.infer_phases, row.infer_gflops);
       phases("train", row.train_phases, row.train_gflops);
     }
+    for (const auto& row : r.rows) {
+      if (row.simulator.garment_vertices == 0) continue;
+      std::printf("level %d, our simulator: %lld garment vertices, %.1f ms/frame; the model is %.1fx faster\n",
+                  row.level, static_cast<long long>(row.simulator.garment_vertices), row.simulator.ms_per_frame,
+                  row.simulator.ms_per_frame / row.ms_per_frame);
+    }
+    std::printf("peak resident memory: %.0f MiB\n", r.peak_resident_mib);
     if (r.matmul_peak_gflops > 0) std::printf("matrix-product peak: %.1f GFLOP/s\n", r.matmul_peak_gflops);
     std::printf("written: %s\n", r.out.c_str());
     return static_cast<int>(kOk);

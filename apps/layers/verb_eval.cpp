@@ -58,7 +58,9 @@ VerbRun register_eval(CLI::App& app, const Global&) {
                 static_cast<long long>(r.diverged), r.ms_per_frame);
     const std::string chosen = r.chosen_on == "none" ? "chosen by nothing" : "chosen on " + r.chosen_on;
     std::printf("checkpoint: %s, %s, evaluated on %s%s\n", r.checkpoint_kind.c_str(), chosen.c_str(), r.split.c_str(),
-                r.chosen_on == r.split ? " (the same split: optimistic figures, marked in reports)" : "");
+                data::run_layout::chosen_on_names(r.chosen_on, r.split)
+                    ? " (the same split: optimistic figures, marked in reports)"
+                    : "");
     // One column per registered metric (docs/metrics.md); the ground
     // truth's own values below, for the metrics measured on it.
     std::printf("%-14s", "");

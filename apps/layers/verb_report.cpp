@@ -21,6 +21,7 @@ VerbRun register_report(CLI::App& app, const Global&) {
     report::ReportInputs inputs;
     std::string out = "report";
     bool no_charts = false, force = false;
+    std::vector<std::string> partners;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--runs", a->inputs.runs,
@@ -38,10 +39,19 @@ VerbRun register_report(CLI::App& app, const Global&) {
       ->check(CLI::Range(1, 12));
   cmd->add_option("--gnuplot", a->inputs.gnuplot, "gnuplot program")->capture_default_str();
   cmd->add_flag("--no-charts", a->no_charts, "tables and report.md only");
+  cmd->add_option("--partner", a->partners,
+                  "ROW=OTHER: also compare row ROW with OTHER per sequence (paired, 95% interval); every learned row "
+                  "is compared with the reference rows");
   cmd->add_flag("--force", a->force,
                 "replace a report in --out: the old folder is moved aside to <out>.replaced-<time>, never deleted");
   return [a]() {
     a->inputs.charts = !a->no_charts;
+    for (const std::string& p : a->partners) {
+      const std::size_t eq = p.find('=');
+      if (eq == std::string::npos || eq == 0 || eq + 1 == p.size())
+        throw InputError("layers report", "--partner", "ROW=OTHER (two run or experiment names)", "'" + p + "'");
+      a->inputs.partners[p.substr(0, eq)] = p.substr(eq + 1);
+    }
     namespace fs = std::filesystem;
     std::error_code ec;
     const bool holds_report = fs::exists(fs::path(a->out) / data::run_layout::kReport, ec);

@@ -97,6 +97,7 @@ study::StudyActions library_actions() {
     inputs.picture.dataset = study.dataset.folder;
     inputs.picture.sequence = study.report.sequence;
     inputs.picture.frames = study.report.frames;
+    inputs.partners = study.report.partners;
     const report::ReportResult r = report::write_report(inputs, out);
     for (const std::string& p : r.problems) std::printf("  report note: %s\n", p.c_str());
     for (const std::string& f : r.selection_flags) std::printf("  report: selection marked: %s\n", f.c_str());

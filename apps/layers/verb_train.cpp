@@ -106,9 +106,11 @@ VerbRun register_train(CLI::App& app, const Global&) {
       const std::string ranks =
           e.ranks > 1 ? " on " + std::to_string(e.ranks) + " ranks, " + share(e.comm_seconds) + " in gradient exchange"
                       : "";
-      std::printf("  epoch %d: loss %.5g  val error %.2f mm  %.1f frames/s  %.1f s%s (data %s, optimiser %s)\n",
-                  e.epoch, e.loss, e.val_error_mm, e.frames_per_second, e.seconds, ranks.c_str(),
-                  share(e.data_seconds).c_str(), share(e.optimizer_seconds).c_str());
+      std::printf(
+          "  epoch %d: loss %.5g  val error %.2f mm  %.1f frames/s  %.1f s%s (data %s, optimiser %s)  peak memory %.0f "
+          "MiB\n",
+          e.epoch, e.loss, e.val_error_mm, e.frames_per_second, e.seconds, ranks.c_str(), share(e.data_seconds).c_str(),
+          share(e.optimizer_seconds).c_str(), e.peak_resident_mib);
     }
     std::printf("checkpoints: %s, %s\n", r.last_checkpoint.c_str(), r.best_checkpoint.c_str());
     return static_cast<int>(kOk);

@@ -6,6 +6,7 @@
 // Trains the test plugin's one-parameter model on the regression fixture.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -228,4 +229,57 @@ TEST(CliTrain, SelectionNeverReadsTheTestSplitAndIsRecorded) {
   EXPECT_NE(missing.output.find(dir.file("none.pt") + ": checkpoint: expected an existing file, got no such file"),
             std::string::npos)
       << missing.output;
+}
+
+// The epoch is chosen without reading the test split, by the real trainer:
+// the fixture and a copy whose test sequences' garments stop after frame 1
+// (a valid dataset, hashed as written) give the same chosen epoch, the same
+// checkpoint bytes and the same selection.json. The control shows the
+// change would be seen if read: with validation pointed at the test split,
+// the two datasets choose different epochs, and the record says which
+// split was read.
+TEST(CliTrain, ChoosingTheEpochNeverReadsTheTestSplit) {
+  test::TempDir dir("layers-cli-selection");
+  const std::string original = regression::write_fixture(dir.path());
+  const std::string altered = regression::write_fixture(
+      dir.path(),
+      [](data::SequenceData& seq) {
+        for (data::GarmentData& g : seq.garments) {
+          const std::size_t n = g.rest.size();
+          for (std::int64_t t = 2; t < seq.n_frames; ++t)
+            std::copy(g.positions.begin() + static_cast<std::ptrdiff_t>(n),
+                      g.positions.begin() + static_cast<std::ptrdiff_t>(2 * n),
+                      g.positions.begin() + static_cast<std::ptrdiff_t>(t * n));
+        }
+      },
+      "altered");
+  const auto run = [&](const std::string& data, const std::string& name, const std::string& extra) {
+    const std::string experiment =
+        dir.write(name + ".yaml",
+                  "model: {name: test_constant_velocity, params: {damping: 0.6}}\n"
+                  "data: {dataset: " +
+                      data +
+                      "}\n"
+                      "train: {epochs: 5, batch_size: 2, windows_per_epoch: 8, lr: 0.05, val_horizon: 8}\n"
+                      "run: {output: " +
+                      dir.file(name) + ", threads: 1, seed: 0}\n");
+    auto r = train(experiment, extra);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    return nlohmann::json::parse(read_bytes(dir.file(name + "/selection.json")));
+  };
+  const nlohmann::json a = run(original, "original", "");
+  const nlohmann::json b = run(altered, "altered-run", "");
+  EXPECT_EQ(a["chosen_on"], "val");
+  EXPECT_EQ(a, b);
+  for (const char* file : {"checkpoint-best.pt", "checkpoint-last.pt"})
+    EXPECT_TRUE(read_bytes(dir.file(std::string("original/") + file)) ==
+                read_bytes(dir.file(std::string("altered-run/") + file)))
+        << file << " differs";
+
+  const std::string control = "--set data.val_split=test --set data.test_split=val";
+  const nlohmann::json c = run(original, "control-original", control);
+  const nlohmann::json d = run(altered, "control-altered", control);
+  EXPECT_EQ(c["chosen_on"], "test") << "the record names the split the validation read";
+  EXPECT_NE(c["val_error_mm_by_epoch"], d["val_error_mm_by_epoch"]);
+  EXPECT_NE(c["chosen_epoch"], d["chosen_epoch"]) << c.dump() << "\n" << d.dump();
 }

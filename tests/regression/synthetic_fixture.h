@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -99,11 +100,15 @@ inline data::SequenceData fixture_sequence(const std::string& id, std::uint64_t 
 
 }  // namespace detail
 
-// Writes the fixture into <parent>/fixture (dataset.yaml, splits.yaml, one
+// Writes the fixture into <parent>/<name> (dataset.yaml, splits.yaml, one
 // shard, stats.h5) and returns that folder; a folder already holding it (a
-// kept LAYERS_REGRESSION_DIR) is reused as it is.
-inline std::string write_fixture(const std::string& parent) {
-  const std::string dir = parent + "/fixture";
+// kept LAYERS_REGRESSION_DIR) is reused as it is. `alter_test`, when given,
+// changes each test sequence before it is written (and hashed): a valid
+// dataset that differs from the fixture on the test split only.
+inline std::string write_fixture(const std::string& parent,
+                                 const std::function<void(data::SequenceData&)>& alter_test = {},
+                                 const std::string& name = "fixture") {
+  const std::string dir = parent + "/" + name;
   if (std::filesystem::exists(dir + "/stats.h5")) return dir;
   data::DatasetWriterOptions options;
   options.sequences_per_shard = 6;
@@ -111,7 +116,9 @@ inline std::string write_fixture(const std::string& parent) {
   std::vector<std::string> ids;
   for (int s = 0; s < 6; ++s) {
     ids.push_back("seq" + std::to_string(s));
-    writer.add(detail::fixture_sequence(ids.back(), static_cast<std::uint64_t>(s + 1)));
+    data::SequenceData seq = detail::fixture_sequence(ids.back(), static_cast<std::uint64_t>(s + 1));
+    if (alter_test && s >= 4) alter_test(seq);
+    writer.add(seq);
   }
   writer.set_split("train", {ids[0], ids[1], ids[2]});
   writer.set_split("val", {ids[3]});

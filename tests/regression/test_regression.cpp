@@ -275,3 +275,27 @@ TEST(RegressionStudy, ErrorGrowthIsTheSlopeOfTheErrorCurve) {
     for (const auto& s : doc.at("per_sequence")) EXPECT_TRUE(s.at("error_growth_mm_per_frame").is_number()) << run;
   }
 }
+
+// `layers bench` ran once per model on a tiny setting (study.yaml's bench
+// step): bench.json has finite, positive inference times, and training
+// times for the models with something to train. Figures only: no timed
+// assertion.
+TEST(RegressionStudy, BenchGivesFiniteFigures) {
+  Regression& r = Regression::get();
+  ASSERT_TRUE(r.setup_error.empty()) << r.setup_error;
+  for (const std::string& run : r.built) {
+    const std::string file = r.runs() + "/" + run + "/bench.json";
+    ASSERT_TRUE(fs::exists(file)) << file << "; `layers run` said:\n" << r.result.output;
+    const auto doc = nlohmann::json::parse(read_text_file(file));
+    ASSERT_FALSE(doc.at("rows").empty()) << run;
+    const bool trains = doc.at("parameters").get<double>() > 0;
+    for (const auto& row : doc.at("rows")) {
+      const double infer = row.at("ms_per_frame").get<double>(), train = row.at("train_ms_per_frame").get<double>();
+      EXPECT_TRUE(std::isfinite(infer) && infer > 0) << run << ": " << infer;
+      if (trains) {
+        EXPECT_TRUE(std::isfinite(train) && train > 0) << run << ": " << train;
+      }
+    }
+    EXPECT_GT(doc.at("peak_resident_mib").get<double>(), 0.0) << run;
+  }
+}

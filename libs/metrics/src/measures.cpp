@@ -65,7 +65,7 @@ MeanStd mean_std(const std::vector<double>& values) {
   out.mean = sum / static_cast<double>(values.size());
   double squares = 0.0;
   for (double v : values) squares += (v - out.mean) * (v - out.mean);
-  out.std = std::sqrt(squares / static_cast<double>(values.size()));
+  out.std = values.size() < 2 ? std::nan("") : std::sqrt(squares / static_cast<double>(values.size() - 1));
   return out;
 }
 

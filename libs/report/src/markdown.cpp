@@ -164,7 +164,7 @@ void models_table(std::ostringstream& md, const std::vector<RunResults>& runs) {
         "frame: time in the model per predicted frame during evaluation.\n\n";
   if (!groups.empty())
     md << "An experiment repeated over seeds is one row, \"name (n seeds)\": each value is the mean ± std over "
-          "the seeds of the seeds' overall values (population std); the error's spread over sequences (mean over "
+          "the seeds of the seeds' overall values (sample std); the error's spread over sequences (mean over "
           "the seeds of each seed's std over sequences) follows in brackets; diverged counts all seeds' "
           "sequences. Each seed's row is in `summary.csv`, the rows over seeds in `seeds.csv`.\n\n";
   for (const SeedGroup& g : groups) {
@@ -178,6 +178,31 @@ void models_table(std::ostringstream& md, const std::vector<RunResults>& runs) {
   for (const RunResults* r : missing)
     md << "- `" << r->name << "` is not in the table: it has no readable evaluation (see Notes).\n";
   if (!missing.empty()) md << "\n";
+}
+
+void paired_table(std::ostringstream& md, const std::vector<PairedComparison>& paired) {
+  if (paired.empty()) return;
+  md << "### Paired comparisons (error per sequence)\n\n"
+     << "Each learned row against each reference row (no trained parameters) and against its partner, on the "
+        "sequences both evaluated on the same split: per sequence the row's error minus the other's (an "
+        "experiment over seeds contributes its mean over seeds per sequence), the mean difference with its 95% "
+        "interval (paired Student t over sequences, sample std), and the sequences where the row is lower / "
+        "higher. A difference is read as one only where its interval excludes 0. All pairs are in "
+        "`paired.csv`.\n\n"
+     << "| row | against | split (sequences) | difference (mm) [95% interval] | lower / higher | reading |\n"
+     << "|---|---|---|---:|---:|---|\n";
+  for (const PairedComparison& c : paired) {
+    const MeanInterval& d = c.difference;
+    md << "| `" << md_cell(c.row) << "` | `" << md_cell(c.against) << "`" << (c.why == "partner" ? " (partner)" : "")
+       << " | " << md_cell(c.split) << " (" << d.n << ") | " << (std::isfinite(d.mean) ? signed_fixed(d.mean, 2) : "-")
+       << " [" << (std::isfinite(d.half_width) ? signed_fixed(d.low(), 2) + ", " + signed_fixed(d.high(), 2) : "n/a")
+       << "] | " << c.wins << " / " << c.losses << " | "
+       << (c.reading() == "lower"    ? "**lower error**"
+           : c.reading() == "higher" ? "**higher error**"
+                                     : "not separated")
+       << " |\n";
+  }
+  md << "\n";
 }
 
 void pareto_list(std::ostringstream& md, const std::vector<RunResults>& runs) {
@@ -293,6 +318,7 @@ std::string report_markdown(const ReportContent& c) {
   }
 
   models_table(md, c.runs);
+  paired_table(md, c.paired);
   selection_table(md, c.runs);
   md << "## Accuracy against speed\n\n";
   charts_of(md, c.speed, c.charts_dir);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "layers/report/charts.h"
+#include "layers/report/paired.h"
 #include "layers/report/run_results.h"
 
 namespace layers::report {
@@ -20,6 +21,7 @@ struct ReportContent {
   std::string title;
   std::vector<RunResults> runs;
   ChartSection speed, by_step, per_type, frames;
+  std::vector<PairedComparison> paired;
   std::vector<std::string> problems;
   std::string charts_dir = "charts";  // relative to report.md
 };

@@ -65,6 +65,10 @@ ReportResult write_report(const std::vector<RunResults>& runs, const ReportInput
   write("by_step.csv", by_step_csv(runs));
   write("bench.csv", bench_csv(runs));
   write("seeds.csv", seeds_csv(runs));
+  std::vector<std::string> unpaired;
+  content.paired = paired_comparisons(runs, inputs.partners, &unpaired);
+  for (const std::string& u : unpaired) content.problems.push_back("paired comparisons: " + u);
+  write("paired.csv", paired_csv(content.paired));
 
   const std::string charts_dir = (fs::path(out_dir) / content.charts_dir).string();
   std::optional<Gnuplot> gp;

@@ -257,8 +257,9 @@ std::string evaluated_sequences(const std::vector<RunResults>& runs, const std::
 std::string selection_flag(const RunResults& run) {
   if (!run.eval) return "";
   const SelectionRecord& s = run.eval->selection;
-  if (s.chosen_on == run.test_split) return "checkpoint chosen on the test split '" + s.chosen_on + "'";
-  if (s.chosen_on == s.evaluated_on)
+  if (run_layout::chosen_on_names(s.chosen_on, run.test_split))
+    return "checkpoint chosen on the test split '" + s.chosen_on + "'";
+  if (run_layout::chosen_on_names(s.chosen_on, s.evaluated_on))
     return "checkpoint chosen on '" + s.chosen_on + "', the split it is evaluated on (optimistic figures)";
   return "";
 }

@@ -13,6 +13,13 @@ std::string fixed(double v, int digits) {
   return buf;
 }
 
+std::string signed_fixed(double v, int digits) {
+  if (!std::isfinite(v)) return "";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%+.*f", digits, v);
+  return buf;
+}
+
 std::string exact(double v) {
   if (!std::isfinite(v)) return "";
   char buf[64];

@@ -8,6 +8,8 @@ namespace layers::report {
 
 // `v` with `digits` decimals; "" for a non-finite value (an empty CSV cell).
 std::string fixed(double v, int digits);
+// The same with a sign (+1.25, -0.50); "" when not finite.
+std::string signed_fixed(double v, int digits);
 // Shortest round-trip-ish form for machine tables ("" when non-finite).
 std::string exact(double v);
 // A share 0..1 as a percentage with two decimals ("-" when non-finite).

@@ -1,11 +1,13 @@
 // Checkpoint files (see checkpoint.h).
 #include "layers/train/checkpoint.h"
 
+#include <torch/optim/adam.h>
 #include <torch/optim/optimizer.h>
 #include <torch/serialize/input-archive.h>
 #include <torch/serialize/output-archive.h>
 
 #include <c10/util/Exception.h>
+#include <c10/util/string_utils.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -122,6 +124,58 @@ at::Tensor read_tensor(torch::serialize::InputArchive& in, const std::string& ke
   return t;
 }
 
+// Adam's state by parameter position ("<i>.step", "<i>.exp_avg", ...) and
+// each group's learning rate: LibTorch's own optimizer archive keys the
+// state by the parameters' memory addresses, so the same training wrote
+// different bytes in every process.
+void save_adam(torch::serialize::OutputArchive& out, const torch::optim::Adam& adam) {
+  torch::serialize::OutputArchive a;
+  std::int64_t i = 0;
+  for (std::size_t g = 0; g < adam.param_groups().size(); ++g) {
+    const auto& group = adam.param_groups()[g];
+    a.write("group" + std::to_string(g) + ".lr",
+            at::scalar_tensor(static_cast<const torch::optim::AdamOptions&>(group.options()).lr(), at::kDouble));
+    for (const at::Tensor& p : group.params()) {
+      const std::string key = std::to_string(i++);
+      const auto it = adam.state().find(c10::guts::to_string(p.unsafeGetTensorImpl()));
+      if (it == adam.state().end()) continue;
+      const auto& s = static_cast<const torch::optim::AdamParamState&>(*it->second);
+      a.write(key + ".step", at::scalar_tensor(s.step(), at::kLong));
+      a.write(key + ".exp_avg", s.exp_avg());
+      a.write(key + ".exp_avg_sq", s.exp_avg_sq());
+      if (s.max_exp_avg_sq().defined()) a.write(key + ".max_exp_avg_sq", s.max_exp_avg_sq());
+    }
+  }
+  a.write("params", at::scalar_tensor(i, at::kLong));
+  out.write("adam", a);
+}
+
+void load_adam(torch::serialize::InputArchive& a, torch::optim::Adam& adam, const std::string& path) {
+  std::int64_t count = 0;
+  for (const auto& group : adam.param_groups()) count += static_cast<std::int64_t>(group.params().size());
+  const std::int64_t saved = read_tensor(a, "params", path).item<std::int64_t>();
+  if (saved != count)
+    throw InputError(path, "adam.params", std::to_string(count) + " parameters (this model's)", std::to_string(saved));
+  std::int64_t i = 0;
+  for (std::size_t g = 0; g < adam.param_groups().size(); ++g) {
+    auto& group = adam.param_groups()[g];
+    static_cast<torch::optim::AdamOptions&>(group.options())
+        .lr(read_tensor(a, "group" + std::to_string(g) + ".lr", path).item<double>());
+    for (const at::Tensor& p : group.params()) {
+      const std::string key = std::to_string(i++);
+      at::Tensor step;
+      if (!a.try_read(key + ".step", step)) continue;  // no state yet for this parameter
+      auto s = std::make_unique<torch::optim::AdamParamState>();
+      s->step(step.item<std::int64_t>());
+      s->exp_avg(read_tensor(a, key + ".exp_avg", path));
+      s->exp_avg_sq(read_tensor(a, key + ".exp_avg_sq", path));
+      at::Tensor max;
+      if (a.try_read(key + ".max_exp_avg_sq", max)) s->max_exp_avg_sq(max);
+      adam.state()[c10::guts::to_string(p.unsafeGetTensorImpl())] = std::move(s);
+    }
+  }
+}
+
 }  // namespace
 
 void save_checkpoint(const std::string& path, zoo::Model& model, const torch::optim::Optimizer* optimizer,
@@ -134,7 +188,9 @@ void save_checkpoint(const std::string& path, zoo::Model& model, const torch::op
     norm_archive.write(norm_key(quantity) + ".std", p.std.cpu());
   });
   out.write("normalization", norm_archive);
-  if (optimizer) {
+  if (const auto* adam = dynamic_cast<const torch::optim::Adam*>(optimizer)) {
+    save_adam(out, *adam);
+  } else if (optimizer) {
     torch::serialize::OutputArchive opt_archive;
     optimizer->save(opt_archive);
     out.write("optimizer", opt_archive);
@@ -248,7 +304,11 @@ CheckpointState load_checkpoint(const std::string& path, zoo::Model& model, torc
   model.set_normalization(norm);
   if (optimizer) {
     torch::serialize::InputArchive opt_archive;
-    if (in.try_read("optimizer", opt_archive)) optimizer->load(opt_archive);
+    auto* adam = dynamic_cast<torch::optim::Adam*>(optimizer);
+    if (adam && in.try_read("adam", opt_archive))
+      load_adam(opt_archive, *adam, path);
+    else if (in.try_read("optimizer", opt_archive))  // checkpoints written before the "adam" record
+      optimizer->load(opt_archive);
   }
   return state;
 }

@@ -389,11 +389,11 @@ EvalPlan plan_evaluation(const ExperimentConfig& config, const EvalOptions& opti
   plan.selection = selection_of(plan.state, report.checkpoint, report.split);
   report.checkpoint_kind = plan.selection["checkpoint"].get<std::string>();
   report.chosen_on = plan.selection["chosen_on"].get<std::string>();
-  if (report.chosen_on == config.data.test_split)
+  if (data::run_layout::chosen_on_names(report.chosen_on, config.data.test_split))
     throw InputError(report.checkpoint, "selection.chosen_on",
                      "a checkpoint chosen on a split other than data.test_split '" + config.data.test_split + "'",
                      "one chosen on '" + report.chosen_on + "'");
-  if (root && report.chosen_on == report.split)
+  if (root && data::run_layout::chosen_on_names(report.chosen_on, report.split))
     spdlog::warn("{}: chosen on '{}', the split it is evaluated on: these figures are optimistic", report.checkpoint,
                  report.split);
   plan.horizon = options.horizon >= 0 ? options.horizon : config.eval.horizon;

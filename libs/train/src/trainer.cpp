@@ -7,6 +7,7 @@
 #include <torch/optim/adam.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +16,7 @@
 
 #include "layers/core/atomic_file.h"
 #include "layers/core/error.h"
+#include "layers/core/memory.h"
 #include "layers/core/progress.h"
 #include "layers/core/source_revision.h"
 #include "layers/data/run_layout.h"
@@ -83,10 +85,17 @@ double train_window(Session& s, const Sample& sample, std::int64_t free_steps, s
   return value;
 }
 
+// The validation of one epoch: the mean rollout error (mm; -1 without
+// validation sequences) and the ids of the sequences it read.
+struct Validation {
+  double mm = -1;
+  std::vector<std::string> read;
+};
+
 // Mean rollout error (mm) over the validation sequences (no collision or
 // crossing rates: they cost as much as the rollout and are not used here);
 // with ranks, each rolls out every size-th sequence and the sums are added.
-double validate(Session& s, dist::Group* group) {
+Validation validate(Session& s, dist::Group* group) {
   const TrainConfig& t = s.config.train;
   std::vector<std::string> ids = select_sequences(s.dataset, s.config.data.val_split, s.config.data.subsets);
   if (t.val_sequences > 0 && ids.size() > static_cast<std::size_t>(t.val_sequences)) ids.resize(t.val_sequences);
@@ -102,8 +111,34 @@ double validate(Session& s, dist::Group* group) {
     sum_count[1] += 1;
   }
   if (group) group->allreduce_sum(sum_count);
-  if (sum_count[1] == 0) return -1;
-  return sum_count[0] / sum_count[1];
+  Validation v;
+  v.read = ids;
+  if (sum_count[1] > 0) v.mm = sum_count[0] / sum_count[1];
+  return v;
+}
+
+// The splits (of data's train, val and test splits) holding the sequences
+// a validation read, joined by '+' ("val" when all of them are val's
+// only); a sequence in none of them adds "unlisted". What the selection
+// record says chose the checkpoint: measured from the ids read, not copied
+// from the config.
+std::string splits_read(const data::Dataset& dataset, const DataConfig& d, const std::vector<std::string>& read) {
+  std::vector<std::string> names;
+  for (const std::string& n : {d.val_split, d.train_split, d.test_split})
+    if (std::find(names.begin(), names.end(), n) == names.end()) names.push_back(n);
+  std::string out;
+  std::vector<bool> listed(read.size(), false);
+  for (const std::string& n : names) {
+    if (!dataset.splits().has(n)) continue;
+    const std::vector<std::string>& ids = dataset.splits().get(n);
+    bool holds = false;
+    for (std::size_t k = 0; k < read.size(); ++k)
+      if (std::find(ids.begin(), ids.end(), read[k]) != ids.end()) holds = listed[k] = true;
+    if (holds) out += (out.empty() ? "" : "+") + n;
+  }
+  if (std::find(listed.begin(), listed.end(), false) != listed.end())
+    out += (out.empty() ? "" : "+") + std::string("unlisted");
+  return out;
 }
 
 // All ranks must continue from the same checkpoint: they read it from a
@@ -169,7 +204,8 @@ struct TrainingRun {
   TrainReport report;
   CheckpointState state;
   bool claimed = false;
-  bool first_batch = true;  // of this process (a resumed run's first too)
+  bool first_batch = true;      // of this process (a resumed run's first too)
+  std::string validation_read;  // the splits the latest validation read (splits_read)
 
   // Saves checkpoint-<which>.pt with the selection record naming it.
   void save(const char* which, const torch::optim::Optimizer* optimizer) {
@@ -193,7 +229,8 @@ TrainingRun open_run(const ExperimentConfig& config, const zoo::Registry& regist
                   {},
                   {},
                   false,
-                  true};
+                  true,
+                  {}};
   run.report.run_dir = config.run.output;
   run.report.last_checkpoint = checkpoint_path(config, "last");
   run.report.best_checkpoint = checkpoint_path(config, "best");
@@ -307,6 +344,7 @@ EpochSummary train_epoch(TrainingRun& run, WindowLoader& loader, torch::optim::A
   e.ranks = group ? group->size() : 1;
   e.data_seconds = data_seconds;
   e.optimizer_seconds = optimizer_seconds;
+  e.peak_resident_mib = static_cast<double>(peak_resident_bytes()) / (1024.0 * 1024.0);
   return e;
 }
 
@@ -332,7 +370,7 @@ void keep_epoch(TrainingRun& run, const EpochSummary& e, torch::optim::Adam& opt
   run.save("last", &optimizer);
   if (e.val_error_mm >= 0 && (state.best_val_mm < 0 || e.val_error_mm < state.best_val_mm)) {
     state.best_val_mm = e.val_error_mm;
-    state.chosen_on = run.config.data.val_split;
+    state.chosen_on = run.validation_read;
     state.metric = selection_metric(run.config.train);
     state.chosen_epoch = e.epoch;
     run.save("best", &optimizer);
@@ -351,9 +389,10 @@ void keep_epoch(TrainingRun& run, const EpochSummary& e, torch::optim::Adam& opt
   else
     spdlog::info(
         "epoch {}/{}: loss {:.4g}, val error {:.2f} mm, lr {:.3g}, {:.1f} frames/s, {:.1f} s ({:.1f}% waiting for "
-        "data, {:.1f}% in the optimiser)",
+        "data, {:.1f}% in the optimiser), peak memory {:.0f} MiB",
         e.epoch, epochs, e.loss, e.val_error_mm, e.lr, e.frames_per_second, e.seconds,
-        100.0 * e.data_seconds / std::max(e.seconds, 1e-9), 100.0 * e.optimizer_seconds / std::max(e.seconds, 1e-9));
+        100.0 * e.data_seconds / std::max(e.seconds, 1e-9), 100.0 * e.optimizer_seconds / std::max(e.seconds, 1e-9),
+        e.peak_resident_mib);
 }
 
 }  // namespace
@@ -379,7 +418,9 @@ TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& re
   for (int epoch = run.state.epochs_done; epoch < config.train.epochs; ++epoch) {
     EpochSummary e = train_epoch(run, loader, optimizer, params, epoch);
     run.s.model->train(false);
-    e.val_error_mm = validate(run.s, run.group);
+    const Validation v = validate(run.s, run.group);
+    e.val_error_mm = v.mm;
+    run.validation_read = splits_read(run.s.dataset, config.data, v.read);
     keep_epoch(run, e, optimizer);
   }
   run.report.epochs_done = run.state.epochs_done;

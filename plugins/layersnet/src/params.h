@@ -25,8 +25,8 @@ inline const cfg::EnumNames<Blend>& enum_names(Blend) {
 
 struct Params {
   double patch_size = 0.1;             // UV square side (UVs are sewing-pattern metres)
-  double world_radius = 0.04;          // E^W: patch centroids closer than this (m)
-  double body_radius = 0.06;           // body senders / decoder body vertex (m)
+  double world_radius = 0.06;          // E^W: patch centroids closer than this (m; A.3's 0.6 at 10x scale)
+  double body_radius = 0.04;           // body senders / decoder body vertex (m; A.3's 0.4 at 10x scale)
   std::int64_t max_body_senders = 16;  // body vertices per patch, closest first
   std::int64_t width = 128;            // token width (encoders, processor, decoder)
   std::int64_t blocks = 4;             // processor blocks

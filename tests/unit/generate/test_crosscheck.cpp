@@ -20,6 +20,7 @@
 #include "layers/generate/crosscheck_summary.h"
 #include "layers/generate/generator.h"
 #include "layers/generate/generator_config.h"
+#include "layers/generate/resimulate.h"
 #include "run_command.h"
 #include "temp_dir.h"
 #include "test_paths.h"
@@ -333,6 +334,29 @@ TEST(Crosscheck, OursSimulatedAgainEqualsTheStoredFramesAndIsTimed) {
   EXPECT_NE(message(options.out, "a", 3).find("seq-NNNNNN"), std::string::npos);
   EXPECT_NE(message(options.out, "seq-000000", 4).find("frames"), std::string::npos);
   EXPECT_NE(message(dir.file("none"), "seq-000000", 3).find("generator.yaml"), std::string::npos);
+
+  // At half the fit's edge length (`layers bench --simulator`'s next
+  // level): the same scene with about 4x the garment vertices, timed, no
+  // positions kept; an edge length outside the fit's range is one line.
+  std::int64_t stored_vertices = 0;
+  for (const auto& g : stored.garments) stored_vertices += g.n_vertices();
+  generate::ResimulateOptions finer;
+  finer.edge_scale = 0.5;
+  finer.keep_positions = false;
+  const generate::Resimulation fine = generate::resimulate(options.out, "seq-000000", 2, finer);
+  EXPECT_GT(fine.garment_vertices, 3 * stored_vertices);
+  EXPECT_LT(fine.garment_vertices, 5 * stored_vertices);
+  EXPECT_GT(fine.wall_ms_per_frame, 0.0);
+  EXPECT_GT(fine.cpu_ms_per_frame, 0.0);
+  EXPECT_TRUE(fine.garments.empty());
+  generate::ResimulateOptions too_fine;
+  too_fine.edge_scale = 0.01;
+  try {
+    generate::resimulate(options.out, "seq-000000", 2, too_fine);
+    ADD_FAILURE() << "an edge length of 1 mm was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("garments.fit.edge_length x 0.01"), std::string::npos) << e.what();
+  }
 }
 
 // Several scenes: the columns written to columns.tsv read back equal

@@ -123,7 +123,7 @@ TEST(MetricRegistry, FramesReduceByTheMetricsRule) {
   const metrics::MeanStd spread = metrics::finite_mean_std({2.0, nan, 4.0});
   EXPECT_EQ(spread.count, 2u);
   EXPECT_DOUBLE_EQ(spread.mean, 3.0);
-  EXPECT_EQ(metrics::format_value(metrics::metric("error_mm"), spread), "3.0 +- 1.0");
+  EXPECT_EQ(metrics::format_value(metrics::metric("error_mm"), spread), "3.0 +- 1.4");  // sample std (n - 1)
   EXPECT_EQ(metrics::format_value(metrics::metric("h_collision"), {0.0125, 0.0, 3}), "1.25%");
   EXPECT_EQ(metrics::format_value(metrics::metric("h_collision"), {}), "-");
 }

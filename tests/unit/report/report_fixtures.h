@@ -30,7 +30,26 @@ struct FakeRun {
   // an evaluation made before the record (no such key).
   std::string chosen_on;
   std::string evaluated_on = "test";  // also metrics.json's split and the eval-<split> folder
+  long parameters = 1234;             // 0: a reference model (nothing trained)
+  // Per-sequence errors of sequences s1, s2, ... (s2 is the one that may diverge).
+  std::vector<double> sequence_errors = {9.0, 11.0};
 };
+
+// metrics.json's per_sequence entries, one per sequence error.
+inline std::string per_sequence_json(const FakeRun& r) {
+  std::string out;
+  for (std::size_t k = 0; k < r.sequence_errors.size(); ++k) {
+    const bool diverged = k == 1 && r.diverged_at >= 0;
+    out += std::string(k ? ",\n" : "") + "    {\"id\": \"s" + std::to_string(k + 1) + "\", \"motion\": \"" +
+           (k == 1 ? "jump" : "walk") + "\", \"tags\": [\"" + (k == 1 ? "T+W" : "T") +
+           "\"], \"frames\": 27, \"error_mm\": " + std::to_string(r.sequence_errors[k]) +
+           ", \"h_collision\": 0.02, \"l_collision\": 0.05, \"truth_h_collision\": 0.0, \"truth_l_collision\": "
+           "0.06, \"diverged_at\": " +
+           (diverged ? std::to_string(r.diverged_at) : std::string("null")) + ", \"diverge_reason\": \"" +
+           (diverged ? "non-finite prediction" : "") + "\", \"garments\": []}";
+  }
+  return out;
+}
 
 // `"selection": {...},` of metrics.json ("" without a record).
 inline std::string selection_field(const FakeRun& r) {
@@ -67,7 +86,6 @@ inline std::string metrics_json(const FakeRun& r) {
                           : std::string()) +
              (r.plain ? ", \"l_collision_plain\": " + (k == 0 ? "null" : std::to_string(r.lp)) : std::string()) +
              ", \"sequences\": 2}";
-  const std::string diverged = r.diverged_at >= 0 ? std::to_string(r.diverged_at) : "null";
   return R"({
   "model": ")" +
          r.model + R"(",
@@ -79,7 +97,7 @@ inline std::string metrics_json(const FakeRun& r) {
   "diverged": )" +
          std::string(r.diverged_at >= 0 ? "1" : "0") + R"(,
   "ms_per_frame": )" +
-         std::to_string(r.ms_per_frame) + R"(, "parameters": 1234,
+         std::to_string(r.ms_per_frame) + R"(, "parameters": )" + std::to_string(r.parameters) + R"(,
   "overall": {"error_mm": {"mean": )" +
          std::to_string(r.error) + R"(, "std": )" + std::to_string(r.error_std) +
          R"(, "count": 2},
@@ -105,14 +123,8 @@ inline std::string metrics_json(const FakeRun& r) {
   "by_step": [)" +
          steps + R"(],
   "per_sequence": [
-    {"id": "s1", "motion": "walk", "tags": ["T"], "frames": 27, "error_mm": 9.0, "h_collision": 0.02,
-     "l_collision": 0.05, "truth_h_collision": 0.0, "truth_l_collision": 0.06, "diverged_at": null,
-     "diverge_reason": "", "garments": []},
-    {"id": "s2", "motion": "jump", "tags": ["T+W"], "frames": 27, "error_mm": 11.0, "h_collision": 0.02,
-     "l_collision": 0.05, "truth_h_collision": 0.0, "truth_l_collision": 0.06, "diverged_at": )" +
-         diverged + R"(,
-     "diverge_reason": ")" +
-         std::string(r.diverged_at >= 0 ? "non-finite prediction" : "") + R"(", "garments": []}]
+)" + per_sequence_json(r) +
+         R"(]
 }
 )";
 }

@@ -2,7 +2,8 @@
 // writes: which split chose each checkpoint and which it is evaluated on,
 // the mark on a run chosen on the test split (or on the evaluated split),
 // evaluations made before the record ("unknown", never a crash), and the
-// mean and std over the seeds of a study experiment's seed-<s> runs.
+// mean and std over the seeds of a study experiment's seed-<s> runs, and the
+// paired per-sequence comparisons of learned rows with references and partners.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -12,6 +13,7 @@
 #include <sstream>
 
 #include "layers/core/text_file.h"
+#include "layers/report/paired.h"
 #include "layers/report/report.h"
 #include "layers/report/seeds.h"
 #include "report_fixtures.h"
@@ -160,17 +162,17 @@ TEST(Seeds, MeanAndStdOverSeedsBesideTheSpreadOverSequences) {
   const SeedGroup& g = groups[0];
   EXPECT_EQ(g.experiment, "net");
   EXPECT_EQ(g.seeds, (std::vector<std::uint64_t>{0, 1, 2}));
-  const double std_over_seeds = std::sqrt(8.0 / 3.0);  // population std of 10, 12, 14
+  const double std_over_seeds = 2.0;  // sample std (n - 1) of 10, 12, 14
   EXPECT_NEAR(g.over_seeds.get("error_mm").mean, 12.0, 1e-9);
   EXPECT_NEAR(g.over_seeds.get("error_mm").std, std_over_seeds, 1e-9);
   EXPECT_EQ(g.over_seeds.get("error_mm").count, 3);
   EXPECT_NEAR(g.over_sequences.get("error_mm").mean, 2.0, 1e-9);  // mean of the seeds' stds over sequences
   EXPECT_NEAR(g.over_seeds.get("h_collision").mean, 0.02, 1e-9);
-  EXPECT_NEAR(g.over_seeds.get("h_collision").std, std::sqrt(2.0 / 3.0) * 0.01, 1e-9);
+  EXPECT_NEAR(g.over_seeds.get("h_collision").std, 0.01, 1e-9);
   EXPECT_NEAR(g.ms_per_frame, 2.0, 1e-9);
 
   const std::string md = read_text_file(r.report);
-  EXPECT_NE(md.find("| net (3 seeds) | mymodel | 1234 | test (2) | 12.0 ± 1.6 (sequences ± 2.0) | 2.00% ± 0.82 |"),
+  EXPECT_NE(md.find("| net (3 seeds) | mymodel | 1234 | test (2) | 12.0 ± 2.0 (sequences ± 2.0) | 2.00% ± 1.00 |"),
             std::string::npos)
       << md;
   EXPECT_EQ(md.find("| net/seed-1 | mymodel"), std::string::npos) << "seed rows are collapsed in the models table";
@@ -210,6 +212,80 @@ TEST(Seeds, MeanAndStdOverSeedsBesideTheSpreadOverSequences) {
   EXPECT_EQ(summary[2].at("seed"), "2");
   EXPECT_NEAR(std::stod(summary[2].at("error_mm")), 14.0, 1e-6);
   EXPECT_EQ(summary[3].at("seed"), "");
+}
+
+// Paired comparisons: each learned row against the reference rows and its
+// partner, per sequence, with the hand-worked 95% interval.
+TEST(Paired, LearnedRowsAgainstReferencesAndPartnersPerSequence) {
+  TempDir dir("report-paired");
+  const std::vector<double> skinned = {10, 12, 14, 16, 18};
+  FakeRun reference;
+  reference.model = "skinned";
+  reference.parameters = 0;
+  reference.sequence_errors = skinned;
+  testing::write_run(dir, "skinned", reference);
+  // `good`: lower than skinned on every sequence by 1.0, 1.2, 0.8, 1.1, 0.9.
+  FakeRun good;
+  good.sequence_errors = {9.0, 10.8, 13.2, 14.9, 17.1};
+  testing::write_run(dir, "good", good);
+  // `mixed` over two seeds whose mean per sequence is skinned + 1, -1, 2,
+  // -2, 0.5: two lower, three higher, mean +0.1.
+  const std::vector<double> offsets = {1, -1, 2, -2, 0.5};
+  for (int seed = 0; seed < 2; ++seed) {
+    FakeRun run;
+    run.model = "mixedmodel";
+    run.sequence_errors.clear();
+    for (std::size_t k = 0; k < skinned.size(); ++k)
+      run.sequence_errors.push_back(skinned[k] + offsets[k] + (seed == 0 ? 0.25 : -0.25));
+    testing::write_run(dir, "mixed/seed-" + std::to_string(seed), run);
+  }
+  ReportInputs inputs = tables_only({dir.file("skinned"), dir.file("good"), dir.file("mixed")});
+  inputs.partners = {{"mixed", "good"}, {"good", "absent"}};
+  const ReportResult r = write_report(inputs, dir.file("out"));
+
+  std::vector<RunResults> runs;
+  for (const std::string& d : expand_seed_folders(inputs.runs)) runs.push_back(load_run(d));
+  std::vector<std::string> missing;
+  const std::vector<PairedComparison> paired = paired_comparisons(runs, inputs.partners, &missing);
+  ASSERT_EQ(paired.size(), 3u);
+  const PairedComparison& g = paired[0];
+  EXPECT_EQ(g.row, "good");
+  EXPECT_EQ(g.against, "skinned");
+  EXPECT_EQ(g.why, "reference");
+  EXPECT_EQ(g.difference.n, 5u);
+  EXPECT_NEAR(g.difference.mean, -1.0, 1e-9);
+  // Differences -1, -1.2, -0.8, -1.1, -0.9: sample sd sqrt(0.1 / 4), t(4) = 2.776.
+  EXPECT_NEAR(g.difference.sd, std::sqrt(0.025), 1e-9);
+  EXPECT_NEAR(g.difference.half_width, 2.776 * std::sqrt(0.025) / std::sqrt(5.0), 1e-3);
+  EXPECT_EQ(g.wins, 5u);
+  EXPECT_EQ(g.losses, 0u);
+  EXPECT_EQ(g.reading(), "lower");
+  const PairedComparison& m = paired[1];
+  EXPECT_EQ(m.row, "mixed");
+  EXPECT_EQ(m.against, "skinned");
+  EXPECT_NEAR(m.difference.mean, 0.1, 1e-9);
+  EXPECT_EQ(m.wins, 2u);
+  EXPECT_EQ(m.losses, 3u);
+  EXPECT_EQ(m.reading(), "not separated");
+  EXPECT_EQ(paired[2].row, "mixed");
+  EXPECT_EQ(paired[2].against, "good");
+  EXPECT_EQ(paired[2].why, "partner");
+  EXPECT_EQ(paired[2].wins, 1u) << "only on s4 is mixed (14) below good (14.9)";
+  ASSERT_EQ(missing.size(), 1u);
+  EXPECT_EQ(missing[0], "good: partner absent is not in the report");
+
+  const std::string md = read_text_file(r.report);
+  EXPECT_NE(md.find("### Paired comparisons (error per sequence)"), std::string::npos) << md;
+  EXPECT_NE(md.find("| `good` | `skinned` | test (5) | -1.00 [-1.20, -0.80] | 5 / 0 | **lower error** |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| `mixed` | `good` (partner) | test (5) |"), std::string::npos) << md;
+  EXPECT_NE(md.find("paired comparisons: good: partner absent is not in the report"), std::string::npos) << md;
+  const auto csv = csv_rows(read_text_file(dir.file("out/paired.csv")));
+  ASSERT_EQ(csv.size(), 3u);
+  EXPECT_EQ(csv[1].at("row"), "mixed");
+  EXPECT_EQ(csv[1].at("wins"), "2");
+  EXPECT_EQ(csv[1].at("losses"), "3");
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 //                                    repeated over seeds (run.seed = s)
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 
@@ -42,5 +43,19 @@ bool is_seed_folder(const std::string& name, std::uint64_t* seed = nullptr);
 // Whether a name in a run folder shows a run was made there: a checkpoint,
 // bench.json or an eval-<split> folder.
 bool is_result(const std::string& name);
+
+// A selection record's `chosen_on` (selection.json, checkpoints,
+// metrics.json): the names of the splits whose sequences the validation
+// read, joined by '+' ("val"; "val+test" when a sequence of both was
+// read), "none" or "" when nothing was chosen. True when it names `split`.
+inline bool chosen_on_names(const std::string& chosen_on, const std::string& split) {
+  std::size_t start = 0;
+  while (start <= chosen_on.size()) {
+    const std::size_t end = std::min(chosen_on.find('+', start), chosen_on.size());
+    if (chosen_on.compare(start, end - start, split) == 0 && end - start == split.size()) return true;
+    start = end + 1;
+  }
+  return false;
+}
 
 }  // namespace layers::data::run_layout

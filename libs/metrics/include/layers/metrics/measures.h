@@ -52,9 +52,10 @@ struct LCollisionRates {
 };
 LCollisionRates l_collision_rates(const geometry::Points& outer, const geometry::TriMesh& inner);
 
-// Mean and population standard deviation (divided by n, as numpy's std) of
-// per-sequence values; count = number of values, all zero when empty.
-// Non-finite values propagate into mean and std.
+// Mean and sample standard deviation (divided by n - 1, as core/interval.h
+// and numpy's std(ddof=1)) of per-sequence values; count = number of
+// values; all zero when empty, std NaN for a single value (no spread is
+// measured from one). Non-finite values propagate into mean and std.
 struct MeanStd {
   double mean = 0.0;
   double std = 0.0;

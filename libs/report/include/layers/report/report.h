@@ -6,7 +6,8 @@
 //                      divergence, per garment type, ground truth beside
 //                      predictions, notes on anything missing
 // <out>/summary.csv, summary.json, per_type.csv, by_step.csv, bench.csv
-//                      the tables (tables.h); seeds.csv (seeds.h)
+//                      the tables (tables.h); seeds.csv (seeds.h);
+//                      paired.csv (paired.h)
 // <out>/charts/        PNG charts with their gnuplot scripts and data
 //
 // Selection: each run says which split chose its checkpoint and which it
@@ -22,6 +23,7 @@
 #pragma once
 
 #include <cstddef>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -36,6 +38,9 @@ struct ReportInputs {
   std::string split;                // eval-<split> to read (default: see load_run)
   std::string gnuplot = "gnuplot";  // program, a path or a name on PATH
   bool charts = true;               // false: tables and report.md only
+  // Row -> the row it is also compared with, paired per sequence
+  // (paired.h; every learned row is compared with the reference rows).
+  std::map<std::string, std::string> partners;
   PictureOptions picture;
 };
 

@@ -2,7 +2,7 @@
 // <name>/seed-<s> run folders, run_results.h): each metric as mean and std
 // over the seeds of the runs' overall means, beside the spread over
 // sequences (the mean over the seeds of each run's std over sequences).
-// Stds are population stds (divided by n), as over sequences.
+// Stds are sample stds (divided by n - 1), as over sequences.
 //
 //   seeds.csv  one row per experiment with two or more evaluated seeds:
 //              experiment, model, split, seeds, the seed list, then per

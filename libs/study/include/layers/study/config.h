@@ -29,6 +29,7 @@
 // an experiment's data.dataset.
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -92,6 +93,9 @@ struct StudyReport {
   bool charts = true;
   int frames = 4;        // columns of the ground truth / predictions picture
   std::string sequence;  // sequence of the picture (default: the report's choice)
+  // Experiment -> the experiment it is also compared with, paired per
+  // sequence (layers/report/paired.h): e.g. the paper's partner of a row.
+  std::map<std::string, std::string> partners;
 
   template <class V>
   void visit(V& v) {
@@ -100,6 +104,8 @@ struct StudyReport {
     v("charts", charts);
     v("frames", frames, cfg::opt().range(1, 12));
     v("sequence", sequence);
+    v("partners", partners,
+      cfg::opt().help("experiment -> experiment it is also compared with per sequence (paired, 95% interval)"));
   }
 };
 

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -26,6 +27,12 @@ namespace layers::train {
 // checkpoint are set by `layers bench` flags (a study sets split to the
 // split its run is evaluated on and checkpoint to the one its evaluation
 // reads, and writes <run>/bench.json).
+// Our simulator timed on a scene (`layers bench --simulator`).
+struct SimulatorTiming {
+  std::int64_t garment_vertices = 0;
+  double ms_per_frame = 0;  // wall clock per recorded frame, one thread
+};
+
 struct BenchOptions {
   std::string sequence;   // default: the first sequence of `split`
   std::string split;      // default: eval.split, else data.test_split
@@ -44,6 +51,11 @@ struct BenchOptions {
   // time the same) or a checkpoint file, which must exist (a study sets its
   // run's checkpoint, a lent one included).
   std::string checkpoint = "best";
+  // Also time our simulator on the same scene at each level (rows without
+  // the far body): called with the dataset folder, the sequence id and the
+  // level. Empty: not timed. Set by the application, which knows the
+  // generator (libs/train does not).
+  std::function<SimulatorTiming(const std::string& dataset, const std::string& sequence, int level)> simulator;
 
   template <class V>
   void visit(V& v) {
@@ -65,6 +77,7 @@ struct BenchRow {
   // training step; empty when not profiled.
   std::vector<std::pair<std::string, double>> infer_phases, train_phases;
   double infer_gflops = 0, train_gflops = 0;  // the profiler's flop count over the step's time
+  SimulatorTiming simulator;                  // when timed (garment_vertices > 0)
 };
 
 struct BenchReport {
@@ -75,6 +88,7 @@ struct BenchReport {
   int threads = 0;
   std::vector<BenchRow> rows;
   double matmul_peak_gflops = 0;  // --profile: a 1024 x 1024 product on these threads
+  double peak_resident_mib = 0;   // the process's peak resident memory at the end (VmHWM)
 };
 
 BenchReport run_bench(const ExperimentConfig& config, const zoo::Registry& registry, const BenchOptions& options);

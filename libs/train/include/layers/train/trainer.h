@@ -62,6 +62,7 @@ struct EpochSummary {
   double optimizer_seconds = 0;  // of `seconds`, clipping gradients and the optimiser's step
   int ranks = 1;
   double lr = 0;
+  double peak_resident_mib = 0;  // this process's peak resident memory so far (VmHWM)
 };
 
 struct TrainReport {
