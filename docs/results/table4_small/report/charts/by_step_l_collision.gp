@@ -2,7 +2,7 @@
 set terminal pngcairo size 900,500 font 'Sans,10' noenhanced
 if (!exists('out')) out = 'by_step_l_collision.png'
 set output out
-set title 'L-collision (ours: open-edge rule) against rollout step'
+set title 'L-coll (ours: open-edge rule) against rollout step'
 set xlabel 'rollout step (predicted frames after the ground-truth start)'
 set ylabel 'outer-garment vertices behind the inner garment (%)'
 set grid

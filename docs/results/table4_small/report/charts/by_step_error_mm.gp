@@ -1,8 +1,8 @@
-# Drawn by `layers report`; redraw with: gnuplot by_step_error.gp
+# Drawn by `layers report`; redraw with: gnuplot by_step_error_mm.gp
 set terminal pngcairo size 900,500 font 'Sans,10' noenhanced
-if (!exists('out')) out = 'by_step_error.png'
+if (!exists('out')) out = 'by_step_error_mm.png'
 set output out
-set title 'Error against rollout step'
+set title 'error (mm) against rollout step'
 set xlabel 'rollout step (predicted frames after the ground-truth start)'
 set ylabel 'mean Euclidean error (mm)'
 set grid
