@@ -270,6 +270,7 @@ TEST(CliTrain, ChoosingTheEpochNeverReadsTheTestSplit) {
   const nlohmann::json a = run(original, "original", "");
   const nlohmann::json b = run(altered, "altered-run", "");
   EXPECT_EQ(a["chosen_on"], "val");
+  EXPECT_EQ(a["windows_by_epoch"], nlohmann::json::parse("[8, 8, 8, 8, 8]")) << "the learning curves' x axis";
   EXPECT_EQ(a, b);
   for (const char* file : {"checkpoint-best.pt", "checkpoint-last.pt"})
     EXPECT_TRUE(read_bytes(dir.file(std::string("original/") + file)) ==

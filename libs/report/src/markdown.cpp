@@ -205,6 +205,34 @@ void paired_table(std::ostringstream& md, const std::vector<PairedComparison>& p
   md << "\n";
 }
 
+// One row per trained run: its validation error per epoch at a glance and
+// whether the last epoch was still the best (a curve still falling).
+void learning_table(std::ostringstream& md, const std::vector<RunResults>& runs) {
+  bool any = false;
+  for (const RunResults& r : runs) any = any || !r.curve.val_error_mm.empty();
+  if (!any) return;
+  md << "| run | epochs | windows seen | validation error (mm): first, best (epoch), last | still improving at the "
+        "end |\n|---|---:|---:|---|---|\n";
+  for (const RunResults& r : runs) {
+    const LearningCurve& c = r.curve;
+    std::size_t best = c.val_error_mm.size(), first = best;
+    for (std::size_t k = 0; k < c.val_error_mm.size(); ++k) {
+      if (!std::isfinite(c.val_error_mm[k])) continue;
+      if (first == c.val_error_mm.size()) first = k;
+      if (best == c.val_error_mm.size() || c.val_error_mm[k] < c.val_error_mm[best]) best = k;
+    }
+    if (best == c.val_error_mm.size()) continue;  // no validation error recorded
+    const std::size_t last = c.val_error_mm.size() - 1;
+    const double seen = c.windows_seen.empty() ? kAbsent : c.windows_seen.back();
+    md << "| " << md_cell(r.name) << " | " << c.val_error_mm.size() << " | "
+       << (std::isfinite(seen) ? std::to_string(static_cast<long long>(seen)) : "-") << " | "
+       << fixed(c.val_error_mm[first], 2) << ", " << fixed(c.val_error_mm[best], 2) << " (" << best + 1 << "), "
+       << (std::isfinite(c.val_error_mm[last]) ? fixed(c.val_error_mm[last], 2) : "-") << " | "
+       << (best == last && last > first ? "yes: the last epoch is the best" : "no") << " |\n";
+  }
+  md << "\n";
+}
+
 void pareto_list(std::ostringstream& md, const std::vector<RunResults>& runs) {
   const std::vector<std::size_t> order = runs_front_order(runs);
   md << "**Pareto front of accuracy against speed** (fastest first; a run is on it when no other run is at least "
@@ -333,6 +361,9 @@ std::string report_markdown(const ReportContent& c) {
   per_type_table(md, c.runs);
   charts_of(md, c.per_type, c.charts_dir);
 
+  md << "## Learning curves\n\n";
+  charts_of(md, c.learning, c.charts_dir);
+  learning_table(md, c.runs);
   md << "## Ground truth and predictions\n\n";
   charts_of(md, c.frames, c.charts_dir);
 

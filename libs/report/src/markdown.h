@@ -20,7 +20,7 @@ struct ChartSection {
 struct ReportContent {
   std::string title;
   std::vector<RunResults> runs;
-  ChartSection speed, by_step, per_type, frames;
+  ChartSection speed, by_step, per_type, frames, learning;
   std::vector<PairedComparison> paired;
   std::vector<std::string> problems;
   std::string charts_dir = "charts";  // relative to report.md

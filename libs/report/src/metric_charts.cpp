@@ -248,4 +248,37 @@ Chart per_type_chart(const Gnuplot& gp, const std::string& dir, const std::vecto
               "garments (e.g. jacket) ride on the inner ones, so their error includes the inner layer's drift."};
 }
 
+Chart learning_curves_chart(const Gnuplot& gp, const std::string& dir, const std::vector<RunResults>& runs) {
+  const std::string name = "learning_curves";
+  std::ostringstream data, plot;
+  std::size_t blocks = 0;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const LearningCurve& c = runs[i].curve;
+    std::ostringstream block;
+    std::size_t points = 0;
+    for (std::size_t k = 0; k < c.val_error_mm.size(); ++k) {
+      if (!std::isfinite(c.val_error_mm[k]) || !std::isfinite(c.windows_seen[k])) continue;
+      block << datum(c.windows_seen[k]) << ' ' << datum(c.val_error_mm[k]) << '\n';
+      ++points;
+    }
+    if (points == 0) continue;
+    data << "# " << runs[i].name << "\n" << block.str() << "\n\n";
+    plot << (blocks ? ", \\\n     " : "") << gnuplot_string(name + ".dat") << " index " << blocks
+         << " using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb " << gnuplot_string(run_color(i)) << " title "
+         << gnuplot_string(runs[i].name);
+    ++blocks;
+  }
+  if (blocks == 0) throw Error("no run has a validation error per epoch (selection.json): no learning curves");
+  write_data(dir, name + ".dat", data.str());
+  std::ostringstream s;
+  s << gp.preamble(name, 1000, 560) << "set title 'Learning curves'\n"
+    << "set xlabel 'training windows seen'\nset ylabel 'validation error (mm)'\nset grid\n"
+    << "set key outside right top\nset datafile missing 'NaN'\nplot " << plot.str() << "\n";
+  gp.plot(dir, name, s.str());
+  return {name + ".png", "Learning curves",
+          "Each trained run's validation error at the end of every epoch (the trainer's selection metric, "
+          "selection.json) against the training windows seen by then. A curve still falling at its last point "
+          "was stopped before it converged."};
+}
+
 }  // namespace layers::report

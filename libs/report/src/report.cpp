@@ -74,16 +74,17 @@ ReportResult write_report(const std::vector<RunResults>& runs, const ReportInput
   std::optional<Gnuplot> gp;
   if (!inputs.charts) {
     content.speed.missing = content.by_step.missing = content.per_type.missing = content.frames.missing =
-        "charts were switched off";
+        content.learning.missing = "charts were switched off";
   } else if (result.runs_with_metrics == 0) {
     content.speed.missing = content.by_step.missing = content.per_type.missing = content.frames.missing =
-        "no run has an evaluation";
+        content.learning.missing = "no run has an evaluation";
   } else {
     try {
       gp = Gnuplot::find(inputs.gnuplot);
       fs::create_directories(charts_dir);
     } catch (const std::exception& e) {
-      content.speed.missing = content.by_step.missing = content.per_type.missing = content.frames.missing = e.what();
+      content.speed.missing = content.by_step.missing = content.per_type.missing = content.frames.missing =
+          content.learning.missing = e.what();
       content.problems.push_back(std::string("charts: ") + e.what());
     }
   }
@@ -94,10 +95,13 @@ ReportResult write_report(const std::vector<RunResults>& runs, const ReportInput
          [&](std::vector<Chart>& out) { out = by_step_charts(*gp, charts_dir, runs); });
     draw(content.per_type, content.problems, "per-type chart",
          [&](std::vector<Chart>& out) { out.push_back(per_type_chart(*gp, charts_dir, runs)); });
+    draw(content.learning, content.problems, "learning curves",
+         [&](std::vector<Chart>& out) { out.push_back(learning_curves_chart(*gp, charts_dir, runs)); });
     draw(content.frames, content.problems, "ground truth and predictions picture", [&](std::vector<Chart>& out) {
       out.push_back(frames_picture(*gp, charts_dir, runs, inputs.picture, content.problems));
     });
-    for (const ChartSection* s : {&content.speed, &content.by_step, &content.per_type, &content.frames})
+    for (const ChartSection* s :
+         {&content.speed, &content.by_step, &content.per_type, &content.frames, &content.learning})
       for (const Chart& c : s->charts) result.charts.push_back((fs::path(charts_dir) / c.file).string());
   }
 

@@ -168,7 +168,8 @@ EvalResults parse_metrics_json(const Reader& r, const json& doc, const std::stri
 // experiment.yaml ("" when absent).
 struct ExperimentFacts {
   std::string dataset, model, test_split;
-  std::string settings;  // the experiment without run.seed, run.output and data.dataset (YAML)
+  std::string windows_per_epoch;  // train.windows_per_epoch ("" when not set)
+  std::string settings;           // the experiment without run.seed, run.output and data.dataset (YAML)
 };
 ExperimentFacts experiment_facts(const std::string& file) {
   const cfg::Node root = cfg::load_file(file);
@@ -180,7 +181,31 @@ ExperimentFacts experiment_facts(const std::string& file) {
     const cfg::Node* v = s ? s->find(key) : nullptr;
     return v && v->kind == cfg::Node::Kind::Scalar ? v->scalar : "";
   };
-  return {scalar("data", "dataset"), scalar("model", "name"), scalar("data", "test_split"), cfg::to_yaml(settings)};
+  return {scalar("data", "dataset"), scalar("model", "name"), scalar("data", "test_split"),
+          scalar("train", "windows_per_epoch"), cfg::to_yaml(settings)};
+}
+
+// selection.json's validation error per epoch against the windows seen by
+// the end of each epoch: its windows_by_epoch, else the experiment's
+// windows_per_epoch times the epoch; NaN where neither is known.
+LearningCurve learning_curve(const Reader& reader, const json& doc, double windows_per_epoch) {
+  LearningCurve c;
+  if (!doc.contains("val_error_mm_by_epoch")) return c;
+  const json& vals = reader.array(doc, "val_error_mm_by_epoch", "val_error_mm_by_epoch");
+  const json* windows = doc.contains("windows_by_epoch") ? &doc.at("windows_by_epoch") : nullptr;
+  double seen = 0;
+  for (std::size_t k = 0; k < vals.size(); ++k) {
+    const double v = vals[k].is_number() ? vals[k].get<double>() : kAbsent;
+    c.val_error_mm.push_back(v >= 0 ? v : kAbsent);  // -1: no validation that epoch
+    double w = kAbsent;
+    if (windows && windows->is_array() && k < windows->size() && (*windows)[k].is_number())
+      w = (*windows)[k].get<double>();
+    else if (windows_per_epoch > 0)
+      w = windows_per_epoch;
+    seen += w;
+    c.windows_seen.push_back(seen);
+  }
+  return c;
 }
 
 // The seed-<s> folders directly in `dir`, in seed order.
@@ -342,12 +367,14 @@ RunResults load_run(const std::string& dir, const std::string& split) {
     return run;
   }
   const fs::path experiment = path / run_layout::kExperiment;
+  double windows_per_epoch = 0;  // the experiment's train.windows_per_epoch (0: every window, count unknown)
   if (fs::exists(experiment)) {
     try {
       const ExperimentFacts facts = experiment_facts(experiment.string());
       run.dataset = facts.dataset, run.model = facts.model;
       if (!facts.test_split.empty()) run.test_split = facts.test_split;
       run.settings = facts.settings;
+      if (!facts.windows_per_epoch.empty()) windows_per_epoch = std::stod(facts.windows_per_epoch);
     } catch (const std::exception& e) {
       run.problems.push_back(std::string("cannot read the experiment: ") + e.what());
     }
@@ -371,11 +398,13 @@ RunResults load_run(const std::string& dir, const std::string& split) {
     }
   }
   const fs::path selection = path / run_layout::kSelection;
-  if (run.eval && run.eval->selection.checkpoint == "best" && fs::exists(selection)) {
+  if (fs::exists(selection)) {
     try {
       const Reader reader(selection.string());
       const json doc = reader.parse(read_text_file(selection.string()));
-      run.eval->selection.val_error_mm = reader.number(doc, "best_val_error_mm", "best_val_error_mm");
+      if (run.eval && run.eval->selection.checkpoint == "best")
+        run.eval->selection.val_error_mm = reader.number(doc, "best_val_error_mm", "best_val_error_mm");
+      run.curve = learning_curve(reader, doc, windows_per_epoch);
     } catch (const std::exception& e) {
       run.problems.push_back(std::string("cannot read the selection record: ") + e.what());
     }

@@ -205,6 +205,7 @@ void save_checkpoint(const std::string& path, zoo::Model& model, const torch::op
   out.write("selection_epoch", at::scalar_tensor(static_cast<std::int64_t>(state.chosen_epoch), at::kLong));
   out.write("selection_epochs", at::scalar_tensor(static_cast<std::int64_t>(state.epochs), at::kLong));
   out.write("loss_by_epoch", at::tensor(state.loss_by_epoch, at::kDouble));
+  out.write("windows_by_epoch", at::tensor(state.windows_by_epoch, at::kDouble));
   out.write("val_mm_by_epoch", at::tensor(state.val_mm_by_epoch, at::kDouble));
   std::filesystem::create_directories(std::filesystem::path(path).parent_path().empty()
                                           ? std::filesystem::path(".")
@@ -259,6 +260,11 @@ CheckpointState load_checkpoint(const std::string& path, zoo::Model& model, torc
     vals = vals.to(at::kDouble).contiguous();
     state.loss_by_epoch.assign(losses.data_ptr<double>(), losses.data_ptr<double>() + losses.numel());
     state.val_mm_by_epoch.assign(vals.data_ptr<double>(), vals.data_ptr<double>() + vals.numel());
+  }
+  at::Tensor windows;
+  if (in.try_read("windows_by_epoch", windows)) {
+    windows = windows.to(at::kDouble).contiguous();
+    state.windows_by_epoch.assign(windows.data_ptr<double>(), windows.data_ptr<double>() + windows.numel());
   }
   torch::serialize::InputArchive model_archive, norm_archive;
   if (!in.try_read("model", model_archive)) throw InputError(path, "model", "the model's parameters", "nothing");

@@ -176,6 +176,7 @@ void write_selection(const ExperimentConfig& config, const CheckpointState& stat
       {"epochs", state.epochs},
       {"loss_by_epoch", state.loss_by_epoch},
       {"val_error_mm_by_epoch", state.val_mm_by_epoch},
+      {"windows_by_epoch", state.windows_by_epoch},
       {"train_split", config.data.train_split},
       {"test_split", config.data.test_split},
       {"source_revision", source_revision()}};  // the build that wrote this record
@@ -294,7 +295,7 @@ EpochSummary train_epoch(TrainingRun& run, WindowLoader& loader, torch::optim::A
   if (run.root)
     progress.emplace("epoch " + std::to_string(epoch + 1) + "/" + std::to_string(t.epochs), batches, "batches");
   double loss_sum = 0;
-  std::int64_t frames = 0;
+  std::int64_t frames = 0, windows = 0;
   std::size_t seen = 0;
   double data_seconds = 0, optimizer_seconds = 0;
   for (;;) {
@@ -310,6 +311,7 @@ EpochSummary train_epoch(TrainingRun& run, WindowLoader& loader, torch::optim::A
           train_window(run.s, sample, free_steps, loss_steps, context, static_cast<double>(batch->size()), t.noise_std);
     batch_loss /= static_cast<double>(batch->size());
     std::int64_t batch_frames = static_cast<std::int64_t>(batch->size()) * loss_steps;
+    windows += static_cast<std::int64_t>(batch->size()) * (group ? group->size() : 1);
     if (group) {
       // Mean gradient and loss over the ranks (every rank's batch is as
       // large), so the step is the one of the whole batch in one process.
@@ -345,6 +347,7 @@ EpochSummary train_epoch(TrainingRun& run, WindowLoader& loader, torch::optim::A
   e.data_seconds = data_seconds;
   e.optimizer_seconds = optimizer_seconds;
   e.peak_resident_mib = static_cast<double>(peak_resident_bytes()) / (1024.0 * 1024.0);
+  e.windows = windows;
   return e;
 }
 
@@ -359,6 +362,8 @@ void keep_epoch(TrainingRun& run, const EpochSummary& e, torch::optim::Adam& opt
   state.loss_by_epoch.resize(static_cast<std::size_t>(epoch), std::nan(""));
   state.val_mm_by_epoch.resize(static_cast<std::size_t>(epoch), std::nan(""));
   state.loss_by_epoch.push_back(e.loss);
+  state.windows_by_epoch.resize(static_cast<std::size_t>(epoch), std::nan(""));
+  state.windows_by_epoch.push_back(static_cast<double>(e.windows));
   state.val_mm_by_epoch.push_back(e.val_error_mm);
   run.report.epochs.push_back(e);
   if (!run.root) {

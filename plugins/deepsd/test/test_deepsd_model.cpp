@@ -295,12 +295,12 @@ TEST(DeepsdPlugin, ConfigsCreateTheModelThroughThePlugin) {
   EXPECT_EQ(model->name(), "deepsd");
   EXPECT_GT(model->info().trainable, 500000);
   EXPECT_EQ(cfg::to_yaml(model->config()), cfg::to_yaml(zoo::create_model(registry, *plus.find("model"))->config()));
-  // deepsd+ (the paper's "with collision loss") differs only by the body
-  // collision term; neither has a layer term.
+  // deepsd+ (the paper's "with collision loss": Eq. 14 extended between
+  // layers, Table 4's caption) differs only by the body and layer terms.
   EXPECT_EQ(plain.find("loss")->find("body_collision")->scalar, "0");
   EXPECT_EQ(plus.find("loss")->find("body_collision")->scalar, "1");
   EXPECT_EQ(plain.find("loss")->find("layer_collision")->scalar, "0");
-  EXPECT_EQ(plus.find("loss")->find("layer_collision")->scalar, "0");
+  EXPECT_EQ(plus.find("loss")->find("layer_collision")->scalar, "1");
 }
 
 }  // namespace

@@ -143,10 +143,11 @@ TEST(Metrics, CollisionRateNeedsVerticesAndValidFaces) {
 TEST(Metrics, MeanStdOverSequences) {
   metrics::MeanStd s = metrics::mean_std({1.0, 2.0, 3.0, 4.0});
   EXPECT_DOUBLE_EQ(s.mean, 2.5);
-  EXPECT_DOUBLE_EQ(s.std, std::sqrt(1.25));
+  EXPECT_DOUBLE_EQ(s.std, std::sqrt(5.0 / 3.0));  // sample std: squares 5 over n - 1 = 3
   EXPECT_EQ(s.count, 4u);
-  EXPECT_EQ(metrics::format(s), "2.5 +- 1.1");
-  EXPECT_EQ(metrics::format(metrics::mean_std({611.25, 611.35}), 2), "611.30 +- 0.05");
+  EXPECT_EQ(metrics::format(s), "2.5 +- 1.3");
+  EXPECT_EQ(metrics::format(metrics::mean_std({611.25, 611.35}), 2), "611.30 +- 0.07");
+  EXPECT_TRUE(std::isnan(metrics::mean_std({4.0}).std)) << "no spread is measured from one value";
   metrics::MeanStd empty = metrics::mean_std({});
   EXPECT_EQ(empty.count, 0u);
   EXPECT_EQ(empty.mean, 0.0);
@@ -154,6 +155,6 @@ TEST(Metrics, MeanStdOverSequences) {
   double a = metrics::sequence_mean({2.0, 4.0}), b = metrics::sequence_mean({5.0, 7.0, 9.0});
   metrics::MeanStd over = metrics::mean_std({a, b});
   EXPECT_DOUBLE_EQ(over.mean, 5.0);
-  EXPECT_DOUBLE_EQ(over.std, 2.0);
+  EXPECT_DOUBLE_EQ(over.std, std::sqrt(8.0));
   EXPECT_THROW(metrics::sequence_mean({}), layers::Error);
 }

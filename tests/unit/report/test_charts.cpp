@@ -76,6 +76,11 @@ TEST(Charts, EveryChartIsANonEmptyPng) {
   ReportInputs inputs;
   inputs.runs = {f.run("fast_run", fast, 0.05f), f.run("slow_run", slow, -0.02f)};
   f.dir.write("slow_run/bench.json", testing::bench_json("slownet", 2.0, 9.0));
+  // The trainer's per-epoch record (selection.json): the learning curves.
+  f.dir.write("fast_run/selection.json",
+              R"({"val_error_mm_by_epoch": [30.0, 25.0, 22.0], "windows_by_epoch": [100, 100, 100]})");
+  f.dir.write("slow_run/selection.json",
+              R"({"val_error_mm_by_epoch": [10.0, 8.0, 9.0], "windows_by_epoch": [50, 50, 50]})");
   inputs.title = "Test report";
   inputs.picture.frames = 3;
   const std::string out = f.dir.file("out");
@@ -92,7 +97,8 @@ TEST(Charts, EveryChartIsANonEmptyPng) {
                                              "by_step_h_crossing",
                                              "by_step_l_crossing",
                                              "per_type",
-                                             "frames"};
+                                             "frames",
+                                             "learning_curves"};
   ASSERT_EQ(result.charts.size(), expected.size()) << ::testing::PrintToString(result.charts);
   std::ifstream md_in(result.report);
   std::stringstream md;
@@ -114,6 +120,12 @@ TEST(Charts, EveryChartIsANonEmptyPng) {
   EXPECT_NE(md.str().find("The top row is the dataset's ground truth"), std::string::npos);
   EXPECT_NE(md.str().find("mean Euclidean error over the test sequences (mm)"), std::string::npos);
   EXPECT_NE(md.str().find("Mean over the test sequences of"), std::string::npos);
+  // Learning curves: windows seen add up over epochs; a curve whose last
+  // epoch is its best is still improving.
+  EXPECT_NE(md.str().find("| fast_run | 3 | 300 | 30.00, 22.00 (3), 22.00 | yes: the last epoch is the best |"),
+            std::string::npos)
+      << md.str();
+  EXPECT_NE(md.str().find("| slow_run | 3 | 150 | 10.00, 8.00 (2), 9.00 | no |"), std::string::npos) << md.str();
 }
 
 TEST(Charts, PictureWithoutGroundTruthSaysSo) {

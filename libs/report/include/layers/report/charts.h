@@ -13,6 +13,8 @@
 //                    not drawn
 //   per_type         error bars (mean +- std over sequences) per garment
 //                    type for every run
+//   learning_curves  validation error per epoch against training windows
+//                    seen, for every trained run
 //
 // Each run keeps one colour in every chart (its position in the list).
 // The functions throw layers::Error when gnuplot fails or nothing can be
@@ -37,6 +39,9 @@ Chart speed_accuracy_chart(const Gnuplot& gp, const std::string& dir, const std:
 // One chart per metric that some run has values for (error, H, L).
 std::vector<Chart> by_step_charts(const Gnuplot& gp, const std::string& dir, const std::vector<RunResults>& runs);
 Chart per_type_chart(const Gnuplot& gp, const std::string& dir, const std::vector<RunResults>& runs);
+// Validation error per epoch against the windows seen (each run's
+// selection.json); throws when no run has one.
+Chart learning_curves_chart(const Gnuplot& gp, const std::string& dir, const std::vector<RunResults>& runs);
 
 // The colour of the i-th run ("#rrggbb").
 std::string run_color(std::size_t i);

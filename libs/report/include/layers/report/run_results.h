@@ -108,6 +108,12 @@ struct BenchResults {
   std::vector<BenchPoint> rows;
 };
 
+// Validation error (mm) at the end of each training epoch against the
+// training windows seen by then (selection.json; NaN where unknown).
+struct LearningCurve {
+  std::vector<double> val_error_mm, windows_seen;
+};
+
 struct RunResults {
   std::string dir;                  // the run folder as given
   std::string name;                 // its last path component: the run's label everywhere
@@ -123,6 +129,7 @@ struct RunResults {
   std::string settings;
   std::optional<EvalResults> eval;
   std::optional<BenchResults> bench;
+  LearningCurve curve;                // empty without selection.json or its per-epoch record
   std::vector<std::string> problems;  // readable messages about missing or bad pieces (without the folder)
 };
 

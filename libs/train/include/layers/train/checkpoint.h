@@ -44,6 +44,10 @@ struct CheckpointState {
   // before they were kept; NaN for the epochs a resumed training ran
   // before they were kept.
   std::vector<double> loss_by_epoch, val_mm_by_epoch;
+  // Training windows seen in each finished epoch, all ranks (NaN where not
+  // kept: epochs trained before it was recorded). The learning curves'
+  // x axis (validation error against windows seen).
+  std::vector<double> windows_by_epoch;
 };
 
 // `optimizer` may be null (nothing to train, or an evaluation copy).

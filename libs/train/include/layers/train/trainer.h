@@ -63,6 +63,7 @@ struct EpochSummary {
   int ranks = 1;
   double lr = 0;
   double peak_resident_mib = 0;  // this process's peak resident memory so far (VmHWM)
+  std::int64_t windows = 0;      // training windows of the epoch, all ranks
 };
 
 struct TrainReport {
