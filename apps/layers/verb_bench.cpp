@@ -52,6 +52,9 @@ VerbRun register_bench(CLI::App& app, const Global&) {
     a->options.train = !a->no_train;
     if (a->simulator) {
       const int frames = a->simulator_frames;
+      // Refused before any timing: no generator config, frames out of
+      // range, or a finest level finer than the fit allows.
+      generate::check_resimulation(loaded.typed.data.dataset, frames, std::ldexp(1.0, -a->options.levels));
       // One midpoint subdivision per level is about 4x the garment
       // vertices; half the fit's edge length is the simulator's same step.
       a->options.simulator = [frames](const std::string& dataset, const std::string& sequence, int level) {
@@ -89,7 +92,7 @@ VerbRun register_bench(CLI::App& app, const Global&) {
     }
     for (const auto& row : r.rows) {
       if (row.simulator.garment_vertices == 0) continue;
-      std::printf("level %d, our simulator: %lld garment vertices, %.1f ms/frame; the model is %.1fx faster\n",
+      std::printf("level %d, our simulator: %lld garment vertices, %.1f ms/frame; simulator / model = %.1f\n",
                   row.level, static_cast<long long>(row.simulator.garment_vertices), row.simulator.ms_per_frame,
                   row.simulator.ms_per_frame / row.ms_per_frame);
     }

@@ -63,6 +63,13 @@ TEST(CliBench, SimulatorTimedOnTheSameSceneAtEachLevel) {
   }
   EXPECT_GT(doc["peak_resident_mib"].get<double>(), 0.0);
 
+  // What the simulator cannot do is refused before any model is timed.
+  auto too_many = run_command(
+      bench(experiment(dir, data), "--levels 1 --simulator --simulator-frames 9 --out " + dir.file("frames.json")));
+  EXPECT_EQ(too_many.exit_code, 1) << too_many.output;
+  EXPECT_NE(too_many.output.find("/dataset.yaml: frames: expected 2..4, got 9"), std::string::npos) << too_many.output;
+  EXPECT_EQ(too_many.output.find("infer ms/fr"), std::string::npos) << "nothing was timed";
+
   // The regression fixture was not made by the generator: one line, exit 1.
   test::TempDir other;
   const std::string synthetic = regression::write_fixture(other.path());

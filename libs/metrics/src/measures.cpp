@@ -71,7 +71,10 @@ MeanStd mean_std(const std::vector<double>& values) {
 
 std::string format(const MeanStd& value, int decimals) {
   char buffer[96];
-  std::snprintf(buffer, sizeof buffer, "%.*f +- %.*f", decimals, value.mean, decimals, value.std);
+  if (!std::isfinite(value.std))  // one value: no spread measured
+    std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value.mean);
+  else
+    std::snprintf(buffer, sizeof buffer, "%.*f +- %.*f", decimals, value.mean, decimals, value.std);
   return buffer;
 }
 

@@ -226,8 +226,10 @@ double reduce_frames(const MetricDef& def, const std::vector<double>& values) {
 std::string format_value(const MetricDef& def, const MeanStd& value) {
   if (value.count == 0) return "-";
   char buf[96];
-  if (def.unit == Unit::Millimetre)
+  if (def.unit == Unit::Millimetre && std::isfinite(value.std))
     std::snprintf(buf, sizeof buf, "%.1f +- %.1f", value.mean, value.std);
+  else if (def.unit == Unit::Millimetre)  // one sequence: no spread measured
+    std::snprintf(buf, sizeof buf, "%.1f", value.mean);
   else
     std::snprintf(buf, sizeof buf, "%.2f%%", 100.0 * value.mean);
   return buf;

@@ -12,7 +12,8 @@ namespace {
 
 // One row of the comparison: an experiment (its seeds pooled) or a single run.
 struct Row {
-  std::string name, split;
+  std::string name, split, dataset;
+  std::int64_t horizon = 0;
   bool learned = false;
   std::map<std::string, double> error_by_sequence;  // mean over seeds of the finite errors
 };
@@ -26,7 +27,9 @@ std::vector<Row> rows_of(const std::vector<RunResults>& runs) {
     const int g = seed_group_of(groups, i);
     std::vector<std::size_t> members{i};
     Row row;
-    row.name = runs[i].name;
+    // A repeated experiment is named by the experiment even when only one
+    // of its seeds is evaluated (seed_groups groups two or more).
+    row.name = runs[i].repeated ? runs[i].experiment : runs[i].name;
     if (g >= 0) {
       if (grouped_done[static_cast<std::size_t>(g)]) continue;
       grouped_done[static_cast<std::size_t>(g)] = true;
@@ -35,6 +38,8 @@ std::vector<Row> rows_of(const std::vector<RunResults>& runs) {
     }
     const EvalResults& first = *runs[members.front()].eval;
     row.split = first.split;
+    row.dataset = first.dataset;
+    row.horizon = first.horizon;
     row.learned = first.parameters > 0;
     std::map<std::string, std::pair<double, int>> sums;
     for (std::size_t m : members)
@@ -89,18 +94,30 @@ std::vector<PairedComparison> paired_comparisons(const std::vector<RunResults>& 
       if (r.name == name) return &r;
     return nullptr;
   };
+  // Paired only on the same scenes and rollouts: same split, dataset and
+  // evaluation horizon.
+  const auto comparable = [](const Row& a, const Row& b) {
+    return a.split == b.split && a.dataset == b.dataset && a.horizon == b.horizon;
+  };
+  const auto note = [&](const std::string& text) {
+    if (missing) missing->push_back(text);
+  };
   std::vector<PairedComparison> out;
+  for (const auto& [row_name, partner_name] : partners) {
+    const Row* row = find(row_name);
+    if (row && !row->learned) note(row_name + ": not a learned row, so it is not compared with a partner");
+    if (row_name == partner_name) note(row_name + ": its own partner, not compared");
+  }
   for (const Row& row : rows) {
     if (!row.learned) continue;
     for (const Row& other : rows)
-      if (!other.learned && other.split == row.split) out.push_back(compare(row, other, "reference"));
+      if (!other.learned && comparable(row, other)) out.push_back(compare(row, other, "reference"));
     const auto p = partners.find(row.name);
-    if (p == partners.end()) continue;
+    if (p == partners.end() || p->second == row.name) continue;
     const Row* partner = find(p->second);
-    if (partner == nullptr || partner->split != row.split) {
-      if (missing)
-        missing->push_back(row.name + ": partner " + p->second +
-                           (partner ? " is evaluated on another split" : " is not in the report"));
+    if (partner == nullptr || !comparable(row, *partner)) {
+      note(row.name + ": partner " + p->second +
+           (partner ? " is evaluated on another split, dataset or horizon" : " is not in the report"));
       continue;
     }
     out.push_back(compare(row, *partner, "partner"));

@@ -205,6 +205,9 @@ LearningCurve learning_curve(const Reader& reader, const json& doc, double windo
     seen += w;
     c.windows_seen.push_back(seen);
   }
+  // One epoch's count unknown: no x axis for the curve (the table still
+  // lists its errors), rather than a curve that stops there.
+  if (!std::isfinite(seen)) c.windows_seen.assign(c.windows_seen.size(), kAbsent);
   return c;
 }
 

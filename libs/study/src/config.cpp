@@ -87,10 +87,13 @@ StudyConfig load_study(const std::string& path, const std::vector<std::string>& 
                        "'" + e.file + "' (no such file)");
     check_steps(path, key + ".steps", e.steps, kRunSteps);
   }
-  for (const auto& [row, partner] : study.report.partners)
+  for (const auto& [row, partner] : study.report.partners) {
+    if (row == partner)
+      throw InputError(path, "report.partners." + row, "another experiment to compare it with", "'" + partner + "'");
     for (const std::string& name : {row, partner})
       if (names.count(name) == 0)
         throw InputError(path, "report.partners." + row, "experiment names of this study", "'" + name + "'");
+  }
   return study;
 }
 

@@ -206,6 +206,8 @@ BenchReport run_bench(const ExperimentConfig& config, const zoo::Registry& regis
     report.rows.push_back(row);
   }
 
+  // The model's peak memory, read before the simulator runs in this process.
+  report.peak_resident_mib = static_cast<double>(peak_resident_bytes()) / (1024.0 * 1024.0);
   // Our simulator on the same scene at each level (--simulator).
   if (options.simulator)
     for (BenchRow& row : report.rows)
@@ -256,7 +258,6 @@ BenchReport run_bench(const ExperimentConfig& config, const zoo::Registry& regis
                                   {"model_speedup", r.simulator.ms_per_frame / r.ms_per_frame}};
     if (!profiles[i].is_null()) rows.back()["profile"] = profiles[i];
   }
-  report.peak_resident_mib = static_cast<double>(peak_resident_bytes()) / (1024.0 * 1024.0);
   nlohmann::ordered_json doc = {
       {"model", report.model},          {"parameters", report.parameters}, {"threads", report.threads},
       {"sequence", report.sequence},    {"split", report.split},           {"checkpoint", report.checkpoint},

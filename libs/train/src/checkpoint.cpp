@@ -165,12 +165,19 @@ void load_adam(torch::serialize::InputArchive& a, torch::optim::Adam& adam, cons
       const std::string key = std::to_string(i++);
       at::Tensor step;
       if (!a.try_read(key + ".step", step)) continue;  // no state yet for this parameter
+      // Each moment has its parameter's shape, device and type.
+      const auto moment = [&](const std::string& name, at::Tensor t) {
+        if (!t.sizes().equals(p.sizes()))
+          throw InputError(path, "adam." + key + "." + name, "the shape of parameter " + key,
+                           "another shape (a checkpoint of another model)");
+        return t.to(p.device(), p.scalar_type());
+      };
       auto s = std::make_unique<torch::optim::AdamParamState>();
       s->step(step.item<std::int64_t>());
-      s->exp_avg(read_tensor(a, key + ".exp_avg", path));
-      s->exp_avg_sq(read_tensor(a, key + ".exp_avg_sq", path));
+      s->exp_avg(moment("exp_avg", read_tensor(a, key + ".exp_avg", path)));
+      s->exp_avg_sq(moment("exp_avg_sq", read_tensor(a, key + ".exp_avg_sq", path)));
       at::Tensor max;
-      if (a.try_read(key + ".max_exp_avg_sq", max)) s->max_exp_avg_sq(max);
+      if (a.try_read(key + ".max_exp_avg_sq", max)) s->max_exp_avg_sq(moment("max_exp_avg_sq", max));
       adam.state()[c10::guts::to_string(p.unsafeGetTensorImpl())] = std::move(s);
     }
   }

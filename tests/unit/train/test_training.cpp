@@ -14,6 +14,7 @@
 #include "layers/core/error.h"
 #include "layers/core/source_revision.h"
 #include "layers/core/text_file.h"
+#include "layers/data/run_layout.h"
 #include "layers/report/report.h"
 #include "layers/train/checkpoint.h"
 #include "layers/train/compute_threads.h"
@@ -100,6 +101,32 @@ TEST_F(Fixture, TrainingLowersTheLossAndValidates) {
   EXPECT_TRUE(std::filesystem::exists(r.best_checkpoint));
 }
 
+// The selection record names the splits whose sequences the validation
+// read, measured from the ids, not copied from data.val_split: pointed at
+// the subset "T" (a train and the test sequence), the record says
+// "T+train+test", and evaluating that checkpoint on test is refused.
+TEST_F(Fixture, SelectionRecordNamesTheSplitsTheValidationRead) {
+  ExperimentConfig c = config("leaky");
+  c.train.epochs = 1;
+  c.data.val_split = "T";
+  run_training(c, registry, quiet());
+  const CheckpointState best = load_checkpoint(checkpoint_path(c, "best"), *open_session(c, registry).model, nullptr);
+  EXPECT_EQ(best.chosen_on, "T+train+test");
+  EXPECT_TRUE(data::run_layout::chosen_on_names(best.chosen_on, "test"));
+  EXPECT_FALSE(data::run_layout::chosen_on_names(best.chosen_on, "tes"));
+  EvalOptions o;
+  o.progress = false;
+  try {
+    run_evaluation(c, registry, o);
+    ADD_FAILURE() << "a checkpoint chosen on a test sequence was evaluated on test";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("selection.chosen_on: expected a checkpoint chosen on a split other than "
+                                         "data.test_split 'test', got one chosen on 'T+train+test'"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST_F(Fixture, ResumingGivesTheSameModelAsOneRun) {
   ExperimentConfig straight = config("straight");
   straight.train.epochs = 3;
@@ -127,6 +154,9 @@ TEST_F(Fixture, ResumingGivesTheSameModelAsOneRun) {
   ASSERT_EQ(a.loss_by_epoch.size(), 3u);
   EXPECT_EQ(a.val_mm_by_epoch, b.val_mm_by_epoch);
   EXPECT_EQ(a.loss_by_epoch, b.loss_by_epoch);
+  ASSERT_EQ(b.windows_by_epoch.size(), 3u) << "the windows of the epochs before the resume are kept";
+  EXPECT_EQ(a.windows_by_epoch, b.windows_by_epoch);
+  for (double w : b.windows_by_epoch) EXPECT_GT(w, 0.0);
   for (double v : a.val_mm_by_epoch) EXPECT_GT(v, 0.0);
   std::ifstream file(split.run.output + "/selection.json");
   const nlohmann::json selection = nlohmann::json::parse(file);

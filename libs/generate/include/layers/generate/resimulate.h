@@ -36,4 +36,9 @@ struct Resimulation {
 Resimulation resimulate(const std::string& dataset_dir, const std::string& sequence_id, std::int64_t frames,
                         const ResimulateOptions& options = {});
 
+// The same checks without simulating (everything but the sequence id):
+// what `layers bench --simulator` runs before timing anything, at its
+// finest level's edge scale.
+void check_resimulation(const std::string& dataset_dir, std::int64_t frames, double edge_scale);
+
 }  // namespace layers::generate

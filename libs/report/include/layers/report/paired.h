@@ -2,7 +2,8 @@
 // accuracy axis: each learned row (an experiment whose model has trainable
 // parameters) against each reference row (no parameters: static, skinned)
 // and against the partner a study or `layers report --partner` names for
-// it, over the sequences both evaluated on the same split. Per sequence,
+// it, over the sequences both evaluated on the same split of the same
+// dataset with the same evaluation horizon. Per sequence,
 // the row's error minus the other's (an experiment over seeds contributes
 // its mean over seeds per sequence); the mean difference with its 95%
 // interval (core/interval.h: paired Student t, sample standard deviation)

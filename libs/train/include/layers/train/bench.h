@@ -88,7 +88,8 @@ struct BenchReport {
   int threads = 0;
   std::vector<BenchRow> rows;
   double matmul_peak_gflops = 0;  // --profile: a 1024 x 1024 product on these threads
-  double peak_resident_mib = 0;   // the process's peak resident memory at the end (VmHWM)
+  double peak_resident_mib =
+      0;  // the process's peak resident memory after the model's timings (VmHWM; before --simulator)
 };
 
 BenchReport run_bench(const ExperimentConfig& config, const zoo::Registry& registry, const BenchOptions& options);
