@@ -20,7 +20,7 @@ VerbRun register_export(CLI::App& app, const Global&) {
   cmd->add_option("dataset", args->path, "dataset folder or shard .h5 file")->required();
   add_allow_unhashed(*cmd, args->allow_unhashed);
   cmd->add_option("sequence", args->sequence, "sequence id")->required();
-  cmd->add_option("--format", args->format, "obj or pc2")->capture_default_str();
+  cmd->add_option("--format", args->format, "obj, pc2 or glb")->capture_default_str();
   cmd->add_option("--frames", args->frames, "frames a:b (b excluded), a:, :b or a single frame")->capture_default_str();
   cmd->add_option("--out", args->out, "output folder")->capture_default_str();
   return [args]() {

@@ -7,8 +7,11 @@
 #include <memory>
 #include <set>
 
+#include "layers/core/atomic_file.h"
 #include "layers/core/error.h"
 #include "layers/data/dataset.h"
+#include "layers/data/format.h"
+#include "layers/data/glb.h"
 #include "layers/data/obj.h"
 #include "layers/data/pc2.h"
 
@@ -59,7 +62,8 @@ std::string frame_text(std::int64_t frame) {
 ExportFormat parse_export_format(const std::string& text, const std::string& source) {
   if (text == "obj") return ExportFormat::Obj;
   if (text == "pc2") return ExportFormat::Pc2;
-  throw InputError(source, "", "obj or pc2", "'" + text + "'");
+  if (text == "glb") return ExportFormat::Glb;
+  throw InputError(source, "", "obj, pc2 or glb", "'" + text + "'");
 }
 
 std::vector<std::string> export_sequence(const Dataset& dataset, const std::string& id, ExportFormat format,
@@ -89,6 +93,17 @@ std::vector<std::string> export_sequence(const Dataset& dataset, const std::stri
       const Pc2Header header{n_points, static_cast<float>(first), 1.0f, static_cast<std::int32_t>(last - first)};
       caches.push_back(std::make_unique<Pc2Writer>(prefix + mesh.name + ".pc2", header));
     }
+  }
+  if (format == ExportFormat::Glb) {
+    std::vector<GlbMesh> glb(meshes.size());
+    for (std::size_t m = 0; m < meshes.size(); ++m) glb[m] = GlbMesh{meshes[m].name, meshes[m].topology.faces, {}};
+    for (std::int64_t t = first; t < last; ++t) {
+      const Window w = dataset.read_frames(id, t, 1);
+      for (std::size_t m = 0; m < meshes.size(); ++m) glb[m].frames.push_back(meshes[m].positions(w));
+    }
+    const std::string path = (fs::path(out_dir) / file_safe(id)).string() + ".glb";
+    write_text_atomic(path, glb_bytes(glb, static_cast<double>(kFps)));
+    return {path};
   }
   for (std::int64_t t = first; t < last; ++t) {
     const Window w = dataset.read_frames(id, t, 1);

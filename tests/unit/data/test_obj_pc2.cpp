@@ -1,11 +1,15 @@
 // OBJ and PC2 import/export: round trips, every face form, malformed
 // inputs with line numbers or header fields, and sequence export.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstring>
 
 #include <filesystem>
 #include <fstream>
 
 #include "error_of.h"
+#include "file_bytes.h"
 #include "layers/core/error.h"
 #include "layers/data/dataset.h"
 #include "layers/data/dataset_writer.h"
@@ -173,12 +177,90 @@ TEST_F(DataExport, Pc2CachePlusObjAtFirstFrame) {
   EXPECT_TRUE(std::filesystem::exists(dir.file("out/s_jacket.pc2")));
 }
 
+// Reads a GLB back by hand (header, JSON and BIN chunks) and rebuilds each
+// frame of a node's mesh from its base and morph targets as the weights
+// animation's keyframes select them.
+struct GlbReadBack {
+  nlohmann::json doc;
+  std::string bin;
+  explicit GlbReadBack(const std::string& bytes) {
+    const auto u32 = [&](std::size_t at) {
+      std::uint32_t v = 0;
+      std::memcpy(&v, bytes.data() + at, 4);
+      return v;
+    };
+    EXPECT_EQ(u32(0), 0x46546C67u) << "magic glTF";
+    EXPECT_EQ(u32(4), 2u);
+    EXPECT_EQ(u32(8), bytes.size());
+    const std::uint32_t json_length = u32(12);
+    EXPECT_EQ(u32(16), 0x4E4F534Au);
+    doc = nlohmann::json::parse(bytes.substr(20, json_length));
+    const std::size_t bin_at = 20 + json_length;
+    EXPECT_EQ(u32(bin_at + 4), 0x004E4942u);
+    bin = bytes.substr(bin_at + 8, u32(bin_at));
+  }
+  std::vector<float> floats(int accessor) const {
+    const auto& a = doc["accessors"][accessor];
+    const auto& v = doc["bufferViews"][a["bufferView"].get<int>()];
+    const int per = a["type"] == "VEC3" ? 3 : 1;
+    std::vector<float> out(a["count"].get<std::size_t>() * per);
+    std::memcpy(out.data(), bin.data() + v["byteOffset"].get<std::size_t>(), out.size() * sizeof(float));
+    return out;
+  }
+  // Positions of node `n` at keyframe k.
+  std::vector<float> frame(int n, std::size_t k) const {
+    const auto& prim = doc["meshes"][doc["nodes"][n]["mesh"].get<int>()]["primitives"][0];
+    std::vector<float> p = floats(prim["attributes"]["POSITION"].get<int>());
+    const auto& channel = doc["animations"][0]["channels"][n];
+    const auto& sampler = doc["animations"][0]["samplers"][channel["sampler"].get<int>()];
+    const std::vector<float> weights = floats(sampler["output"].get<int>());
+    const std::size_t targets = prim["targets"].size();
+    for (std::size_t t = 0; t < targets; ++t) {
+      const float w = weights[k * targets + t];
+      if (w == 0) continue;
+      const std::vector<float> d = floats(prim["targets"][t]["POSITION"].get<int>());
+      for (std::size_t i = 0; i < p.size(); ++i) p[i] += w * d[i];
+    }
+    return p;
+  }
+};
+
+TEST_F(DataExport, GlbPlaysEveryFrameAsMorphTargets) {
+  const Dataset ds = Dataset::open(dir.file("ds"));
+  const auto files = export_sequence(ds, "s", parse_export_format("glb"), 2, 7, dir.file("out"));
+  ASSERT_EQ(files, (std::vector<std::string>{dir.file("out/s.glb")}));
+  const GlbReadBack glb(test::read_bytes(files[0]));
+  ASSERT_EQ(glb.doc["nodes"].size(), 3u);  // body, tshirt, jacket
+  EXPECT_EQ(glb.doc["nodes"][1]["name"], "tshirt");
+  const std::vector<float> times = glb.floats(glb.doc["animations"][0]["samplers"][0]["input"].get<int>());
+  ASSERT_EQ(times.size(), 5u);
+  EXPECT_FLOAT_EQ(times[4], 4.0f / 30.0f);  // the format's 30 fps
+  for (std::size_t k = 0; k < 5; ++k) {
+    const std::vector<float> body = glb.frame(0, k), jacket = glb.frame(2, k);
+    const std::vector<float> body_truth = testing::frames_of(seq.body.positions, seq.n_frames, 2 + k, 1);
+    const std::vector<float> jacket_truth = testing::frames_of(seq.garments[1].positions, seq.n_frames, 2 + k, 1);
+    ASSERT_EQ(body.size(), body_truth.size());
+    ASSERT_EQ(jacket.size(), jacket_truth.size());
+    for (std::size_t i = 0; i < body.size(); ++i) EXPECT_NEAR(body[i], body_truth[i], 1e-5) << k;
+    for (std::size_t i = 0; i < jacket.size(); ++i) EXPECT_NEAR(jacket[i], jacket_truth[i], 1e-5) << k;
+  }
+  // The validator's asks: every vertex buffer view has a target, every
+  // POSITION accessor its bounds.
+  for (const auto& m : glb.doc["meshes"]) {
+    const auto& prim = m["primitives"][0];
+    EXPECT_TRUE(glb.doc["accessors"][prim["attributes"]["POSITION"].get<int>()].contains("min"));
+    EXPECT_EQ(
+        glb.doc["bufferViews"][glb.doc["accessors"][prim["indices"].get<int>()]["bufferView"].get<int>()]["target"],
+        34963);
+  }
+}
+
 TEST_F(DataExport, BadRangeAndFormat) {
   const Dataset ds = Dataset::open(dir.file("ds"));
   const std::string e =
       test::error_of<InputError>([&] { export_sequence(ds, "s", ExportFormat::Obj, 5, 20, dir.file("out")); });
   EXPECT_NE(e.find("expected [first,last) with 0 <= first < last <= 12, got [5,20)"), std::string::npos) << e;
-  EXPECT_NE(test::error_of<InputError>([&] { parse_export_format("fbx"); }).find("expected obj or pc2, got 'fbx'"),
+  EXPECT_NE(test::error_of<InputError>([&] { parse_export_format("fbx"); }).find("expected obj, pc2 or glb, got 'fbx'"),
             std::string::npos);
 }
 

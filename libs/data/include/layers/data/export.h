@@ -9,6 +9,8 @@
 //   pc2: <seq>_<mesh>.pc2 (startFrame = first exported frame, sampleRate
 //        1) plus <seq>_<mesh>.obj, the mesh at the first exported frame,
 //        to attach the cache to.
+//   glb: <seq>.glb, every mesh and frame in one binary glTF 2.0 file
+//        (morph-target frames played by a weights animation; glb.h).
 // Frames are streamed (one at a time); every file is written atomically.
 #pragma once
 
@@ -20,8 +22,8 @@ namespace layers::data {
 
 class Dataset;
 
-enum class ExportFormat { Obj, Pc2 };
-// "obj" or "pc2"; InputError naming `source` otherwise.
+enum class ExportFormat { Obj, Pc2, Glb };
+// "obj", "pc2" or "glb"; InputError naming `source` otherwise.
 ExportFormat parse_export_format(const std::string& text, const std::string& source = "--format");
 
 // Exports frames [first, last) of sequence `id` (last < 0: to the end)
