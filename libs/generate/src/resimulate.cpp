@@ -15,13 +15,10 @@
 namespace layers::generate {
 namespace {
 
-// The generator config the dataset's manifest records, with the fit's
-// edge length scaled; InputError (one line) for everything resimulate.h
-// lists except the sequence id.
-GeneratorConfig recorded_config(const std::string& dataset_dir, std::int64_t frames, double edge_scale,
-                                std::string& path_out) {
-  // The config the dataset was made with, as its manifest records it.
-  const std::string path = (std::filesystem::path(dataset_dir) / "dataset.yaml").string();
+// The manifest's path and the generator config it records; InputError
+// (one line) without either, or for frames outside 2..its recorded count.
+GeneratorConfig recorded_config(const std::string& dataset_dir, std::int64_t frames, std::string& path) {
+  path = (std::filesystem::path(dataset_dir) / "dataset.yaml").string();
   if (!std::filesystem::exists(path))
     throw InputError::message(path, "",
                               "not found: a finished dataset's manifest carries the generator config (generator.yaml) "
@@ -31,9 +28,13 @@ GeneratorConfig recorded_config(const std::string& dataset_dir, std::int64_t fra
   if (!recorded)
     throw InputError(path, "generator", "the generator config the dataset was made with",
                      "none (a dataset not made by `layers generate`)");
-  GeneratorConfig config = *recorded;
-  if (frames < 2 || frames > config.frames)
-    throw InputError(path, "frames", "2.." + std::to_string(config.frames), std::to_string(frames));
+  if (frames < 2 || frames > recorded->frames)
+    throw InputError(path, "frames", "2.." + std::to_string(recorded->frames), std::to_string(frames));
+  return *recorded;
+}
+
+// The fit's edge length times `edge_scale`; InputError outside the fit's range.
+double scaled_edge(const GeneratorConfig& config, double edge_scale, const std::string& path) {
   const double edge = config.garments.fit.edge_length * edge_scale;
   if (!(edge >= 0.004 && edge <= 0.1)) {
     char field[96], got[32];
@@ -41,30 +42,28 @@ GeneratorConfig recorded_config(const std::string& dataset_dir, std::int64_t fra
     std::snprintf(got, sizeof got, "%g m", edge);
     throw InputError(path, field, "0.004..0.1 m", got);
   }
-  config.garments.fit.edge_length = edge;
-  path_out = path;
-  return config;
+  return edge;
 }
 
 }  // namespace
 
 void check_resimulation(const std::string& dataset_dir, std::int64_t frames, double edge_scale) {
   std::string path;
-  recorded_config(dataset_dir, frames, edge_scale, path);
+  scaled_edge(recorded_config(dataset_dir, frames, path), edge_scale, path);
 }
 
 Resimulation resimulate(const std::string& dataset_dir, const std::string& sequence_id, std::int64_t frames,
                         const ResimulateOptions& options) {
   std::string path;
-  const GeneratorConfig recorded = recorded_config(dataset_dir, frames, 1.0, path);
+  GeneratorConfig config = recorded_config(dataset_dir, frames, path);
   int index = -1;
   char tail = 0;
   if (std::sscanf(sequence_id.c_str(), "seq-%d%c", &index, &tail) != 1 || index < 0 || scene_id(index) != sequence_id)
     throw InputError(path, "sequence", "an id the generator made (seq-NNNNNN)", "'" + sequence_id + "'");
   // The scene is sampled with the recorded config (same outfit, body,
   // motion and wind); only the fit's resolution changes.
-  const SceneSpec spec = sample_scene(recorded, index);
-  GeneratorConfig config = recorded_config(dataset_dir, frames, options.edge_scale, path);
+  const SceneSpec spec = sample_scene(config, index);
+  config.garments.fit.edge_length = scaled_edge(config, options.edge_scale, path);
   SceneSimulation scene(config, spec);
   if (!scene.usable()) throw InputError::message(path, sequence_id, "cannot be simulated again: " + scene.problem());
   scene.warm_up();
