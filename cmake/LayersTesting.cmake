@@ -45,3 +45,24 @@ function(layers_model_test plugin name)
   layers_test(${name} SOURCES ${ARG_SOURCES} DEPS layers_${plugin}_model ${ARG_DEPS})
   add_dependencies(${name} layers_plugin_${plugin})
 endfunction()
+
+# layers_test_uses_browser_tools(<target>): the test may run node with the
+# npm tools of tests/browser (puppeteer-core driving Debian's
+# chromium-headless-shell; the Khronos gltf-validator). It gets their
+# paths as LAYERS_TEST_NODE, LAYERS_TEST_CHROMIUM ("" where CMake found
+# none) and LAYERS_TEST_BROWSER_DIR, and skips itself, saying which is
+# missing, without them.
+find_program(LAYERS_NODE_PROGRAM node)
+find_program(LAYERS_CHROMIUM_PROGRAM chromium-headless-shell)
+function(layers_test_uses_browser_tools target)
+  set(node "${LAYERS_NODE_PROGRAM}")
+  set(chromium "${LAYERS_CHROMIUM_PROGRAM}")
+  if(NOT LAYERS_NODE_PROGRAM)
+    set(node "")
+  endif()
+  if(NOT LAYERS_CHROMIUM_PROGRAM)
+    set(chromium "")
+  endif()
+  target_compile_definitions(${target} PRIVATE LAYERS_TEST_NODE="${node}" LAYERS_TEST_CHROMIUM="${chromium}"
+    LAYERS_TEST_BROWSER_DIR="${PROJECT_SOURCE_DIR}/tests/browser")
+endfunction()

@@ -2,7 +2,9 @@
 # scripts/keep_results.sh -- copy what a study's report is made of out of
 # its output folder into a folder kept with the repository (docs/results/),
 # without checkpoints, predictions or the picture's point data (the
-# report's charts/frames_*.dat, megabytes; frames.png stays): every run's
+# report's charts/frames_*.dat, megabytes; frames.png stays) or the
+# viewer (report/viewer/, up to 9.5 MB; `layers report` rebuilds it where
+# the predictions are): every run's
 # experiment.yaml, selection.json, bench.json, lane.log and
 # eval-*/metrics.json, the
 # study's steps.yaml and report/ (Markdown, CSV, JSON, charts), and the
@@ -42,7 +44,7 @@ mkdir -p "$tmp"
 # The result files, copied with their paths below the study folder.
 (cd "$src" && find . -type f \( -name experiment.yaml -o -name selection.json -o -name bench.json \
   -o -name lane.log -o -name steps.yaml -o -path '*/eval-*/metrics.json' -o -path './report/*' \) \
-  ! -name '*.pt' ! -name '*.h5' ! -name 'frames_*.dat' -exec cp -p --parents -t "$tmp" {} +)
+  ! -name '*.pt' ! -name '*.h5' ! -name 'frames_*.dat' ! -path './report/viewer/*' -exec cp -p --parents -t "$tmp" {} +)
 copied="$(find "$tmp" -type f | wc -l)"
 if [ "$copied" -eq 0 ]; then
   echo "keep_results: $src: expected runs or a report, got no result files" >&2

@@ -15,6 +15,7 @@ packages=(
   libeigen3-dev libhdf5-dev libnanoflann-dev libspdlog-dev libyaml-cpp-dev libcli11-dev zlib1g-dev
   nlohmann-json3-dev gnuplot-nox
   libgtest-dev libgmock-dev libbenchmark-dev
+  libjs-three chromium-headless-shell
 )
 
 # Optional, not installed here (CI and the tests do not need it): Debian's
@@ -44,6 +45,21 @@ if [ -e "$blas" ] && command -v update-alternatives >/dev/null; then
   $sudo update-alternatives --set libblas.so.3-x86_64-linux-gnu "$blas" >/dev/null 2>&1 || true
   lapack=/usr/lib/x86_64-linux-gnu/openblas-pthread/liblapack.so.3
   [ -e "$lapack" ] && $sudo update-alternatives --set liblapack.so.3-x86_64-linux-gnu "$lapack" >/dev/null 2>&1 || true
+fi
+
+# The npm tools of the browser and glTF tests (tests/browser: puppeteer-core
+# drives chromium-headless-shell through the report's viewer; the Khronos
+# gltf-validator checks `layers export --format glb`), at the versions of
+# its package-lock.json (node and npm come with the machine). Without npm
+# or the registry the build goes on and
+# those tests say they are skipped.
+if command -v npm >/dev/null; then
+  if [ ! -d "$root/tests/browser/node_modules/puppeteer-core" ] || [ ! -d "$root/tests/browser/node_modules/gltf-validator" ]; then
+    (cd "$root/tests/browser" && npm ci --no-audit --no-fund --loglevel=error) ||
+      echo "setup: npm ci in tests/browser failed: the browser and glTF validator tests will be skipped" >&2
+  fi
+else
+  echo "setup: no npm: the browser and glTF validator tests will be skipped" >&2
 fi
 
 jobs="${LAYERS_JOBS:-$(nproc)}"

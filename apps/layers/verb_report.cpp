@@ -20,7 +20,7 @@ VerbRun register_report(CLI::App& app, const Global&) {
   struct Args {
     report::ReportInputs inputs;
     std::string out = "report";
-    bool no_charts = false, force = false;
+    bool no_charts = false, no_viewer = false, force = false;
     std::vector<std::string> partners;
   };
   auto a = std::make_shared<Args>();
@@ -39,6 +39,9 @@ VerbRun register_report(CLI::App& app, const Global&) {
       ->check(CLI::Range(1, 12));
   cmd->add_option("--gnuplot", a->inputs.gnuplot, "gnuplot program")->capture_default_str();
   cmd->add_flag("--no-charts", a->no_charts, "tables and report.md only");
+  cmd->add_flag("--no-viewer", a->no_viewer, "no viewer/ (the page that plays the rollouts in the browser)");
+  cmd->add_option("--three", a->inputs.viewer.three, "three.min.js copied into the viewer (Debian's libjs-three)")
+      ->capture_default_str();
   cmd->add_option("--partner", a->partners,
                   "ROW=OTHER: also compare row ROW with OTHER per sequence (paired, 95% interval); every learned row "
                   "is compared with the reference rows");
@@ -46,6 +49,7 @@ VerbRun register_report(CLI::App& app, const Global&) {
                 "replace a report in --out: the old folder is moved aside to <out>.replaced-<time>, never deleted");
   return [a]() {
     a->inputs.charts = !a->no_charts;
+    a->inputs.viewer.enabled = !a->no_viewer;
     for (const std::string& p : a->partners) {
       const std::size_t eq = p.find('=');
       if (eq == std::string::npos || eq == 0 || eq + 1 == p.size())
@@ -71,6 +75,7 @@ VerbRun register_report(CLI::App& app, const Global&) {
     for (const std::string& name : r.pareto_front) std::printf(" %s", name.c_str());
     std::printf("%s\n", r.pareto_front.empty() ? " none" : "");
     for (const std::string& c : r.charts) std::printf("chart: %s\n", c.c_str());
+    if (!r.viewer.empty()) std::printf("viewer: %s\n", r.viewer.c_str());
     std::printf("report: %s\n", r.report.c_str());
     if (r.runs_with_metrics == 0) {
       std::fprintf(stderr, "layers report: error: no run folder had an evaluation to report (see %s)\n",

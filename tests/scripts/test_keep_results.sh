@@ -17,6 +17,7 @@ echo "weights" > "$study/a/seed-0/checkpoint-best.pt"
 echo "frames" > "$study/a/seed-0/eval-test/predictions.h5"
 echo "# report" > "$study/report/report.md"
 mkdir -p "$study/report/charts" && echo "1 2 3" > "$study/report/charts/frames_0_0.dat"
+mkdir -p "$study/report/viewer" && echo "window.LAYERS_SCENE = {};" > "$study/report/viewer/scene.js"
 echo "sequences: []" > "$work/data/dataset.yaml"
 
 out="$(bash "$script" "$study" "$work/kept" "$work/data")"
@@ -27,6 +28,7 @@ done
 [ ! -e "$work/kept/a/seed-0/checkpoint-best.pt" ] || fail "a checkpoint was kept"
 [ ! -e "$work/kept/a/seed-0/eval-test/predictions.h5" ] || fail "predictions were kept"
 [ ! -e "$work/kept/report/charts/frames_0_0.dat" ] || fail "the picture's point data was kept"
+[ ! -e "$work/kept/report/viewer" ] || fail "the viewer (megabytes) was kept"
 
 # An existing destination: exit 1, one line, nothing changed.
 echo "mine" > "$work/kept/report/report.md"

@@ -67,7 +67,8 @@ ExportFormat parse_export_format(const std::string& text, const std::string& sou
 }
 
 std::vector<std::string> export_sequence(const Dataset& dataset, const std::string& id, ExportFormat format,
-                                         std::int64_t first, std::int64_t last, const std::string& out_dir) {
+                                         std::int64_t first, std::int64_t last, const std::string& out_dir,
+                                         std::int64_t glb_chunk) {
   const SequenceInfo& info = dataset.info(id);
   if (last < 0) last = info.n_frames;
   if (first < 0 || first >= last || last > info.n_frames) {
@@ -102,7 +103,7 @@ std::vector<std::string> export_sequence(const Dataset& dataset, const std::stri
       for (std::size_t m = 0; m < meshes.size(); ++m) glb[m].frames.push_back(meshes[m].positions(w));
     }
     const std::string path = (fs::path(out_dir) / file_safe(id)).string() + ".glb";
-    write_text_atomic(path, glb_bytes(glb, static_cast<double>(kFps)));
+    write_text_atomic(path, glb_bytes(glb, static_cast<double>(kFps), glb_chunk));
     return {path};
   }
   for (std::int64_t t = first; t < last; ++t) {

@@ -12,6 +12,7 @@
 #include "layers/core/error.h"
 #include "layers/data/dataset.h"
 #include "layers/report/mesh_view.h"
+#include "shown_rows.h"
 #include "text.h"
 
 namespace layers::report {
@@ -21,50 +22,6 @@ namespace fs = std::filesystem;
 
 constexpr std::uint32_t kBody = 0xdcdcdc, kInner = 0x3b75af, kOuter = 0xe1812c;
 constexpr float kLayerBias = 0.03f;  // sort-depth bias per layer (mesh_view.h), metres
-
-// One row of the picture: a label and where its garments come from.
-struct Row {
-  std::string label;
-  std::shared_ptr<data::Dataset> source;
-};
-
-std::shared_ptr<data::Dataset> open_dataset(const std::string& path) {
-  return std::make_shared<data::Dataset>(data::Dataset::open(path));
-}
-
-// The ground-truth dataset: the option, else a run's data.dataset as
-// written or relative to the run folder and its parents.
-std::shared_ptr<data::Dataset> ground_truth(const std::vector<RunResults>& runs, const PictureOptions& options,
-                                            const std::string& sequence, std::vector<std::string>& notes) {
-  std::vector<std::string> candidates;
-  if (!options.dataset.empty()) {
-    candidates.push_back(options.dataset);
-  } else {
-    for (const RunResults& r : runs) {
-      if (r.dataset.empty()) continue;
-      candidates.push_back(r.dataset);
-      if (fs::path(r.dataset).is_relative())
-        for (fs::path dir = fs::absolute(r.dir).lexically_normal(); dir.has_relative_path(); dir = dir.parent_path())
-          candidates.push_back((dir / r.dataset).string());
-    }
-  }
-  std::string why = "no run names its dataset (experiment.yaml data.dataset)";
-  for (const std::string& c : candidates) {
-    if (!fs::exists(c)) {
-      why = "dataset " + c + " not found";
-      continue;
-    }
-    try {
-      auto ds = open_dataset(c);
-      if (ds->contains(sequence)) return ds;
-      why = "dataset " + c + " has no sequence " + sequence;
-    } catch (const std::exception& e) {
-      why = e.what();
-    }
-  }
-  notes.push_back("picture: no ground-truth row (" + why + "; pass --dataset)");
-  return nullptr;
-}
 
 // Triangles of one row's garments at one frame.
 void add_garments(std::vector<ScreenTriangle>& tris, ScreenBounds* bounds, const data::Dataset& ds,
@@ -96,45 +53,11 @@ std::vector<std::int64_t> picture_frames(std::int64_t n_frames, int count) {
 Chart frames_picture(const Gnuplot& gp, const std::string& dir, const std::vector<RunResults>& runs,
                      const PictureOptions& options, std::vector<std::string>& notes) {
   const std::string name = "frames";
-  // The runs' predictions.
-  std::vector<Row> predicted;
-  for (const RunResults& r : runs) {
-    if (!r.eval) continue;
-    if (r.eval->predictions.empty()) {
-      notes.push_back("picture: " + r.name + " has no predictions.h5 (eval.save_predictions off?)");
-      continue;
-    }
-    try {
-      predicted.push_back({r.name, open_dataset(r.eval->predictions)});
-    } catch (const std::exception& e) {
-      notes.push_back("picture: " + r.name + ": cannot read its predictions: " + e.what());
-    }
-  }
-  if (predicted.empty()) throw Error("no run has readable predictions (eval-<split>/predictions.h5)");
-  std::string sequence = options.sequence;
-  if (sequence.empty()) {
-    for (const std::string& id : predicted.front().source->ids()) {
-      if (std::all_of(predicted.begin(), predicted.end(), [&](const Row& r) { return r.source->contains(id); })) {
-        sequence = id;
-        break;
-      }
-    }
-    if (sequence.empty()) sequence = predicted.front().source->ids().front();
-  }
-  std::vector<Row> rows;
-  std::int64_t n_frames = -1;
-  for (const Row& r : predicted) {
-    if (!r.source->contains(sequence)) {
-      notes.push_back("picture: " + r.label + " has no prediction of " + sequence);
-      continue;
-    }
-    const std::int64_t n = r.source->info(sequence).n_frames;
-    n_frames = n_frames < 0 ? n : std::min(n_frames, n);
-    rows.push_back(r);
-  }
-  if (rows.empty()) throw Error("no run has a prediction of sequence '" + sequence + "'");
-  const std::shared_ptr<data::Dataset> truth = ground_truth(runs, options, sequence, notes);
-  if (truth) rows.insert(rows.begin(), Row{"ground truth", truth});
+  const ShownRows shown = shown_rows(runs, options, "picture", notes);
+  const std::string& sequence = shown.sequence;
+  const std::vector<ShownRow>& rows = shown.rows;
+  const std::int64_t n_frames = shown.n_frames;
+  const data::Dataset* truth = shown.has_truth ? rows.front().source.get() : nullptr;
   const std::vector<std::int64_t> frames = picture_frames(n_frames, std::max(1, options.frames));
 
   // The body (ground truth in every row) once per frame, then each row's garments.

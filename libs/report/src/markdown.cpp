@@ -366,6 +366,10 @@ std::string report_markdown(const ReportContent& c) {
   learning_table(md, c.runs);
   md << "## Ground truth and predictions\n\n";
   charts_of(md, c.frames, c.charts_dir);
+  if (!c.viewer_page.empty())
+    md << "Played in the browser: [" << c.viewer_page << "](" << c.viewer_page << "). " << c.viewer_caption << "\n\n";
+  else
+    md << "No viewer: " << c.viewer_missing << ".\n\n";
 
   md << "## Notes\n\n";
   if (c.problems.empty()) md << "Nothing missing.\n";
@@ -377,6 +381,8 @@ std::string report_markdown(const ReportContent& c) {
      << "- `by_step.csv`: one row per run and rollout step\n"
      << "- `bench.csv`: one row per run and benchmarked scene size\n"
      << "- `seeds.csv`: one row per experiment repeated over seeds (mean, std over seeds, spread over sequences)\n"
+     << "- `viewer/`: the viewer, a page that opens offline from disk (`index.html`, three.js, `scene.js` with the "
+        "frames)\n"
      << "- `" << c.charts_dir
      << "/`: the PNG charts with their gnuplot scripts (`*.gp`) and data (`*.dat`); "
         "redraw one with `cd "

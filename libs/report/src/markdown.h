@@ -22,6 +22,9 @@ struct ReportContent {
   std::vector<RunResults> runs;
   ChartSection speed, by_step, per_type, frames, learning;
   std::vector<PairedComparison> paired;
+  // The viewer (viewer.h): its page relative to report.md and what it
+  // shows, or why there is none.
+  std::string viewer_page, viewer_caption, viewer_missing;
   std::vector<std::string> problems;
   std::string charts_dir = "charts";  // relative to report.md
 };

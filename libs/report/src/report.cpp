@@ -105,6 +105,25 @@ ReportResult write_report(const std::vector<RunResults>& runs, const ReportInput
       for (const Chart& c : s->charts) result.charts.push_back((fs::path(charts_dir) / c.file).string());
   }
 
+  if (result.runs_with_metrics == 0) {
+    content.viewer_missing = "no run has an evaluation";
+  } else {
+    try {
+      const Viewer viewer = write_viewer(runs, inputs.picture, inputs.viewer, out_dir, content.problems);
+      result.viewer = viewer.page;
+      result.files.insert(result.files.end(), viewer.files.begin(), viewer.files.end());
+      content.viewer_page = fs::relative(viewer.page, out_dir).string();
+      std::string shown;
+      for (const std::string& r : viewer.rows) shown += (shown.empty() ? "" : ", ") + r;
+      content.viewer_caption = "Sequence `" + viewer.sequence + "`, frames 0-" + std::to_string(viewer.frames - 1) +
+                               " of " + std::to_string(viewer.sequence_frames) + ", side by side: " + shown +
+                               "; with play/pause, a frame slider and each row's metrics at the current frame.";
+    } catch (const std::exception& e) {
+      content.viewer_missing = e.what();
+      if (inputs.viewer.enabled) content.problems.push_back(std::string("viewer: ") + e.what());
+    }
+  }
+
   std::vector<std::string> chart_files;
   for (const std::string& c : result.charts) chart_files.push_back(fs::relative(c, out_dir).string());
   write("summary.json", summary_json(inputs.title, runs, content.problems, chart_files));

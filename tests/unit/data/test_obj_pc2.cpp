@@ -16,6 +16,7 @@
 #include "layers/data/export.h"
 #include "layers/data/obj.h"
 #include "layers/data/pc2.h"
+#include "run_command.h"
 #include "synthetic_sequence.h"
 
 namespace layers::data {
@@ -207,19 +208,50 @@ struct GlbReadBack {
     std::memcpy(out.data(), bin.data() + v["byteOffset"].get<std::size_t>(), out.size() * sizeof(float));
     return out;
   }
-  // Positions of node `n` at keyframe k.
-  std::vector<float> frame(int n, std::size_t k) const {
+  // STEP sampling: the index of the last keyframe of `sampler` at or before time t.
+  std::size_t keyframe(const nlohmann::json& sampler, float t) const {
+    const std::vector<float> times = floats(sampler["input"].get<int>());
+    std::size_t j = 0;
+    while (j + 1 < times.size() && times[j + 1] <= t + 1e-6f) ++j;
+    return j;
+  }
+  const nlohmann::json* channel(int node, const std::string& path) const {
+    for (const auto& c : doc["animations"][0]["channels"])
+      if (c["target"]["node"] == node && c["target"]["path"] == path)
+        return &doc["animations"][0]["samplers"][c["sampler"].get<int>()];
+    return nullptr;
+  }
+  bool visible(int node, float t) const {
+    const nlohmann::json* s = channel(node, "scale");
+    if (!s) return !doc["nodes"][node].contains("scale");
+    return floats((*s)["output"].get<int>())[3 * keyframe(*s, t)] > 0;
+  }
+  // Positions of the mesh named `name` at frame k (30 fps from the first
+  // exported frame): its node, or the chunk node visible then.
+  std::vector<float> frame(const std::string& name, std::size_t k) const {
+    const float t = static_cast<float>(k) / 30.0f;
+    for (int n = 0; n < static_cast<int>(doc["nodes"].size()); ++n) {
+      if (doc["nodes"][n]["name"] != name) continue;
+      std::vector<int> nodes = {n};
+      if (doc["nodes"][n].contains("children")) nodes = doc["nodes"][n]["children"].get<std::vector<int>>();
+      for (int c : nodes)
+        if (visible(c, t)) return mesh_at(c, t);
+    }
+    ADD_FAILURE() << "no visible node " << name << " at frame " << k;
+    return {};
+  }
+  std::vector<float> mesh_at(int n, float t) const {
     const auto& prim = doc["meshes"][doc["nodes"][n]["mesh"].get<int>()]["primitives"][0];
     std::vector<float> p = floats(prim["attributes"]["POSITION"].get<int>());
-    const auto& channel = doc["animations"][0]["channels"][n];
-    const auto& sampler = doc["animations"][0]["samplers"][channel["sampler"].get<int>()];
-    const std::vector<float> weights = floats(sampler["output"].get<int>());
-    const std::size_t targets = prim["targets"].size();
-    for (std::size_t t = 0; t < targets; ++t) {
-      const float w = weights[k * targets + t];
+    const nlohmann::json* sampler = channel(n, "weights");
+    if (!sampler) return p;
+    const std::vector<float> weights = floats((*sampler)["output"].get<int>());
+    const std::size_t targets = prim["targets"].size(), j = keyframe(*sampler, t);
+    for (std::size_t i = 0; i < targets; ++i) {
+      const float w = weights[j * targets + i];
       if (w == 0) continue;
-      const std::vector<float> d = floats(prim["targets"][t]["POSITION"].get<int>());
-      for (std::size_t i = 0; i < p.size(); ++i) p[i] += w * d[i];
+      const std::vector<float> d = floats(prim["targets"][i]["POSITION"].get<int>());
+      for (std::size_t v = 0; v < p.size(); ++v) p[v] += w * d[v];
     }
     return p;
   }
@@ -236,7 +268,7 @@ TEST_F(DataExport, GlbPlaysEveryFrameAsMorphTargets) {
   ASSERT_EQ(times.size(), 5u);
   EXPECT_FLOAT_EQ(times[4], 4.0f / 30.0f);  // the format's 30 fps
   for (std::size_t k = 0; k < 5; ++k) {
-    const std::vector<float> body = glb.frame(0, k), jacket = glb.frame(2, k);
+    const std::vector<float> body = glb.frame("body", k), jacket = glb.frame("jacket", k);
     const std::vector<float> body_truth = testing::frames_of(seq.body.positions, seq.n_frames, 2 + k, 1);
     const std::vector<float> jacket_truth = testing::frames_of(seq.garments[1].positions, seq.n_frames, 2 + k, 1);
     ASSERT_EQ(body.size(), body_truth.size());
@@ -252,6 +284,55 @@ TEST_F(DataExport, GlbPlaysEveryFrameAsMorphTargets) {
     EXPECT_EQ(
         glb.doc["bufferViews"][glb.doc["accessors"][prim["indices"].get<int>()]["bufferView"].get<int>()]["target"],
         34963);
+  }
+}
+
+// The Khronos validator (npm gltf-validator, installed by scripts/setup.sh
+// in tests/browser): no error, warning, info or hint.
+// A long sequence in chunks: each mesh a parent node with one child per
+// chunk, one child shown at a time, every frame as stored, and the weights
+// linear in the frames.
+TEST_F(DataExport, GlbCutsLongSequencesIntoChunks) {
+  const Dataset ds = Dataset::open(dir.file("ds"));
+  const auto files = export_sequence(ds, "s", ExportFormat::Glb, 0, 12, dir.file("out"), 5);
+  const GlbReadBack glb(test::read_bytes(files.at(0)));
+  ASSERT_EQ(glb.doc["nodes"].size(), 12u);  // 3 meshes x (3 chunks + a parent)
+  ASSERT_EQ(glb.doc["scenes"][0]["nodes"].size(), 3u);
+  const auto& tshirt = glb.doc["nodes"][glb.doc["scenes"][0]["nodes"][1].get<int>()];
+  EXPECT_EQ(tshirt["name"], "tshirt");
+  EXPECT_EQ(tshirt["children"].size(), 3u);
+  std::size_t weights = 0;
+  for (const auto& sampler : glb.doc["animations"][0]["samplers"])
+    if (glb.doc["accessors"][sampler["output"].get<int>()]["type"] == "SCALAR")
+      weights += glb.doc["accessors"][sampler["output"].get<int>()]["count"].get<std::size_t>();
+  EXPECT_EQ(weights, 3u * (5 * 4 + 5 * 4 + 2 * 1));  // not 3 x 12 x 11
+  for (std::size_t k = 0; k < 12; ++k) {
+    int shown = 0;
+    for (int c : tshirt["children"]) shown += glb.visible(c, static_cast<float>(k) / 30.0f);
+    EXPECT_EQ(shown, 1) << "frame " << k;
+    const std::vector<float> got = glb.frame("tshirt", k);
+    const std::vector<float> want = testing::frames_of(seq.garments[0].positions, seq.n_frames, k, 1);
+    ASSERT_EQ(got.size(), want.size());
+    for (std::size_t i = 0; i < got.size(); ++i) EXPECT_NEAR(got[i], want[i], 1e-5) << k;
+  }
+}
+
+TEST_F(DataExport, GlbPassesTheKhronosValidator) {
+  const std::string node = LAYERS_TEST_NODE, tools = LAYERS_TEST_BROWSER_DIR;
+  if (node.empty()) GTEST_SKIP() << "node not found when CMake ran";
+  if (!std::filesystem::exists(tools + "/node_modules/gltf-validator"))
+    GTEST_SKIP() << "gltf-validator not installed in " << tools << " (scripts/setup.sh runs npm ci there)";
+  const Dataset ds = Dataset::open(dir.file("ds"));
+  for (const std::int64_t chunk : {kGlbFramesPerChunk, std::int64_t{5}}) {
+    const std::string out = dir.file("out" + std::to_string(chunk));
+    const auto files = export_sequence(ds, "s", ExportFormat::Glb, 0, 12, out, chunk);
+    const test::CommandResult r = test::run_command(node + " " + tools + "/gltf_validate.js " + files.at(0));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const nlohmann::json report = nlohmann::json::parse(r.output);
+    EXPECT_EQ(report["errors"], 0) << r.output;
+    EXPECT_EQ(report["warnings"], 0) << r.output;
+    EXPECT_EQ(report["infos"], 0) << r.output;
+    EXPECT_EQ(report["hints"], 0) << r.output;
   }
 }
 

@@ -8,12 +8,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "layers/data/dataset_writer.h"
-#include "layers/data/shard_writer.h"
 #include "layers/report/gnuplot.h"
 #include "layers/report/report.h"
+#include "predictions_fixture.h"
 #include "report_fixtures.h"
-#include "synthetic_sequence.h"
 
 namespace layers::report {
 namespace {
@@ -29,46 +27,13 @@ bool is_png(const std::string& path) {
   return in && std::string(sig + 1, 3) == "PNG" && fs::file_size(path) > 1000;
 }
 
-// A dataset with two short sequences and, per run, predictions of both
-// (the garments shifted by `offset` after frame 1, as a rollout would drift).
-struct Fixture {
-  TempDir dir{"report-charts"};
-  std::string dataset = dir.file("dataset");
-  std::vector<data::SequenceData> sequences;
-
-  Fixture() {
-    data::testing::SyntheticSize size;
-    size.frames = 8;
-    data::DatasetWriter writer(dataset);
-    for (int k = 0; k < 2; ++k) {
-      sequences.push_back(data::testing::make_sequence("seq-" + std::to_string(k), 7 + k, size));
-      writer.add(sequences.back());
-    }
-    writer.set_split("test", {"seq-0", "seq-1"});
-    writer.finish();
-  }
-
-  std::string run(const std::string& name, FakeRun r, float offset) {
-    r.dataset = dataset;
-    const std::string folder = testing::write_run(dir, name, r);
-    std::vector<data::SequenceData> predicted = sequences;
-    for (data::SequenceData& s : predicted)
-      for (data::GarmentData& g : s.garments) {
-        const std::size_t per_frame = g.positions.size() / static_cast<std::size_t>(s.n_frames);
-        for (std::size_t i = 2 * per_frame; i < g.positions.size(); ++i) g.positions[i] += offset * (i % 3 == 0);
-      }
-    data::write_shard(folder + "/eval-test/predictions.h5", predicted);
-    return folder;
-  }
-};
-
 TEST(Charts, EveryChartIsANonEmptyPng) {
   try {
     Gnuplot::find();
   } catch (const std::exception& e) {
     GTEST_SKIP() << e.what();
   }
-  Fixture f;
+  testing::PredictionsFixture f;
   FakeRun fast, slow;
   fast.model = "fastnet", fast.ms_per_frame = 0.5, fast.error = 30;
   slow.model = "slownet", slow.ms_per_frame = 8.0, slow.error = 6, slow.diverged_at = 3;
@@ -134,7 +99,7 @@ TEST(Charts, PictureWithoutGroundTruthSaysSo) {
   } catch (const std::exception& e) {
     GTEST_SKIP() << e.what();
   }
-  Fixture f;
+  testing::PredictionsFixture f;
   FakeRun r;
   const std::string run = f.run("only_run", r, 0.01f);
   std::vector<RunResults> runs = {load_run(run)};

@@ -10,13 +10,16 @@
 //        1) plus <seq>_<mesh>.obj, the mesh at the first exported frame,
 //        to attach the cache to.
 //   glb: <seq>.glb, every mesh and frame in one binary glTF 2.0 file
-//        (morph-target frames played by a weights animation; glb.h).
+//        (morph-target frames played by a weights animation, in chunks
+//        of `glb_chunk` frames; glb.h).
 // Frames are streamed (one at a time); every file is written atomically.
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include "layers/data/glb.h"
 
 namespace layers::data {
 
@@ -29,6 +32,7 @@ ExportFormat parse_export_format(const std::string& text, const std::string& sou
 // Exports frames [first, last) of sequence `id` (last < 0: to the end)
 // into out_dir (created if missing). Returns the written paths.
 std::vector<std::string> export_sequence(const Dataset& dataset, const std::string& id, ExportFormat format,
-                                         std::int64_t first, std::int64_t last, const std::string& out_dir);
+                                         std::int64_t first, std::int64_t last, const std::string& out_dir,
+                                         std::int64_t glb_chunk = kGlbFramesPerChunk);
 
 }  // namespace layers::data

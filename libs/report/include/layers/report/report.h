@@ -9,6 +9,8 @@
 //                      the tables (tables.h); seeds.csv (seeds.h);
 //                      paired.csv (paired.h)
 // <out>/charts/        PNG charts with their gnuplot scripts and data
+// <out>/viewer/        the viewer: ground truth and rollouts played side by
+//                      side in the browser (viewer.h)
 //
 // Selection: each run says which split chose its checkpoint and which it
 // is evaluated on; a run whose checkpoint was chosen on the test split or
@@ -29,6 +31,7 @@
 
 #include "layers/report/frames_picture.h"
 #include "layers/report/run_results.h"
+#include "layers/report/viewer.h"
 
 namespace layers::report {
 
@@ -41,13 +44,15 @@ struct ReportInputs {
   // Row -> the row it is also compared with, paired per sequence
   // (paired.h; every learned row is compared with the reference rows).
   std::map<std::string, std::string> partners;
-  PictureOptions picture;
+  PictureOptions picture;  // the picture's and the viewer's rows and sequence
+  ViewerOptions viewer;
 };
 
 struct ReportResult {
   std::string report;                        // path of report.md
   std::vector<std::string> files;            // every file written, report.md included
   std::vector<std::string> charts;           // the PNGs drawn
+  std::string viewer;                        // path of viewer/index.html, "" when none
   std::vector<std::string> problems;         // missing pieces, as in report.md
   std::vector<std::string> selection_flags;  // "<run>: <why>" for each run marked for its selection
   std::vector<std::string> pareto_front;     // run names on the front, fastest first
