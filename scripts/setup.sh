@@ -13,16 +13,16 @@ packages=(
   build-essential cmake ninja-build ccache pkg-config
   libtorch-dev libgloo-dev libopenblas0-pthread
   libeigen3-dev libhdf5-dev libnanoflann-dev libspdlog-dev libyaml-cpp-dev libcli11-dev zlib1g-dev
-  nlohmann-json3-dev gnuplot-nox
+  nlohmann-json3-dev gnuplot-nox libassimp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libjs-three chromium-headless-shell
+  libjs-three chromium-headless-shell blender python3-numpy
 )
 
-# Optional, not installed here (CI and the tests do not need it): Debian's
-# `blender` (3.4.1) for `layers crosscheck`, which re-simulates a stored
-# sequence with Blender's cloth (docs/sim.md "Cross-check against Blender"):
-#   sudo apt-get install blender
-# The crosscheck test that runs Blender is skipped when CMake finds none.
+# Debian's `blender` (3.4.1) with python3-numpy (its glTF importer needs
+# it): `layers crosscheck` re-simulates a stored sequence with Blender's
+# cloth (docs/sim.md "Cross-check against Blender"), and the tests import
+# `layers export --format glb` files into it (scripts/blender/). Those tests
+# are skipped where CMake finds no blender.
 
 if [ "$(id -u)" -eq 0 ]; then sudo=""; else sudo="sudo"; fi
 

@@ -52,6 +52,8 @@ int main(int argc, char** argv) {
     add(app::register_crosscheck);
     add(app::register_stats);
     add(app::register_export);
+    add(app::register_tpose);
+    add(app::register_animate);
     add(app::register_models);
     add(app::register_train);
     add(app::register_eval);

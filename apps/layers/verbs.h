@@ -37,6 +37,8 @@ VerbRun register_bench(CLI::App& app, const Global& global);
 VerbRun register_report(CLI::App& app, const Global& global);
 VerbRun register_run(CLI::App& app, const Global& global);
 VerbRun register_launch(CLI::App& app, const Global& global);
+VerbRun register_tpose(CLI::App& app, const Global& global);
+VerbRun register_animate(CLI::App& app, const Global& global);
 
 // Exit codes of the CLI (README "Exit codes").
 enum Exit : int { kOk = 0, kFailure = 1, kUsage = 2 };

@@ -78,8 +78,16 @@ const ArraySpec& array_spec(const std::string& path) {
 const std::vector<GarmentTypeInfo>& garment_type_table() {
   static const std::vector<GarmentTypeInfo> table{
       // name          layer  self-contact  subset
-      {"jacket", 1, false, ""},    {"jacket_hood", 1, true, ""}, {"dress", 0, true, "L"}, {"dress_belt", 0, true, ""},
-      {"jumpsuit", 0, false, "T"}, {"tshirt", 0, false, ""},     {"pants", 0, false, ""}, {"skirt", 0, true, ""}};
+      {"jacket", 1, false, ""},
+      {"jacket_hood", 1, true, ""},
+      {"dress", 0, true, "L"},
+      {"dress_belt", 0, true, ""},
+      {"jumpsuit", 0, false, "T"},
+      {"tshirt", 0, false, ""},
+      {"pants", 0, false, ""},
+      {"skirt", 0, true, ""},
+      // A user's own mesh (no template): its layer is where its outfit puts it.
+      {"imported", kAnyLayer, true, ""}};
   return table;
 }
 

@@ -141,11 +141,20 @@ void validate(const GarmentParams& p) {
     throw InputError(kConfig, "edge_length", "a length in [0.004, 0.1] (m)", std::to_string(p.edge_length));
 }
 
-const std::vector<std::string>& garment_types() { return data::garment_types(); }
+const std::vector<std::string>& garment_types() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const data::GarmentTypeInfo& t : data::garment_type_table())
+      if (t.layer != data::kAnyLayer) out.emplace_back(t.name);
+    return out;
+  }();
+  return names;
+}
 
 int garment_layer(const std::string& type) {
   const data::GarmentTypeInfo* t = data::find_garment_type(type);
-  if (!t) throw InputError(kConfig, "type", "one of " + joined(garment_types()), "'" + type + "'");
+  if (!t || t->layer == data::kAnyLayer)
+    throw InputError(kConfig, "type", "one of " + joined(garment_types()), "'" + type + "'");
   return t->layer;
 }
 

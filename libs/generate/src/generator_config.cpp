@@ -7,6 +7,7 @@
 #include "layers/core/error.h"
 #include "layers/core/text_file.h"
 #include "layers/data/format.h"
+#include "layers/import/garment_file.h"
 
 namespace layers::generate {
 namespace {
@@ -93,10 +94,30 @@ void check(const GeneratorConfig& c, const std::string& file) {
     const std::string path = "garments.outfits[" + std::to_string(i) + "]";
     total += o.weight;
     if (o.inner.empty()) throw InputError(file, path + ".inner", "at least one inner garment type", "an empty list");
+    std::size_t files = 0;
     for (const auto& t : o.inner) {
-      if (!data::is_garment_type(t) || is_outer(t))
-        throw InputError(file, path + ".inner", "inner garment types (" + inner_types + ")", "'" + t + "'");
+      if (import::is_garment_file(t)) {
+        import::read_garment_file(t);  // the mesh exists, its side file reads
+        ++files;
+        continue;
+      }
+      if (data::garment_type_layer(t) != 0 || !data::is_garment_type(t))
+        throw InputError(file, path + ".inner", "inner garment types (" + inner_types + ") or file:<mesh>",
+                         "'" + t + "'");
     }
+    if (import::is_garment_file(o.outer)) {
+      import::read_garment_file(o.outer);
+      ++files;
+    } else if (o.outer != "none" && !is_outer(o.outer)) {
+      std::string outer_types;
+      for (const std::string& t : data::garment_types_of_layer(1)) outer_types += t + ", ";
+      throw InputError(file, path + ".outer", "an outer garment type (" + outer_types + "none or file:<mesh>)",
+                       "'" + o.outer + "'");
+    }
+    const std::size_t garments = o.inner.size() + (o.outer == "none" ? 0 : 1);
+    if (files > 0 && files < garments)
+      throw InputError(file, path, "an outfit of templates or of garment files, not both (not yet supported)",
+                       std::to_string(files) + " files among " + std::to_string(garments) + " garments");
   }
   if (total <= 0) throw InputError(file, "garments.outfits", "at least one outfit with a positive weight", "all zero");
   check_holdouts(c, file);

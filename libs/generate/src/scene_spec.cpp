@@ -1,6 +1,8 @@
 // Deterministic sampling of scenes (see scene_spec.h).
 #include "layers/generate/scene_spec.h"
 
+#include "layers/import/garment_file.h"
+
 #include "layers/data/format.h"
 
 #include <algorithm>
@@ -130,10 +132,13 @@ SceneSpec sample_scene(const GeneratorConfig& config, int index) {
   std::vector<double> weights;
   for (const auto& o : config.garments.outfits) weights.push_back(o.weight);
   const OutfitConfig& outfit = config.garments.outfits.at(rng.pick(weights));
-  for (const auto& type : outfit.inner)
-    s.garments.push_back({type, 0, sample_attributes(config.garments.attributes, rng)});
-  if (outfit.outer != "none")
-    s.garments.push_back({outfit.outer, 1, sample_attributes(config.garments.attributes, rng)});
+  const auto garment = [&](const std::string& entry, int layer) {
+    const bool file = import::is_garment_file(entry);
+    return GarmentSpec{file ? "imported" : entry, layer, sample_attributes(config.garments.attributes, rng),
+                       file ? entry : ""};
+  };
+  for (const auto& entry : outfit.inner) s.garments.push_back(garment(entry, 0));
+  if (outfit.outer != "none") s.garments.push_back(garment(outfit.outer, 1));
 
   const WindConfig& w = config.wind;
   std::size_t regime = rng.pick({w.calm_weight, w.strong_weight, w.mixed_weight});

@@ -74,21 +74,24 @@ const ArraySpec& array_spec(const std::string& path);
 // table, read by the format's checks, the garment builder (one recipe per
 // entry, libs/garment/src/garment_recipes.cpp; a test checks both name the
 // same types), the generator and the scene spec. Adding a type is one
-// entry here plus its recipe.
+// entry here plus its recipe. The type `imported` (a user's own mesh,
+// libs/import) has no recipe and either layer (kAnyLayer).
+inline constexpr int kAnyLayer = -1;
 struct GarmentTypeInfo {
   const char* name;
-  int layer;           // 0 inner, 1 outer
+  int layer;           // 0 inner, 1 outer, kAnyLayer: where the outfit puts it
   bool self_contact;   // simulated with self-contact (it can fold onto itself: skirts, hoods)
   const char* subset;  // the paper's subset of a scene with this inner garment alone ("T", "L"), or ""
 };
 const std::vector<GarmentTypeInfo>& garment_type_table();
 // nullptr for an unknown type.
 const GarmentTypeInfo* find_garment_type(const std::string& type);
-// The names, in the table's order; those of one layer.
+// The names, in the table's order; those of one layer (not `imported`).
 const std::vector<std::string>& garment_types();
 std::vector<std::string> garment_types_of_layer(int layer);
 bool is_garment_type(const std::string& type);
-// 1 for outer types (jacket, jacket_hood), 0 for inner ones (and unknown).
+// 1 for outer types (jacket, jacket_hood), 0 for inner ones (and unknown),
+// kAnyLayer for `imported`.
 int garment_type_layer(const std::string& type);
 
 // Attribute names with a fixed meaning (never taken as shape parameters or

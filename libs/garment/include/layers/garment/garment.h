@@ -101,8 +101,9 @@ void validate(const GarmentParams& params);
 
 // All type names, and the layer of a type (0 inner, 1 outer; InputError
 // listing the valid names for an unknown one).
-// The names of layers::data's garment-type table (data/format.h), and a
-// type's layer there (InputError for an unknown type).
+// The names of layers::data's garment-type table (data/format.h) that
+// have a template (all but `imported`), and a type's layer there
+// (InputError for an unknown type or one without a template).
 const std::vector<std::string>& garment_types();
 int garment_layer(const std::string& type);
 

@@ -27,19 +27,21 @@ struct OutfitConfig {
 
   template <class V>
   void visit(V& v) {
-    // The types of each layer come from the garment-type table (data/format.h).
-    static const std::vector<std::string> outer_choices = [] {
-      std::vector<std::string> c = data::garment_types_of_layer(1);
-      c.emplace_back("none");
-      return c;
+    // The types of each layer come from the garment-type table
+    // (data/format.h); `file:<mesh>` is a user's own garment
+    // (import/garment_file.h). check() checks both.
+    static const std::string outer_help = [] {
+      std::string h = "outer garment type:";
+      for (const std::string& t : data::garment_types_of_layer(1)) h += " " + t;
+      return h + ", none, or file:<mesh>";
     }();
     static const std::string inner_help = [] {
       std::string h = "inner garment types:";
       for (const std::string& t : data::garment_types_of_layer(0)) h += " " + t;
-      return h;
+      return h + ", or file:<mesh> entries";
     }();
     v("inner", inner, cfg::opt().help(inner_help));
-    v("outer", outer, cfg::opt().choices(outer_choices).help("outer garment type"));
+    v("outer", outer, cfg::opt().help(outer_help));
     v("weight", weight, cfg::opt().min(0).help("relative sampling weight"));
   }
 };

@@ -17,9 +17,10 @@
 namespace layers::generate {
 
 struct GarmentSpec {
-  std::string type;
-  int layer = 0;  // 0 inner, 1 outer
-  sim::GarmentAttributes attributes;
+  std::string type;                   // a template's type, or "imported" for a user's mesh
+  int layer = 0;                      // 0 inner, 1 outer
+  sim::GarmentAttributes attributes;  // drawn; an imported garment's side file overrides those it gives
+  std::string source;                 // "imported": the outfit's file:<mesh> entry
 };
 
 struct SceneSpec {

@@ -1,0 +1,60 @@
+// `layers tpose --config C [--scene K] --out DIR`: a generator config's
+// scene in the T-pose its garments are fitted in, as OBJ files: body.obj
+// and one <garment>.obj per garment with its UVs (generate/tpose.h). The
+// reference a user models an own garment around (docs/own-data.md). Files
+// already in DIR are never replaced.
+#include <cstdio>
+#include <filesystem>
+
+#include "layers/core/config.h"
+#include "layers/core/error.h"
+#include "layers/data/obj.h"
+#include "layers/generate/tpose.h"
+#include "verbs.h"
+
+namespace layers::app {
+
+VerbRun register_tpose(CLI::App& app, const Global&) {
+  auto* cmd = app.add_subcommand("tpose", "Write a config's scene in its T-pose (body and garments) as OBJ files");
+  struct Args {
+    std::string config, out;
+    std::vector<std::string> sets;
+    int scene = 0;
+  };
+  auto a = std::make_shared<Args>();
+  cmd->add_option("--config", a->config, "generator config (configs/data/<name>.yaml)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--set", a->sets, "override a config value: --set key.path=value (repeatable)");
+  cmd->add_option("--scene", a->scene, "scene index (0-based), as `layers generate` draws it")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--out", a->out, "output folder")->required();
+  return [a]() {
+    namespace fs = std::filesystem;
+    cfg::Node tree = cfg::load_file(a->config);
+    for (const auto& s : a->sets) cfg::apply_set(tree, s);
+    auto config = cfg::read<generate::GeneratorConfig>(tree);
+    generate::check(config, a->config);
+    if (a->scene >= config.sequences)
+      throw InputError(a->config, "--scene", "a scene index below sequences (" + std::to_string(config.sequences) + ")",
+                       std::to_string(a->scene));
+    const generate::TPoseMeshes t = generate::tpose_meshes(config, a->scene);
+    std::vector<std::pair<std::string, const data::ObjMesh*>> files = {{"body", &t.body}};
+    for (const auto& [name, mesh] : t.garments) files.emplace_back(name, &mesh);
+    for (const auto& [name, mesh] : files) {
+      const fs::path path = fs::path(a->out) / (name + ".obj");
+      if (fs::exists(path)) throw InputError(path.string(), "--out", "a folder without this file", "an existing file");
+    }
+    fs::create_directories(a->out);
+    for (const auto& [name, mesh] : files) {
+      const std::string path = (fs::path(a->out) / (name + ".obj")).string();
+      data::write_obj(path, *mesh);
+      std::printf("wrote %s (%lld vertices)\n", path.c_str(), static_cast<long long>(mesh->n_vertices()));
+    }
+    if (!t.problem.empty()) std::printf("note: this scene cannot be simulated: %s\n", t.problem.c_str());
+    return static_cast<int>(kOk);
+  };
+}
+
+}  // namespace layers::app

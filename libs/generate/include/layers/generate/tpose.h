@@ -1,0 +1,27 @@
+// layers/generate/tpose.h -- a generator config's scene in the T-pose its
+// garments are fitted in (`layers tpose`): the body and the outfit as
+// the scene builds them (templates fitted with the scene's room, or the
+// scene's garment files), before they are moved to where the motion
+// starts. A user's own garment (imported_garment.h) is modelled around
+// this body, in these coordinates.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "layers/data/obj.h"
+#include "layers/generate/generator_config.h"
+
+namespace layers::generate {
+
+struct TPoseMeshes {
+  data::ObjMesh body;
+  std::vector<std::pair<std::string, data::ObjMesh>> garments;  // name, mesh with its UVs
+  std::string problem;  // why the scene cannot be simulated ("" when it can; garments may then be missing)
+};
+
+// Scene `index` of `config` (as `layers generate` would draw it).
+TPoseMeshes tpose_meshes(const GeneratorConfig& config, int index);
+
+}  // namespace layers::generate

@@ -1,0 +1,158 @@
+// Users' garment meshes (libs/import) on files written inside the tests:
+// an OBJ with a UV seam (its vertex order kept, UVs per corner), a GLB from
+// our own writer (data/glb.h) whose seam splits vertices (welded back), a file in centimetres with its
+// scale, and each refusal of the cloth-mesh checks and of the side file.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+
+#include "error_of.h"
+#include "layers/core/error.h"
+#include "layers/data/glb.h"
+#include "layers/import/garment_file.h"
+#include "layers/import/mesh_checks.h"
+#include "layers/import/mesh_import.h"
+#include "temp_dir.h"
+
+namespace layers::import {
+namespace {
+
+// A tube of `cols` x 2 quads (radius 0.2 m, 0.5 m tall), open at both ends,
+// as OBJ text: the UVs are cut at the seam, so the seam's two columns of
+// positions get two UVs each ("v" lines are shared, "vt" lines are not).
+std::string tube_obj(int cols, double scale = 1.0) {
+  std::string s = "# tube\n";
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < cols; ++c) {
+      const double a = 2 * M_PI * c / cols;
+      s += "v " + std::to_string(0.2 * std::sin(a) * scale) + " " + std::to_string(0.25 * r * scale) + " " +
+           std::to_string(0.2 * std::cos(a) * scale) + "\n";
+    }
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c <= cols; ++c)
+      s += "vt " + std::to_string(double(c) / cols) + " " + std::to_string(r / 2.0) + "\n";
+  auto v = [&](int r, int c) { return r * cols + (c % cols) + 1; };
+  auto t = [&](int r, int c) { return r * (cols + 1) + c + 1; };
+  for (int r = 0; r < 2; ++r)
+    for (int c = 0; c < cols; ++c) {
+      auto corner = [&](int rr, int cc) { return std::to_string(v(rr, cc)) + "/" + std::to_string(t(rr, cc)); };
+      s += "f " + corner(r, c) + " " + corner(r, c + 1) + " " + corner(r + 1, c + 1) + "\n";
+      s += "f " + corner(r, c) + " " + corner(r + 1, c + 1) + " " + corner(r + 1, c) + "\n";
+    }
+  return s;
+}
+
+std::string message_of(const std::function<void()>& f) { return test::error_of<InputError>(f); }
+
+TEST(MeshImport, ObjKeepsItsVertexOrderAndItsUvsPerCorner) {
+  test::TempDir dir("import");
+  const std::string path = dir.write("tube.obj", tube_obj(8));
+  const ImportedMesh m = import_mesh(path);
+  ASSERT_EQ(m.mesh.vertices.rows(), 24);  // 3 rings of 8
+  for (int c = 0; c < 8; ++c)             // in the file's order
+    EXPECT_NEAR(m.mesh.vertices(8 + c, 0), 0.2 * std::sin(2 * M_PI * c / 8), 1e-6);
+  EXPECT_EQ(m.mesh.faces.rows(), 32);
+  EXPECT_EQ(m.file_vertices, 24);  // our OBJ reader keeps the v lines
+  ASSERT_EQ(m.uv_faces.size(), 32u * 3);
+  // Every corner's UV is the one the OBJ gave it: u follows the angle, with
+  // the seam's corners at u = 1 on the faces that close the tube.
+  for (Eigen::Index f = 0; f < m.mesh.faces.rows(); ++f) {
+    float umin = 2, umax = -1;
+    for (int c = 0; c < 3; ++c) {
+      const float u = m.uv[2 * m.uv_faces[3 * f + c]], v = m.uv[2 * m.uv_faces[3 * f + c] + 1];
+      const Eigen::RowVector3f p = m.mesh.vertices.row(m.mesh.faces(f, c));
+      EXPECT_NEAR(v, p.y() / 0.5f, 1e-5);
+      umin = std::min(umin, u), umax = std::max(umax, u);
+    }
+    EXPECT_LE(umax - umin, 1.0f / 8 + 1e-5) << "face " << f << " spans the seam in UV";
+  }
+  EXPECT_NO_THROW(check_cloth_mesh(m.mesh, path));  // open at both ends: allowed
+}
+
+TEST(MeshImport, GlbSplitAtASeamIsWeldedBack) {
+  // Two triangles sharing an edge, stored with their own copies of its two
+  // vertices (as a UV seam splits them): 6 file vertices, 4 welded.
+  test::TempDir dir("import");
+  data::GlbMesh mesh{
+      "cloth", {0, 1, 2, 3, 4, 5}, {{0, 0, 0, 0.5f, 0, 0, 0.5f, 0.5f, 0, 0, 0, 0, 0.5f, 0.5f, 0, 0, 0.5f, 0.25f}}};
+  const std::string path = dir.file("cloth.glb");
+  std::ofstream(path, std::ios::binary) << data::glb_bytes({mesh}, 30);
+  const ImportedMesh m = import_mesh(path);
+  EXPECT_EQ(m.file_vertices, 6);
+  ASSERT_EQ(m.mesh.vertices.rows(), 4);
+  std::vector<std::vector<float>> got, want = {{0, 0, 0}, {0.5f, 0, 0}, {0.5f, 0.5f, 0}, {0, 0.5f, 0.25f}};
+  for (Eigen::Index i = 0; i < 4; ++i)
+    got.push_back({m.mesh.vertices(i, 0), m.mesh.vertices(i, 1), m.mesh.vertices(i, 2)});
+  std::sort(got.begin(), got.end());
+  std::sort(want.begin(), want.end());
+  EXPECT_EQ(got, want);
+  // The shared edge is one edge again: the second face uses the first's corners.
+  ASSERT_EQ(m.mesh.faces.rows(), 2);
+  EXPECT_EQ(m.mesh.faces(1, 0), m.mesh.faces(0, 0));
+  EXPECT_EQ(m.mesh.faces(1, 1), m.mesh.faces(0, 2));
+  EXPECT_TRUE(m.uv.empty());
+}
+
+TEST(MeshImport, CentimetresAreRefusedUntilScaled) {
+  test::TempDir dir("import");
+  const std::string path = dir.write("tube_cm.obj", tube_obj(8, 100.0));
+  const ImportedMesh cm = import_mesh(path);
+  const std::string e = message_of([&] { check_cloth_mesh(cm.mesh, path); });
+  EXPECT_NE(e.find("scale"), std::string::npos) << e;
+  EXPECT_NE(e.find("largest extent of 50 m"), std::string::npos) << e;
+  const ImportedMesh m = import_mesh(path, 0.01);
+  EXPECT_NO_THROW(check_cloth_mesh(m.mesh, path));
+  EXPECT_NEAR(m.mesh.vertices.col(1).maxCoeff(), 0.5f, 1e-6);
+}
+
+TEST(MeshImport, DegenerateAndNonManifoldFacesAreOneLineEach) {
+  test::TempDir dir("import");
+  geometry::TriMesh m;
+  m.vertices.resize(5, 3);
+  m.vertices << 0, 0, 0, 0.5f, 0, 0, 0, 0.5f, 0, 0, 0, 0.5f, 0.25f, 0, 0;  // vertex 4 on edge 0-1
+  m.faces.resize(2, 3);
+  m.faces << 0, 1, 2, 0, 4, 1;  // the second has no area
+  std::string e = message_of([&] { check_cloth_mesh(m, "g.obj"); });
+  EXPECT_NE(e.find("1 degenerate, the first face 1"), std::string::npos) << e;
+  m.faces.resize(3, 3);
+  m.faces << 0, 1, 2, 0, 1, 3, 1, 0, 4;
+  m.vertices.row(4) << 0.2f, -0.3f, 0.1f;
+  e = message_of([&] { check_cloth_mesh(m, "g.obj"); });
+  EXPECT_NE(e.find("1 edges in three or more faces, the first between vertices 0 and 1"), std::string::npos) << e;
+  m.vertices(2, 1) = NAN;
+  EXPECT_NE(message_of([&] { check_cloth_mesh(m, "g.obj"); }).find("finite"), std::string::npos);
+}
+
+TEST(MeshImport, MissingOrUnreadableFilesAreOneLine) {
+  test::TempDir dir("import");
+  EXPECT_NE(message_of([&] { import_mesh(dir.file("none.obj")); }).find("no such file"), std::string::npos);
+  const std::string junk = dir.write("junk.fbx", "not a mesh at all");
+  EXPECT_NE(message_of([&] { import_mesh(junk); }).find("a mesh file assimp reads"), std::string::npos);
+}
+
+TEST(GarmentFile, SideFileGivesNameScaleAndAttributes) {
+  test::TempDir dir("import");
+  const std::string mesh = dir.write("dress.obj", tube_obj(8));
+  GarmentFile g = read_garment_file("file:" + mesh);
+  EXPECT_EQ(g.name, "dress");
+  EXPECT_EQ(g.scale, 1.0);
+  EXPECT_TRUE(g.side_file.empty());
+  dir.write("dress.yaml", "name: my dress\nscale: 0.01\nattributes: {mass: 0.3, bending: 40}\n");
+  g = read_garment_file("file:" + mesh);
+  EXPECT_EQ(g.name, "my dress");
+  EXPECT_EQ(g.scale, 0.01);
+  EXPECT_EQ(g.attributes, (std::map<std::string, double>{{"mass", 0.3}, {"bending", 40}}));
+  dir.write("dress.yaml", "colour: red\n");
+  EXPECT_NE(message_of([&] { read_garment_file("file:" + mesh); }).find("name, scale, self_contact or attributes"),
+            std::string::npos);
+  dir.write("dress.yaml", "scale: 0\n");
+  EXPECT_NE(message_of([&] { read_garment_file("file:" + mesh); }).find("a positive factor"), std::string::npos);
+  dir.write("dress.yaml", "attributes: {mass: -1}\n");
+  EXPECT_NE(message_of([&] { read_garment_file("file:" + mesh); }).find("attributes.mass"), std::string::npos);
+  EXPECT_NE(message_of([&] { read_garment_file("file:" + dir.file("no.obj")); }).find("no such file"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace layers::import
