@@ -16,6 +16,7 @@ packages=(
   nlohmann-json3-dev gnuplot-nox libassimp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libjs-three chromium-headless-shell blender python3-numpy
+  pybind11-dev python3-dev python3-torch python3-pytest
 )
 
 # Debian's `blender` (3.4.1) with python3-numpy (its glTF importer needs

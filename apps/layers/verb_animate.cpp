@@ -8,6 +8,7 @@
 // garment inside the body, garments crossing, the validation limits) is
 // one line and exit 1. An --out holding data/ already is refused (its
 // scene may be of other garment files): nothing is replaced.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
@@ -16,6 +17,7 @@
 #include "layers/data/dataset.h"
 #include "layers/data/export.h"
 #include "layers/generate/generator.h"
+#include "layers/generate/imported_garment.h"
 #include "verbs.h"
 
 namespace layers::app {
@@ -26,6 +28,7 @@ VerbRun register_animate(CLI::App& app, const Global&) {
   struct Args {
     std::string config, out;
     std::vector<std::string> sets, formats{"glb"};
+    std::int64_t glb_chunk = data::kGlbFramesPerChunk;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--config", a->config, "generator config: body, motion, outfit (templates or file:<mesh>), wind")
@@ -34,10 +37,18 @@ VerbRun register_animate(CLI::App& app, const Global&) {
   cmd->add_option("--set", a->sets, "override a config value: --set key.path=value (repeatable)");
   cmd->add_option("--out", a->out, "output folder: data/ (LAYERS-H5) and the exports")->required();
   cmd->add_option("--format", a->formats, "export format: glb, obj or pc2 (repeatable)")->capture_default_str();
+  cmd->add_option("--glb-chunk", a->glb_chunk, "glb: frames per chunk (as `layers export --glb-chunk`)")
+      ->capture_default_str()
+      ->check(CLI::Range(std::int64_t{2}, std::int64_t{100000}));
   return [a]() {
     namespace fs = std::filesystem;
     std::vector<data::ExportFormat> formats;
-    for (const std::string& f : a->formats) formats.push_back(data::parse_export_format(f));
+    for (const std::string& f : a->formats) {
+      const data::ExportFormat format = data::parse_export_format(f);
+      if (std::find(formats.begin(), formats.end(), format) != formats.end())
+        throw InputError("layers animate", "--format", "each format once", "'" + f + "' twice");
+      formats.push_back(format);
+    }
     cfg::Node tree = cfg::load_file(a->config);
     for (const auto& s : a->sets) cfg::apply_set(tree, s);
     for (const char* s :
@@ -45,6 +56,7 @@ VerbRun register_animate(CLI::App& app, const Global&) {
       cfg::apply_set(tree, s);
     auto config = cfg::read<generate::GeneratorConfig>(tree);
     generate::check(config, a->config);
+    generate::resolve_garment_files(config);
     generate::GenerateOptions options;
     options.out = (fs::path(a->out) / "data").string();
     if (fs::exists(options.out))
@@ -63,7 +75,7 @@ VerbRun register_animate(CLI::App& app, const Global&) {
     const std::string id = ds.ids().front();
     for (std::size_t k = 0; k < formats.size(); ++k) {
       const std::string dir = (fs::path(a->out) / a->formats[k]).string();
-      const auto files = data::export_sequence(ds, id, formats[k], 0, -1, dir);
+      const auto files = data::export_sequence(ds, id, formats[k], 0, -1, dir, a->glb_chunk);
       std::printf("%s: %zu file%s (%s)\n", dir.c_str(), files.size(), files.size() == 1 ? "" : "s",
                   files.size() == 1 ? files.front().c_str() : a->formats[k].c_str());
     }

@@ -10,6 +10,7 @@
 #include "layers/core/config.h"
 #include "layers/core/error.h"
 #include "layers/generate/generator.h"
+#include "layers/generate/imported_garment.h"
 #include "layers/generate/shard.h"
 #include "verbs.h"
 
@@ -52,6 +53,7 @@ VerbRun register_generate(CLI::App& app, const Global&) {
     // The file holds the generator config at its top level.
     auto config = cfg::read<generate::GeneratorConfig>(tree);
     generate::check(config, a->config);
+    generate::resolve_garment_files(config);
     const std::string resolved = cfg::to_yaml(cfg::to_node(config));
     generate::GenerateOptions options;
     options.out = a->out.empty() ? "data/" + config.name : a->out;

@@ -14,6 +14,7 @@
 #include "layers/core/error.h"
 #include "layers/core/text_file.h"
 #include "layers/generate/generator.h"
+#include "layers/generate/imported_garment.h"
 #include "layers/metrics/registry.h"
 #include "layers/report/report.h"
 #include "layers/study/study.h"
@@ -38,8 +39,9 @@ bool make_dataset(const study::StudyDataset& d) {
   }
   cfg::Node tree = cfg::load_file(d.config);
   for (const auto& s : d.set) cfg::apply_set(tree, s);
-  const auto config = cfg::read<generate::GeneratorConfig>(tree);
+  auto config = cfg::read<generate::GeneratorConfig>(tree);
   generate::check(config, d.config);
+  generate::resolve_garment_files(config);
   const std::string resolved = cfg::to_yaml(cfg::to_node(config));
   if (generate::dataset_complete(d.folder, config)) {
     const fs::path saved = fs::path(d.folder) / "generator.yaml";

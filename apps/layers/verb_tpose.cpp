@@ -8,7 +8,9 @@
 
 #include "layers/core/config.h"
 #include "layers/core/error.h"
+#include "layers/data/export.h"
 #include "layers/data/obj.h"
+#include "layers/generate/imported_garment.h"
 #include "layers/generate/tpose.h"
 #include "verbs.h"
 
@@ -36,12 +38,16 @@ VerbRun register_tpose(CLI::App& app, const Global&) {
     for (const auto& s : a->sets) cfg::apply_set(tree, s);
     auto config = cfg::read<generate::GeneratorConfig>(tree);
     generate::check(config, a->config);
+    generate::resolve_garment_files(config);
     if (a->scene >= config.sequences)
       throw InputError(a->config, "--scene", "a scene index below sequences (" + std::to_string(config.sequences) + ")",
                        std::to_string(a->scene));
     const generate::TPoseMeshes t = generate::tpose_meshes(config, a->scene);
-    std::vector<std::pair<std::string, const data::ObjMesh*>> files = {{"body", &t.body}};
-    for (const auto& [name, mesh] : t.garments) files.emplace_back(name, &mesh);
+    std::vector<std::string> garment_names;
+    for (const auto& [name, mesh] : t.garments) garment_names.push_back(name);
+    const std::vector<std::string> names = data::mesh_file_names(garment_names);  // as `layers export` names them
+    std::vector<std::pair<std::string, const data::ObjMesh*>> files = {{names[0], &t.body}};
+    for (std::size_t k = 0; k < t.garments.size(); ++k) files.emplace_back(names[k + 1], &t.garments[k].second);
     for (const auto& [name, mesh] : files) {
       const fs::path path = fs::path(a->out) / (name + ".obj");
       if (fs::exists(path)) throw InputError(path.string(), "--out", "a folder without this file", "an existing file");

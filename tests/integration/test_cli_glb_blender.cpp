@@ -34,7 +34,7 @@ TEST(CliGlbBlender, BlenderPlaysTheStoredFrames) {
   auto chunked = test::run_command(test::layers_bin() + " export " + ds +
                                    " a --format glb --frames 1:6 --glb-chunk 2 --out " + dir.file("chunked"));
   ASSERT_EQ(chunked.exit_code, 0) << chunked.output;
-  for (const std::string glb : {dir.file("out/a.glb"), dir.file("chunked/a.glb")}) {
+  for (const std::string& glb : {dir.file("out/a.glb"), dir.file("chunked/a.glb")}) {
     auto r =
         test::run_command(std::string(LAYERS_TEST_BLENDER) + " -b --python-exit-code 1 --python " + test::source_dir() +
                           "/scripts/blender/glb_check.py -- " + glb + " " + dir.file("out/a") + " 1 5");

@@ -60,6 +60,34 @@ TEST(CliOwnGarment, TposeThenAnimateTheGarmentFiles) {
   EXPECT_TRUE(fs::exists(dir.file("anim/glb/seq-000000.glb")));
 }
 
+TEST(CliOwnGarment, BadFilesAreOneLineAndChangedFilesAreNotResumed) {
+  test::TempDir dir("own-garment");
+  const std::string t = dir.file("tpose");
+  auto r = run_command(test::layers_bin() + " tpose" + settings("[{inner: [dress], outer: none}]") + " --out " + t);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string outfit = "[{inner: [\"file:" + t + "/dress.obj\"], outer: none}]";
+  const std::string generate = test::layers_bin() + " generate --quiet --set sequences=1" + settings(outfit);
+  // Attributes out of their range and a mesh in centimetres: one line, exit 1, before any scene.
+  dir.write("tpose/dress.yaml", "attributes: {friction: 500}\n");
+  r = run_command(generate + " --out " + dir.file("a"));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("dress.yaml"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("friction"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir.file("a/generator.yaml")));
+  dir.write("tpose/dress.yaml", "scale: 100\n");
+  r = run_command(generate + " --out " + dir.file("a"));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("dress.obj: scale: expected a garment in metres"), std::string::npos) << r.output;
+  // A dataset made with the file, then the file changed: not resumed.
+  fs::remove(dir.file("tpose/dress.yaml"));
+  r = run_command(generate + " --out " + dir.file("b"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  dir.write("tpose/dress.yaml", "self_contact: false\n");
+  r = run_command(generate + " --out " + dir.file("b"));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("generator.yaml"), std::string::npos) << r.output;
+}
+
 TEST(CliOwnGarment, AGarmentInsideTheBodyIsOneLineBeforeAnySimulation) {
   test::TempDir dir("own-garment");
   const std::string t = dir.file("tpose");

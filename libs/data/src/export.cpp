@@ -38,18 +38,34 @@ struct MeshOut {
 };
 
 std::vector<MeshOut> meshes_of(const SequenceStatic& statics) {
+  std::vector<std::string> garment_names;
+  for (const GarmentStatic& g : statics.garments) garment_names.push_back(g.name);
+  const std::vector<std::string> names = mesh_file_names(garment_names);
   std::vector<MeshOut> meshes;
-  std::set<std::string> used{"body"};
-  meshes.push_back(MeshOut{"body", -1, ObjMesh{{}, statics.body.faces, {}, {}}});
+  meshes.push_back(MeshOut{names[0], -1, ObjMesh{{}, statics.body.faces, {}, {}}});
   for (std::size_t k = 0; k < statics.garments.size(); ++k) {
     const GarmentStatic& g = statics.garments[k];
-    std::string name = g.name.empty() ? "garment" + std::to_string(k) : file_safe(g.name);
-    if (!used.insert(name).second) name += "_" + std::to_string(k);
-    used.insert(name);
-    meshes.push_back(MeshOut{name, static_cast<int>(k), ObjMesh{{}, g.faces, g.uv, g.uv_faces}});
+    meshes.push_back(MeshOut{names[k + 1], static_cast<int>(k), ObjMesh{{}, g.faces, g.uv, g.uv_faces}});
   }
   return meshes;
 }
+
+}  // namespace
+
+std::vector<std::string> mesh_file_names(const std::vector<std::string>& garment_names) {
+  std::vector<std::string> names{"body"};
+  std::set<std::string> used{"body"};
+  for (std::size_t k = 0; k < garment_names.size(); ++k) {
+    const std::string base = garment_names[k].empty() ? "garment" + std::to_string(k) : file_safe(garment_names[k]);
+    std::string name = base;
+    for (int n = 2; used.count(name); ++n) name = base + "_" + std::to_string(n);
+    used.insert(name);
+    names.push_back(name);
+  }
+  return names;
+}
+
+namespace {
 
 std::string frame_text(std::int64_t frame) {
   char buffer[24];

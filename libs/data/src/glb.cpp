@@ -123,10 +123,11 @@ std::string glb_bytes(const std::vector<GlbMesh>& meshes, double fps, std::int64
   for (const GlbMesh& mesh : meshes) {
     if (mesh.frames.size() != frames) throw Error("glb: mesh '" + mesh.name + "' has another frame count");
     std::vector<int> chunk_nodes;
+    const int indices = b.indices(mesh.faces);  // one accessor for every chunk of the mesh
     for (std::size_t c = 0; c < chunks; ++c) {
       const std::size_t first = c * per_chunk, last = std::min(frames, first + per_chunk);
       const std::vector<float>& base = mesh.frames[first];
-      json primitive = {{"attributes", {{"POSITION", b.vec3(base)}}}, {"indices", b.indices(mesh.faces)}, {"mode", 4}};
+      json primitive = {{"attributes", {{"POSITION", b.vec3(base)}}}, {"indices", indices}, {"mode", 4}};
       json targets = json::array();
       for (std::size_t k = first + 1; k < last; ++k) {
         if (mesh.frames[k].size() != base.size()) throw Error("glb: mesh '" + mesh.name + "' changes its vertex count");

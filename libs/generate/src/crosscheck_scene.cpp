@@ -71,7 +71,7 @@ std::string crosscheck_manifest(const std::string& prefix, const std::vector<std
   for (std::size_t k = 0; k < garments.size(); ++k) {
     const data::GarmentStatic& g = garments[k];
     out << (k ? ",\n" : "\n") << "    {\"mesh\": " << json_string(meshes[k]) << ", \"type\": " << json_string(g.type)
-        << ", \"layer\": " << g.layer << ", \"self_collision\": " << (wants_self_contact(g.type) ? "true" : "false")
+        << ", \"layer\": " << g.layer << ", \"self_collision\": " << (garment_self_contact(g) ? "true" : "false")
         << ", \"attributes\": {";
     bool first = true;
     for (const auto& [key, value] : g.attributes) {

@@ -116,7 +116,7 @@ void check(const GeneratorConfig& c, const std::string& file) {
     }
     const std::size_t garments = o.inner.size() + (o.outer == "none" ? 0 : 1);
     if (files > 0 && files < garments)
-      throw InputError(file, path, "an outfit of templates or of garment files, not both (not yet supported)",
+      throw InputError(file, path, "an outfit of templates only or of garment files only",
                        std::to_string(files) + " files among " + std::to_string(garments) + " garments");
   }
   if (total <= 0) throw InputError(file, "garments.outfits", "at least one outfit with a positive weight", "all zero");

@@ -5,8 +5,12 @@
 #include <cmath>
 #include <sstream>
 
+#include "layers/core/checksum.h"
+#include "layers/core/config.h"
 #include "layers/core/error.h"
+#include "layers/core/text_file.h"
 #include "layers/generate/outfit.h"
+#include "layers/generate/simulate.h"
 #include "layers/geometry/penetration.h"
 #include "layers/import/garment_file.h"
 #include "layers/import/mesh_checks.h"
@@ -42,6 +46,27 @@ std::string inside_body(const geometry::Points& points, const garment::TPoseBody
 }
 
 }  // namespace
+
+void resolve_garment_files(GeneratorConfig& config) {
+  config.garments.files.clear();
+  std::vector<std::string> entries;
+  for (const OutfitConfig& o : config.garments.outfits) {
+    entries.insert(entries.end(), o.inner.begin(), o.inner.end());
+    entries.push_back(o.outer);
+  }
+  for (const std::string& entry : entries) {
+    if (!import::is_garment_file(entry)) continue;
+    const import::GarmentFile file = import::read_garment_file(entry);
+    const import::ImportedMesh m = import::import_mesh(file.mesh, file.scale);
+    import::check_cloth_mesh(m.mesh, file.mesh);
+    config.garments.files[file.mesh] = content_hash(read_text_file(file.mesh));
+    if (file.side_file.empty()) continue;
+    config.garments.files[file.side_file] = content_hash(read_text_file(file.side_file));
+    const cfg::Node side = cfg::load_file(file.side_file);
+    if (const cfg::Node* attributes = side.find("attributes"))
+      cfg::read<sim::GarmentAttributes>(*attributes, "attributes");  // names and ranges
+  }
+}
 
 bool has_imported_garments(const SceneSpec& spec) {
   for (const GarmentSpec& g : spec.garments)
@@ -112,8 +137,12 @@ std::vector<data::GarmentData> imported_outfit(const garment::TPoseBody& body, c
     }
     data::GarmentData d;
     d.name = file.name;
-    for (const data::GarmentData& other : out)
-      if (other.name == d.name) d.name += "_" + std::to_string(out.size());
+    const auto taken = [&](const std::string& name) {
+      for (const data::GarmentData& other : out)
+        if (other.name == name) return true;
+      return false;
+    };
+    for (int k = 2; taken(d.name); ++k) d.name = file.name + "_" + std::to_string(k);
     d.type = "imported";
     d.layer = g.layer;
     d.attributes = attribute_map(g.attributes);
@@ -125,6 +154,7 @@ std::vector<data::GarmentData> imported_outfit(const garment::TPoseBody& body, c
       }
       d.attributes[key] = value;
     }
+    d.attributes[kSelfContact] = file.self_contact ? 1.0 : 0.0;  // read back by garment_self_contact
     const geometry::TriMesh& mesh = m.mesh;
     d.rest.assign(mesh.vertices.data(), mesh.vertices.data() + mesh.vertices.size());
     for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)

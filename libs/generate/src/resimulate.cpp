@@ -9,6 +9,7 @@
 #include "layers/core/error.h"
 #include "layers/data/manifest.h"
 #include "layers/generate/generator_config.h"
+#include "layers/generate/imported_garment.h"
 #include "layers/generate/scene_spec.h"
 #include "layers/generate/simulate.h"
 
@@ -30,6 +31,14 @@ GeneratorConfig recorded_config(const std::string& dataset_dir, std::int64_t fra
                      "none (a dataset not made by `layers generate`)");
   if (frames < 2 || frames > recorded->frames)
     throw InputError(path, "frames", "2.." + std::to_string(recorded->frames), std::to_string(frames));
+  if (!recorded->garments.files.empty()) {
+    // A user's garment files: the same contents as when the dataset was made.
+    GeneratorConfig now = *recorded;
+    resolve_garment_files(now);
+    if (now.garments.files != recorded->garments.files)
+      throw InputError(path, "generator.garments.files", "the garment files the dataset was made with",
+                       "files whose contents changed since");
+  }
   return *recorded;
 }
 

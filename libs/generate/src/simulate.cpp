@@ -20,7 +20,6 @@
 #include "layers/generate/outfit.h"
 #include "layers/geometry/intersect.h"
 #include "layers/geometry/normals.h"
-#include "layers/import/garment_file.h"
 #include "layers/motion/body_sequence.h"
 #include "layers/motion/motion.h"
 #include "layers/sim/measures.h"
@@ -111,6 +110,11 @@ bool wants_self_contact(const std::string& type) {
   return t && t->self_contact;
 }
 
+bool garment_self_contact(const data::GarmentStatic& garment) {
+  const auto it = garment.attributes.find(kSelfContact);
+  return it != garment.attributes.end() ? it->second != 0.0 : wants_self_contact(garment.type);
+}
+
 SceneSimulation::SceneSimulation(const GeneratorConfig& config, const SceneSpec& spec)
     : config_(config), spec_(spec), generated_(make_body(config, spec)), wind_(spec.wind), solver_(config.sim) {
   const motion::BodySequence& motion = generated_.sequence;
@@ -169,15 +173,12 @@ void SceneSimulation::add_garments() {
   const garment::MotionRoom room = motion_room(t_pose);
   garments_ = has_imported_garments(spec_) ? imported_outfit(t_pose, spec_, config_.garments.fit.layer_reach)
                                            : fit_outfit(t_pose, spec_, config_.garments.fit, &room);
-  const int rounds = separate_fitted_garments(garments_, 20, 0.002f);
+  // Templates fitted at a coarse resolution are moved apart where they
+  // cross; a user's garments are taken as they are (crossings refuse the
+  // scene below).
+  const int rounds = has_imported_garments(spec_) ? 0 : separate_fitted_garments(garments_, 20, 0.002f);
   if (rounds > 0) spdlog::debug("{}: fitted garments separated in {} rounds of 2 mm", spec_.id, rounds);
   place_ = rigid_fit(t_pose.mesh.vertices, body_frame(0));
-  // Self-contact: the type's, or what an imported garment's side file says.
-  std::vector<bool> self_contact;
-  for (std::size_t k = 0; k < garments_.size(); ++k)
-    self_contact.push_back(k < spec_.garments.size() && !spec_.garments[k].source.empty()
-                               ? import::read_garment_file(spec_.garments[k].source).self_contact
-                               : wants_self_contact(garments_[k].type));
   for (auto& g : garments_) {
     geometry::TriMesh rest;
     rest.vertices = (place_ * rows(g.rest).cast<double>().transpose()).transpose().cast<float>();
@@ -186,7 +187,7 @@ void SceneSimulation::add_garments() {
     sim::ClothOptions options;
     options.name = g.name;
     options.layer = g.layer;
-    options.self_contact = self_contact[&g - garments_.data()];
+    options.self_contact = garment_self_contact(g);
     options.uv = Eigen::Map<const sim::UVs>(g.uv.data(), static_cast<Eigen::Index>(g.uv.size() / 2), 2);
     options.uv_faces =
         Eigen::Map<const geometry::Faces>(g.uv_faces.data(), static_cast<Eigen::Index>(g.uv_faces.size() / 3), 3);

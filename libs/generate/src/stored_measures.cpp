@@ -28,7 +28,7 @@ void for_each_stored_frame(const data::SequenceData& seq,
     m.edges = geometry::unique_edges(m.faces);
     m.rest_lengths = geometry::edge_lengths(frame_points(g.rest, 0, g.n_vertices()), m.edges);
     m.outer = g.layer == 1;
-    m.self_contact = wants_self_contact(g.type);
+    m.self_contact = garment_self_contact(g);
     f.garments.push_back(std::move(m));
   }
   for (std::int64_t t = 0; t < seq.n_frames; ++t) {

@@ -32,8 +32,9 @@ GarmentFile read_garment_file(const std::string& entry) {
   if (!root.IsMap() && !root.IsNull())
     throw InputError(g.side_file, "", "a mapping (name, scale, attributes)", "not a mapping");
   for (const auto& item : root) {
-    const std::string key = item.first.as<std::string>();
+    std::string key = "(a key)";
     try {
+      key = item.first.as<std::string>();
       if (key == "name") {
         g.name = item.second.as<std::string>();
         if (g.name.empty()) throw InputError(g.side_file, key, "a non-empty name", "''");

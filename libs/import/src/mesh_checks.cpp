@@ -41,6 +41,16 @@ void check_cloth_mesh(const geometry::TriMesh& mesh, const std::string& file) {
   if (degenerate > 0)
     throw InputError(file, "faces", "no degenerate face (area >= 1e-10 m^2, three distinct corners)",
                      std::to_string(degenerate) + " degenerate, the first face " + std::to_string(first_degenerate));
+  // Winding: across an edge of two faces, each runs it the other way.
+  std::map<std::pair<int, int>, int> directed;
+  for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
+    for (int c = 0; c < 3; ++c) ++directed[{mesh.faces(f, c), mesh.faces(f, (c + 1) % 3)}];
+  int flipped = 0;
+  std::pair<int, int> first_flipped{-1, -1};
+  for (const auto& [edge, count] : directed)
+    if (count > 1 && edge_faces[{std::min(edge.first, edge.second), std::max(edge.first, edge.second)}] == 2) {
+      if (flipped++ == 0) first_flipped = edge;
+    }
   int non_manifold = 0;
   std::pair<int, int> first{-1, -1};
   for (const auto& [edge, count] : edge_faces) {
@@ -51,6 +61,29 @@ void check_cloth_mesh(const geometry::TriMesh& mesh, const std::string& file) {
     throw InputError(file, "faces", "a manifold mesh (every edge in one or two faces; open boundaries are fine)",
                      std::to_string(non_manifold) + " edges in three or more faces, the first between vertices " +
                          std::to_string(first.first) + " and " + std::to_string(first.second));
+  if (flipped > 0)
+    throw InputError(file, "faces", "faces wound one way (each shared edge run in opposite directions)",
+                     std::to_string(flipped) + " edges whose two faces disagree, the first between vertices " +
+                         std::to_string(first_flipped.first) + " and " + std::to_string(first_flipped.second));
+  // Outward: area-weighted normals point away from the vertical axis
+  // through the centroid on the whole (a garment wound inwards would be
+  // pushed into the body by every contact).
+  const Eigen::RowVector3d centre = mesh.vertices.cast<double>().colwise().mean();
+  double outward = 0, total = 0;
+  for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f) {
+    const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, 0)).cast<double>(),
+                          b = mesh.vertices.row(mesh.faces(f, 1)).cast<double>(),
+                          c = mesh.vertices.row(mesh.faces(f, 2)).cast<double>();
+    const Eigen::Vector3d n = (b - a).cross(c - a);  // twice the area
+    Eigen::Vector3d r = (a + b + c) / 3.0 - centre.transpose();
+    r.y() = 0;
+    if (r.norm() < 1e-9) continue;
+    outward += n.dot(r.normalized());
+    total += n.norm();
+  }
+  if (total > 0 && outward < 0)
+    throw InputError(file, "faces", "faces wound counter-clockwise seen from outside (normals away from the body)",
+                     "normals pointing inwards on the whole (flip them in the modelling tool)");
 }
 
 }  // namespace layers::import

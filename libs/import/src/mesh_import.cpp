@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <map>
 
@@ -125,6 +126,11 @@ ImportedMesh import_mesh(const std::string& path, double scale) {
   if (!(scale > 0)) throw InputError(path, "scale", "a positive factor to metres", std::to_string(scale));
   Collected c = is_obj(path) ? read_obj_file(path, scale) : read_with_assimp(path, scale);
   if (c.faces.empty()) throw InputError(path, "", "a mesh with triangles", "no triangle in the file");
+  // Before welding: a NaN would compare equal to any position.
+  for (std::size_t i = 0; i < c.positions.size(); ++i)
+    for (float x : c.positions[i])
+      if (!std::isfinite(x))
+        throw InputError(path, "vertices", "finite positions", "a non-finite value in vertex " + std::to_string(i));
   return welded(path, c);
 }
 

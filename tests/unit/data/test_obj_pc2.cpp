@@ -336,6 +336,11 @@ TEST_F(DataExport, GlbPassesTheKhronosValidator) {
   }
 }
 
+TEST(MeshFileNames, DistinctAndFileSafeWithTheBodyFirst) {
+  EXPECT_EQ(mesh_file_names({"body", "my dress", "", "my_dress", "../x"}),
+            (std::vector<std::string>{"body", "body_2", "my_dress", "garment2", "my_dress_2", "___x"}));
+}
+
 TEST_F(DataExport, BadRangeAndFormat) {
   const Dataset ds = Dataset::open(dir.file("ds"));
   const std::string e =

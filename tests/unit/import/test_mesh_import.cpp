@@ -124,6 +124,25 @@ TEST(MeshImport, DegenerateAndNonManifoldFacesAreOneLineEach) {
   EXPECT_NE(message_of([&] { check_cloth_mesh(m, "g.obj"); }).find("finite"), std::string::npos);
 }
 
+TEST(MeshImport, FacesWoundInwardsOrBothWaysAreRefused) {
+  test::TempDir dir("import");
+  const ImportedMesh tube = import_mesh(dir.write("tube.obj", tube_obj(8)));
+  geometry::TriMesh inwards = tube.mesh;
+  for (Eigen::Index f = 0; f < inwards.faces.rows(); ++f) std::swap(inwards.faces(f, 1), inwards.faces(f, 2));
+  EXPECT_NE(message_of([&] { check_cloth_mesh(inwards, "t.obj"); }).find("normals pointing inwards"),
+            std::string::npos);
+  geometry::TriMesh mixed = tube.mesh;
+  std::swap(mixed.faces(3, 1), mixed.faces(3, 2));  // one face the other way
+  EXPECT_NE(message_of([&] { check_cloth_mesh(mixed, "t.obj"); }).find("edges whose two faces disagree"),
+            std::string::npos);
+}
+
+TEST(MeshImport, ANonFiniteVertexIsRefusedBeforeWelding) {
+  test::TempDir dir("import");
+  const std::string path = dir.write("nan.obj", "v nan 0 0\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 3 4\nf 2 3 4\n");
+  EXPECT_NE(message_of([&] { import_mesh(path); }).find("a non-finite value in vertex 0"), std::string::npos);
+}
+
 TEST(MeshImport, MissingOrUnreadableFilesAreOneLine) {
   test::TempDir dir("import");
   EXPECT_NE(message_of([&] { import_mesh(dir.file("none.obj")); }).find("no such file"), std::string::npos);

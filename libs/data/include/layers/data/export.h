@@ -2,7 +2,8 @@
 // and other tools.
 //
 // Meshes are "body" and one per garment (its name, made file-safe;
-// "garment<k>" when it has none, suffixed _<k> when two share a name).
+// "garment<k>" when it has none, suffixed _2, _3, ... while taken:
+// mesh_file_names).
 //   obj: one file per frame per mesh, <seq>_<mesh>_<frame>.obj (frame
 //        zero-padded to 4 digits, absolute frame number); garments keep
 //        their UVs.
@@ -26,6 +27,11 @@ namespace layers::data {
 class Dataset;
 
 enum class ExportFormat { Obj, Pc2, Glb };
+
+// The file names (without extension) of a sequence's meshes: "body", then
+// one per garment as above; every name distinct and file-safe (letters,
+// digits, '-' and '_').
+std::vector<std::string> mesh_file_names(const std::vector<std::string>& garment_names);
 // "obj", "pc2" or "glb"; InputError naming `source` otherwise.
 ExportFormat parse_export_format(const std::string& text, const std::string& source = "--format");
 

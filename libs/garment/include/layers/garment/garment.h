@@ -99,8 +99,6 @@ struct GarmentParams {
 // length is outside [0.004, 0.1] m.
 void validate(const GarmentParams& params);
 
-// All type names, and the layer of a type (0 inner, 1 outer; InputError
-// listing the valid names for an unknown one).
 // The names of layers::data's garment-type table (data/format.h) that
 // have a template (all but `imported`), and a type's layer there
 // (InputError for an unknown type or one without a template).

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -129,6 +130,10 @@ struct GarmentSampling {
   // existed keep their config (same_saved_config); the shipped configs
   // other than `small` turn it on.
   bool hip_room = false;
+  // Set by resolve_garment_files (imported_garment.h), never by hand: the
+  // content hash of every garment file and side file the outfits name, so
+  // that a dataset folder is not resumed with other garments.
+  std::map<std::string, std::string> files;
 
   template <class V>
   void visit(V& v) {
@@ -141,6 +146,8 @@ struct GarmentSampling {
     v("hip_room", hip_room,
       cfg::opt().help(
           "make pants and jumpsuits loose enough at the seat and thighs for the skin's growth in the scene's motion"));
+    v("files", files,
+      cfg::opt().help("recorded by the generator: content hash of each garment file (file:<mesh>) and side file"));
   }
 };
 

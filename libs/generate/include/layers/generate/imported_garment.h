@@ -4,8 +4,8 @@
 //
 // Each mesh is read and checked (import/mesh_import.h, mesh_checks.h) and
 // taken as modelled around our body in its T-pose for the scene's shape
-// (arms along x, y up, facing +z, soles on y = 0; `layers body --tpose-obj`
-// writes that body). UVs: the file's, per face corner; without them a
+// (arms along x, y up, facing +z, soles on y = 0; `layers tpose` writes
+// that body). UVs: the file's, per face corner; without them a
 // cylindrical parametrisation in metres about the vertical axis through
 // the pelvis joint: u = angle x the garment's mean distance from the axis,
 // v = height, the faces across the seam at the back (angle +-pi) unwrapped.
@@ -23,9 +23,18 @@
 
 #include "layers/data/sequence.h"
 #include "layers/garment/garment_body.h"
+#include "layers/generate/generator_config.h"
 #include "layers/generate/scene_spec.h"
 
 namespace layers::generate {
+
+// Reads and checks every garment file the config's outfits name, before
+// any scene: the mesh (mesh_import.h, mesh_checks.h) and its side file,
+// whose attributes must be among sim::GarmentAttributes' and in their
+// ranges. Throws InputError naming the file on the first problem. Records
+// the content hash of each mesh and side file in config.garments.files
+// (what the saved generator.yaml compares on a resume).
+void resolve_garment_files(GeneratorConfig& config);
 
 // Whether the scene's outfit is made of garment files (all or none: the
 // generator config refuses a mix).

@@ -24,6 +24,10 @@ namespace layers::generate {
 // of skirts, dresses and hoods; `layers crosscheck` gives Blender's
 // separate cloths the same).
 bool wants_self_contact(const std::string& type);
+// A stored garment's self-contact: its attribute `self_contact` (1 or 0,
+// written for imported garments from their side file), else its type's.
+inline constexpr const char* kSelfContact = "self_contact";
+bool garment_self_contact(const data::GarmentStatic& garment);
 
 struct SceneResult {
   bool ok = false;

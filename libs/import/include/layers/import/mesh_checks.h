@@ -3,8 +3,11 @@
 // positions; a size that reads as metres (largest extent 0.05-3 m, so a
 // file in centimetres or millimetres is caught); no degenerate face (a
 // repeated corner or an area under 1e-10 m^2); no non-manifold edge (one
-// shared by more than two faces). Open boundaries (hems, cuffs, a neck
-// opening) are allowed. Where it sits against the body and the other
+// shared by more than two faces); faces wound one way (the two faces of
+// an edge run it in opposite directions) and outwards (area-weighted
+// normals pointing away from the vertical axis through the centroid on
+// the whole: the format's winding, which every contact and collision test
+// relies on). Open boundaries (hems, cuffs, a neck opening) are allowed. Where it sits against the body and the other
 // layer is checked with the scene (generate/imported_garment.h).
 #pragma once
 

@@ -25,7 +25,9 @@ struct ImportedMesh {
 };
 
 // Throws InputError (one line naming the file) when the file is missing,
-// assimp cannot read it, or it holds no triangle.
+// cannot be read, holds no triangle or a non-finite position. UVs are kept
+// only when every mesh of the file has them (else none, and the generator
+// parametrises the garment itself).
 ImportedMesh import_mesh(const std::string& path, double scale = 1.0);
 
 }  // namespace layers::import

@@ -1,0 +1,90 @@
+// The evaluation's measures (metrics/measures.h, geometry/intersect.h) on
+// numpy arrays: the same C++ functions `layers eval` calls, not a Python
+// copy. Positions are [V,3] in metres (float32; others are converted),
+// faces [F,3] integer vertex indices; rates are shares 0..1, errors mm.
+#include <pybind11/stl.h>
+
+#include "bindings.h"
+#include "layers/core/error.h"
+#include "layers/geometry/intersect.h"
+#include "layers/metrics/measures.h"
+
+namespace layers::python {
+namespace {
+
+using Floats = py::array_t<float, py::array::c_style | py::array::forcecast>;
+using Ints = py::array_t<std::int32_t, py::array::c_style | py::array::forcecast>;
+
+geometry::Points points(const Floats& a, const char* what) {
+  if (a.ndim() != 2 || a.shape(1) != 3)
+    throw InputError(what, "shape", "[V,3]", "an array of " + std::to_string(a.ndim()) + " dimensions" +
+                                                 (a.ndim() == 2 ? " x " + std::to_string(a.shape(1)) : ""));
+  return Eigen::Map<const geometry::Points>(a.data(), a.shape(0), 3);
+}
+
+geometry::Faces faces(const Ints& a, const char* what) {
+  if (a.ndim() != 2 || a.shape(1) != 3)
+    throw InputError(what, "shape", "[F,3]", "an array of " + std::to_string(a.ndim()) + " dimensions");
+  return Eigen::Map<const geometry::Faces>(a.data(), a.shape(0), 3);
+}
+
+geometry::TriMesh mesh(const Floats& v, const Ints& f, const char* what) {
+  geometry::TriMesh m{points(v, what), faces(f, what)};
+  geometry::validate(m, what);
+  return m;
+}
+
+std::vector<geometry::TriMesh> meshes(const std::vector<std::pair<Floats, Ints>>& list, const char* what) {
+  std::vector<geometry::TriMesh> out;
+  for (const auto& [v, f] : list) out.push_back(mesh(v, f, what));
+  return out;
+}
+
+}  // namespace
+
+void bind_measures(py::module_& m) {
+  m.def(
+      "error_mm",
+      [](const Floats& predicted, const Floats& truth) {
+        return metrics::euclidean_error_mm(points(predicted, "predicted"), points(truth, "truth"));
+      },
+      "mean over vertices of |predicted - truth|, in mm (the evaluation's error)", py::arg("predicted"),
+      py::arg("truth"));
+  m.def(
+      "h_collision",
+      [](const Floats& garment, const Floats& body_vertices, const Ints& body_faces) {
+        return metrics::h_collision_rate(points(garment, "garment"), mesh(body_vertices, body_faces, "body"));
+      },
+      "H-collision: share of garment vertices behind the body (nearest-vertex test)", py::arg("garment"),
+      py::arg("body_vertices"), py::arg("body_faces"));
+  m.def(
+      "l_collision",
+      [](const Floats& outer, const Floats& inner_vertices, const Ints& inner_faces) {
+        const metrics::LCollisionRates r =
+            metrics::l_collision_rates(points(outer, "outer"), mesh(inner_vertices, inner_faces, "inner"));
+        py::dict d;
+        d["ours"] = r.ours;
+        d["plain"] = r.plain;
+        return d;
+      },
+      "L-collision of outer vertices against the inner garments (one mesh): {'ours': open-edge rule, 'plain': the "
+      "paper's}",
+      py::arg("outer"), py::arg("inner_vertices"), py::arg("inner_faces"));
+  m.def(
+      "h_crossing",
+      [](const std::vector<std::pair<Floats, Ints>>& garments, const Floats& body_vertices, const Ints& body_faces) {
+        return geometry::body_crossings(meshes(garments, "garment"), mesh(body_vertices, body_faces, "body"))
+            .a_vertex_share();
+      },
+      "H-crossing: share of garment vertices on a face through the body (exact); garments: [(vertices, faces)]",
+      py::arg("garments"), py::arg("body_vertices"), py::arg("body_faces"));
+  m.def(
+      "l_crossing",
+      [](const std::vector<std::pair<Floats, Ints>>& outer, const std::vector<std::pair<Floats, Ints>>& inner) {
+        return geometry::layer_crossings(meshes(outer, "outer"), meshes(inner, "inner")).a_vertex_share();
+      },
+      "L-crossing: share of outer vertices on a face through an inner garment (exact)", py::arg("outer"),
+      py::arg("inner"));
+}
+
+}  // namespace layers::python

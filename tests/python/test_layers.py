@@ -1,0 +1,142 @@
+"""The Python package `layers` against the C++ toolkit (run by ctest as
+python_package; docs/python.md): on the regression fixture written by
+layers_python_fixture, the ids, splits and every array's content hash equal
+what the C++ reader printed; the error and H-collision recomputed in Python
+from an evaluation's predictions.h5 equal its metrics.json; damaged or
+wrong inputs raise the C++ line as layers.Error / layers.InputError."""
+import json
+import os
+import shutil
+import subprocess
+
+import numpy as np
+import pytest
+
+import layers
+
+
+def fnv1a64(array):
+    """core/checksum.h's content hash of an array's bytes."""
+    h = 1469598103934665603
+    for b in np.ascontiguousarray(array).tobytes():
+        h = ((h ^ b) * 1099511628211) & 0xFFFFFFFFFFFFFFFF
+    return "%016x" % h
+
+
+@pytest.fixture(scope="session")
+def fixture(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("python")
+    out = subprocess.run([os.environ["LAYERS_PYTHON_FIXTURE"], str(folder)], check=True, capture_output=True, text=True)
+    reference = json.loads(out.stdout)
+    reference["folder"] = str(folder)
+    return reference
+
+
+@pytest.fixture(scope="session")
+def evaluated(fixture):
+    """The fixture evaluated with the `static` reference model (no training)."""
+    folder = fixture["folder"]
+    source = os.environ["LAYERS_SOURCE_DIR"]
+    experiment = os.path.join(folder, "static.yaml")
+    with open(experiment, "w") as f:
+        f.write("include: [%s/configs/models/static.yaml, %s/configs/experiments/tiny.yaml]\n" % (source, source))
+        f.write("data: {dataset: %s}\n" % fixture["dataset"])
+        f.write("run: {output: %s/run}\n" % folder)
+        f.write("eval: {horizon: 12}\n")
+    for verb in ("train", "eval"):
+        subprocess.run([os.environ["LAYERS_BIN"], verb, experiment], check=True, capture_output=True, text=True)
+    return os.path.join(folder, "run", "eval-test")
+
+
+def test_ids_and_splits_are_the_readers(fixture):
+    ds = layers.open_dataset(fixture["dataset"])
+    assert ds.ids() == fixture["ids"]
+    assert len(ds) == len(fixture["ids"])
+    assert ds.splits() == fixture["splits"]
+    info = ds.info("seq0")
+    assert info["n_frames"] == 20 and len(info["garments"]) == 2
+
+
+def test_every_array_hashes_as_in_cpp(fixture):
+    ds = layers.open_dataset(fixture["dataset"])
+    for seq_id, hashes in fixture["hashes"].items():
+        seq = ds.read_sequence(seq_id)
+        body, wind = seq["body"], seq["wind"]
+        assert body["positions"].shape == (20, body["skin_index"].shape[0], 3)
+        got = {
+            "body/positions": fnv1a64(body["positions"]),
+            "body/faces": fnv1a64(body["faces"]),
+            "body/joints": fnv1a64(body["joints"]),
+            "body/skin_weight": fnv1a64(body["skin_weight"]),
+            "wind/strength": fnv1a64(wind["strength"]),
+        }
+        for k, g in enumerate(seq["garments"]):
+            for name in ("positions", "rest", "faces", "uv"):
+                got["garments/%d/%s" % (k, name)] = fnv1a64(g[name])
+        assert got == hashes, seq_id
+
+
+def test_read_frames_is_a_slice_of_the_sequence(fixture):
+    ds = layers.open_dataset(fixture["dataset"])
+    whole = ds.read_sequence("seq4")
+    part = ds.read_frames("seq4", 5, 3)
+    assert part["first_frame"] == 5 and part["n_frames"] == 3
+    np.testing.assert_array_equal(part["garments"][1]["positions"], whole["garments"][1]["positions"][5:8])
+    np.testing.assert_array_equal(part["body"]["positions"], whole["body"]["positions"][5:8])
+
+
+def test_error_and_h_collision_equal_metrics_json(fixture, evaluated):
+    with open(os.path.join(evaluated, "metrics.json")) as f:
+        metrics = json.load(f)
+    truth = layers.open_dataset(fixture["dataset"])
+    predicted = layers.open_dataset(os.path.join(evaluated, "predictions.h5"))
+    assert metrics["per_sequence"], "the evaluation measured no sequence"
+    for entry in metrics["per_sequence"]:
+        p, t = predicted.read_sequence(entry["id"]), truth.read_sequence(entry["id"])
+        errors, h = [], []
+        for frame in range(2, p["n_frames"]):
+            pred = np.concatenate([g["positions"][frame] for g in p["garments"]])
+            true = np.concatenate([g["positions"][frame] for g in t["garments"]])
+            errors.append(layers.error_mm(pred, true))
+            h.append(layers.h_collision(pred, t["body"]["positions"][frame], t["body"]["faces"]))
+        assert abs(np.mean(errors) - entry["error_mm"]) <= 1e-6 * max(1.0, entry["error_mm"]), entry["id"]
+        assert abs(np.mean(h) - entry["h_collision"]) <= 1e-6, entry["id"]
+
+
+def test_measures_of_two_layers(fixture):
+    seq = layers.open_dataset(fixture["dataset"]).read_sequence("seq1")
+    inner, outer, body = seq["garments"][0], seq["garments"][1], seq["body"]
+    rates = layers.l_collision(outer["positions"][3], inner["positions"][3], inner["faces"])
+    assert set(rates) == {"ours", "plain"} and 0 <= rates["ours"] <= rates["plain"] <= 1
+    assert layers.error_mm(inner["positions"][3], inner["positions"][3]) == 0.0
+    h = layers.h_crossing([(inner["positions"][3], inner["faces"])], body["positions"][3], body["faces"])
+    lx = layers.l_crossing([(outer["positions"][3], outer["faces"])], [(inner["positions"][3], inner["faces"])])
+    assert 0 <= h <= 1 and 0 <= lx <= 1
+
+
+def test_wrong_input_is_the_cpp_line(fixture, tmp_path):
+    with pytest.raises(layers.InputError) as e:
+        layers.open_dataset(str(tmp_path / "none"))
+    assert str(tmp_path / "none") in str(e.value) and e.value.file
+    with pytest.raises(layers.InputError, match=r"\[V,3\]"):
+        layers.error_mm(np.zeros((4, 2), np.float32), np.zeros((4, 2), np.float32))
+    with pytest.raises(layers.Error):
+        layers.error_mm(np.zeros((4, 3), np.float32), np.zeros((5, 3), np.float32))
+
+
+def test_a_damaged_shard_raises_the_cpp_message(fixture, tmp_path):
+    copy = tmp_path / "damaged"
+    shutil.copytree(fixture["dataset"], copy)
+    shard = next(p for p in copy.iterdir() if p.suffix == ".h5" and p.name != "stats.h5")
+    data = bytearray(shard.read_bytes())
+    seq = layers.open_dataset(fixture["dataset"]).read_sequence("seq2")
+    needle = np.ascontiguousarray(seq["garments"][0]["positions"][10]).tobytes()[:64]
+    at = data.find(needle)
+    at = at + 8 if at > 0 else len(data) * 3 // 5  # stored compressed: somewhere in the data
+    data[at] ^= 0xFF
+    shard.write_bytes(bytes(data))
+    with pytest.raises(layers.Error) as e:
+        damaged = layers.open_dataset(str(copy))
+        for seq_id in damaged.ids():
+            damaged.read_sequence(seq_id)
+    assert shard.name in str(e.value) or "seq" in str(e.value), str(e.value)
