@@ -20,8 +20,15 @@ from ._core import (  # noqa: F401
     h_crossing,
     l_collision,
     l_crossing,
+    epoch_windows,
     open_dataset,
+    read_stats,
 )
+
+try:  # the windows need torch (Debian's python3-torch)
+    from .windows import WindowDataset, collate_windows  # noqa: F401
+except ImportError:  # pragma: no cover
+    pass
 
 __all__ = [
     "Dataset",
@@ -32,5 +39,9 @@ __all__ = [
     "h_crossing",
     "l_collision",
     "l_crossing",
+    "epoch_windows",
     "open_dataset",
+    "read_stats",
+    "WindowDataset",
+    "collate_windows",
 ]

@@ -1,11 +1,13 @@
 // layers.open_dataset and layers.Dataset: the C++ reader (data/dataset.h)
 // with its integrity check -- every sequence's content hash verified on
 // first read, a dataset without hashes refused unless allow_unhashed --
-// and its arrays as numpy arrays in the format's shapes (docs/format.md).
+// and its arrays as numpy arrays in the format's shapes (docs/format.md);
+// stats.h5's normalisation statistics.
 #include <pybind11/stl.h>
 
 #include "bindings.h"
 #include "layers/data/dataset.h"
+#include "layers/data/stats.h"
 
 namespace layers::python {
 namespace {
@@ -138,8 +140,43 @@ void bind_data(py::module_& m) {
           },
           "frames [first, first + count) of a sequence, with its static arrays", py::arg("id"), py::arg("first"),
           py::arg("count"))
+      .def(
+          "read_window",
+          [](const Dataset& d, const std::string& id, std::int64_t start, std::int64_t history, std::int64_t horizon) {
+            data::Window w;
+            std::shared_ptr<const data::SequenceStatic> st;
+            {
+              py::gil_scoped_release release;
+              w = d.read_window(id, start, history, horizon);
+              st = d.statics(id);
+            }
+            return frames_dict(*st, std::move(w.body), std::move(w.wind), std::move(w.garments), w.first_frame,
+                               w.n_frames);
+          },
+          "frames [start - history, start + horizon] of a sequence, as the training loader reads a window",
+          py::arg("id"), py::arg("start"), py::arg("history"), py::arg("horizon"))
       .def("verify", &Dataset::verify, "verify the content hashes of these sequences now", py::arg("ids"));
 
+  m.def(
+      "read_stats",
+      [](const std::string& path) {
+        const data::NormStats stats = data::read_stats(path);
+        py::dict out;
+        data::for_each_quantity(stats, [&](const char* name, const data::Moments& moments) {
+          py::dict q;
+          q["mean"] = numpy(std::vector<double>(moments.mean.begin(), moments.mean.end()), {3});
+          q["std"] = numpy(std::vector<double>(moments.std.begin(), moments.std.end()), {3});
+          q["count"] = moments.count;
+          out[name] = q;
+        });
+        out["split"] = stats.split;
+        out["n_sequences"] = stats.n_sequences;
+        out["n_frames"] = stats.n_frames;
+        return out;
+      },
+      "stats.h5: mean and std of each quantity ('garment/position', ... 'body/acceleration', root-relative; "
+      "docs/format.md), as the models read them",
+      py::arg("path"));
   m.def(
       "open_dataset",
       [](const std::string& path, bool allow_unhashed) {

@@ -103,6 +103,39 @@ def test_error_and_h_collision_equal_metrics_json(fixture, evaluated):
         assert abs(np.mean(h) - entry["h_collision"]) <= 1e-6, entry["id"]
 
 
+def tensor_hash(t):
+    return fnv1a64(t.contiguous().numpy())
+
+
+def test_windows_are_the_cpp_loaders(fixture):
+    ref = fixture["loader"]
+    ds = layers.WindowDataset(fixture["dataset"], split=ref["split"], history=ref["history"], horizon=ref["horizon"],
+                              seed=ref["seed"], epoch=ref["epoch"])
+    assert len(ds) == ref["count"]
+    for item, expected in ((ds[0], ref["first"]), (ds[len(ds) - 1], ref["last"])):
+        assert (item["id"], item["start"]) == (expected["id"], expected["start"])
+        assert tensor_hash(item["body"]) == expected["body"]
+        assert [tensor_hash(g) for g in item["garments"]] == expected["garments"]
+    assert ds.stats["split"] == "train" and ds.stats["garment/position"]["std"].shape == (3,)
+    inner = layers.WindowDataset(fixture["dataset"], horizon=3, seed=7, inner_only=True)
+    assert len(inner[0]["garments"]) == 1
+
+
+def test_dataloader_workers_give_the_batches_of_one_process(fixture):
+    import torch
+
+    def batches(workers):
+        ds = layers.WindowDataset(fixture["dataset"], horizon=3, seed=7)
+        loader = torch.utils.data.DataLoader(ds, batch_size=2, shuffle=True, num_workers=workers,
+                                             generator=torch.Generator().manual_seed(11),
+                                             collate_fn=layers.collate_windows)
+        return [[(s["id"], s["start"], tensor_hash(s["garments"][0])) for s in b] for b in loader]
+
+    one = batches(0)
+    assert len(one) > 1
+    assert batches(2) == one
+
+
 def test_measures_of_two_layers(fixture):
     seq = layers.open_dataset(fixture["dataset"]).read_sequence("seq1")
     inner, outer, body = seq["garments"][0], seq["garments"][1], seq["body"]

@@ -62,16 +62,6 @@ struct WindowLoader::Impl {
     return s;
   }
 
-  // (sequence index, start frame) of every window with this horizon.
-  std::vector<std::pair<std::size_t, std::int64_t>> all_windows(std::int64_t horizon) const {
-    std::vector<std::pair<std::size_t, std::int64_t>> out;
-    for (std::size_t k = 0; k < ids.size(); ++k) {
-      const std::int64_t n = dataset.info(ids[k]).n_frames;
-      for (std::int64_t s = options.history; s + horizon < n; s += options.stride) out.emplace_back(k, s);
-    }
-    return out;
-  }
-
   void halt() {
     {
       std::lock_guard<std::mutex> lock(mutex);
@@ -81,19 +71,19 @@ struct WindowLoader::Impl {
     if (worker.joinable()) worker.join();
   }
 
-  void produce(std::vector<std::pair<std::size_t, std::int64_t>> order, std::int64_t horizon) {
+  void produce(std::vector<WindowRef> order, std::int64_t horizon) {
     try {
       const std::size_t bs = static_cast<std::size_t>(options.batch_size);
       for (std::size_t b = 0; b < batches; ++b) {
         Batch batch;
         for (std::size_t i = b * bs; i < std::min(order.size(), (b + 1) * bs); ++i) {
-          const auto& [k, start] = order[i];
+          const WindowRef& ref = order[i];
           Sample sample;
-          sample.id = ids[k];
-          sample.start = start;
-          sample.statics = statics(ids[k]);
-          const data::Window w = dataset.read_window(ids[k], start, options.history, horizon);
-          sample.frames = to_frame_tensors(w, dataset.statics(ids[k])->garments, options.selection);
+          sample.id = ref.id;
+          sample.start = ref.start;
+          sample.statics = statics(ref.id);
+          const data::Window w = dataset.read_window(ref.id, ref.start, options.history, horizon);
+          sample.frames = to_frame_tensors(w, dataset.statics(ref.id)->garments, options.selection);
           batch.push_back(std::move(sample));
         }
         std::unique_lock<std::mutex> lock(mutex);
@@ -119,36 +109,53 @@ WindowLoader::~WindowLoader() { impl_->halt(); }
 
 const std::vector<std::string>& WindowLoader::sequences() const { return impl_->ids; }
 
-std::size_t WindowLoader::windows(std::int64_t horizon) const { return impl_->all_windows(horizon).size(); }
+std::size_t WindowLoader::windows(std::int64_t horizon) const {
+  return all_windows(impl_->dataset, impl_->ids, impl_->options, horizon).size();
+}
 
-std::size_t WindowLoader::start_epoch(int epoch, std::int64_t horizon) {
-  Impl& m = *impl_;
-  m.halt();
-  auto order = m.all_windows(horizon);
+std::vector<WindowRef> all_windows(const data::Dataset& dataset, const std::vector<std::string>& sequences,
+                                   const LoaderOptions& options, std::int64_t horizon) {
+  std::vector<WindowRef> out;
+  for (const std::string& id : sequences) {
+    const std::int64_t n = dataset.info(id).n_frames;
+    for (std::int64_t s = options.history; s + horizon < n; s += options.stride) out.push_back({id, s});
+  }
+  return out;
+}
+
+std::vector<WindowRef> epoch_windows(const data::Dataset& dataset, const std::vector<std::string>& sequences,
+                                     const LoaderOptions& options, int epoch, std::int64_t horizon) {
+  std::vector<WindowRef> order = all_windows(dataset, sequences, options, horizon);
   if (order.empty()) {
     throw InputError(
-        m.dataset.path(), "split '" + m.options.split + "'",
-        "sequences longer than " + std::to_string(m.options.history + horizon) + " frames (history + horizon)",
-        std::to_string(m.ids.size()) + " sequences, none long enough");
+        dataset.path(), "split '" + options.split + "'",
+        "sequences longer than " + std::to_string(options.history + horizon) + " frames (history + horizon)",
+        std::to_string(sequences.size()) + " sequences, none long enough");
   }
-  std::mt19937_64 rng(m.options.seed * 1000003ULL + static_cast<std::uint64_t>(epoch));
+  std::mt19937_64 rng(options.seed * 1000003ULL + static_cast<std::uint64_t>(epoch));
   std::shuffle(order.begin(), order.end(), rng);
-  if (m.options.windows_per_epoch > 0 && order.size() > static_cast<std::size_t>(m.options.windows_per_epoch))
-    order.resize(static_cast<std::size_t>(m.options.windows_per_epoch));
-  if (m.options.world > 1) {
+  if (options.windows_per_epoch > 0 && order.size() > static_cast<std::size_t>(options.windows_per_epoch))
+    order.resize(static_cast<std::size_t>(options.windows_per_epoch));
+  if (options.world > 1) {
     // Every rank runs the same number of equal batches (the gradients are
     // averaged over ranks); up to world - 1 windows are left for this epoch.
-    const std::size_t world = static_cast<std::size_t>(m.options.world);
-    std::vector<std::pair<std::size_t, std::int64_t>> mine;
-    for (std::size_t i = static_cast<std::size_t>(m.options.rank); i + (order.size() % world) < order.size();
-         i += world)
+    const std::size_t world = static_cast<std::size_t>(options.world);
+    std::vector<WindowRef> mine;
+    for (std::size_t i = static_cast<std::size_t>(options.rank); i + (order.size() % world) < order.size(); i += world)
       mine.push_back(order[i]);
     if (mine.empty())
-      throw InputError(m.dataset.path(), "split '" + m.options.split + "'",
+      throw InputError(dataset.path(), "split '" + options.split + "'",
                        "at least one window per rank (" + std::to_string(world) + " ranks)",
                        std::to_string(order.size()) + " windows");
     order = std::move(mine);
   }
+  return order;
+}
+
+std::size_t WindowLoader::start_epoch(int epoch, std::int64_t horizon) {
+  Impl& m = *impl_;
+  m.halt();
+  std::vector<WindowRef> order = epoch_windows(m.dataset, m.ids, m.options, epoch, horizon);
   const std::size_t bs = static_cast<std::size_t>(m.options.batch_size);
   m.queue.clear();
   m.error = nullptr;

@@ -52,6 +52,24 @@ using Batch = std::vector<Sample>;
 std::vector<std::string> select_sequences(const data::Dataset& dataset, const std::string& split,
                                           const std::vector<std::string>& subsets);
 
+// One window: a sequence and the absolute frame of its row `history`.
+struct WindowRef {
+  std::string id;
+  std::int64_t start = 0;
+};
+
+// Every window of `sequences` with this horizon, in sequence order: starts
+// history, history + stride, ... while start + horizon < n_frames.
+std::vector<WindowRef> all_windows(const data::Dataset& dataset, const std::vector<std::string>& sequences,
+                                   const LoaderOptions& options, std::int64_t horizon);
+// The windows of one epoch in the order WindowLoader reads them (and the
+// Python package's WindowDataset, docs/python.md): all_windows shuffled
+// for options.seed and `epoch`, cut to windows_per_epoch, then this rank's
+// share. Throws InputError when no sequence is long enough, or a rank
+// would get no window.
+std::vector<WindowRef> epoch_windows(const data::Dataset& dataset, const std::vector<std::string>& sequences,
+                                     const LoaderOptions& options, int epoch, std::int64_t horizon);
+
 class WindowLoader {
  public:
   // `dataset` must outlive the loader.
