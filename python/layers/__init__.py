@@ -1,4 +1,5 @@
-"""layers: the LAYERS-H5 datasets and the evaluation's measures from Python.
+"""layers: the LAYERS-H5 datasets, training windows, the evaluation's measures
+and the model zoo's rollouts from Python.
 
 The C++ toolkit's own code, bound with pybind11 (docs/python.md):
 
@@ -21,9 +22,12 @@ from ._core import (  # noqa: F401
     l_collision,
     l_crossing,
     epoch_windows,
+    models,
     open_dataset,
+    plugin_problems,
     read_stats,
 )
+from .zoo import rollout  # noqa: F401
 
 try:  # the windows need torch (Debian's python3-torch)
     from .windows import WindowDataset, collate_windows  # noqa: F401
@@ -40,8 +44,11 @@ __all__ = [
     "l_collision",
     "l_crossing",
     "epoch_windows",
+    "models",
     "open_dataset",
+    "plugin_problems",
     "read_stats",
+    "rollout",
     "WindowDataset",
     "collate_windows",
 ]

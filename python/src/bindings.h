@@ -23,5 +23,6 @@ py::array_t<T> numpy(std::vector<T>&& values, std::vector<py::ssize_t> shape) {
 void bind_data(py::module_& m);      // data_bindings.cpp: Dataset
 void bind_measures(py::module_& m);  // measure_bindings.cpp: error, collisions, crossings
 void bind_windows(py::module_& m);   // window_bindings.cpp: the loader's windows of an epoch
+void bind_zoo(py::module_& m);       // zoo_bindings.cpp: models, rollout
 
 }  // namespace layers::python

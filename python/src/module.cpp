@@ -2,7 +2,7 @@
 // C++ layers::Error reaches Python as layers.Error (an InputError as its
 // subclass layers.InputError, with file, field, expected and got), its
 // message the C++ line -- and the parts bound in data_bindings.cpp and
-// measure_bindings.cpp and window_bindings.cpp.
+// measure_bindings.cpp, window_bindings.cpp and zoo_bindings.cpp.
 #include <pybind11/pybind11.h>
 
 #include "bindings.h"
@@ -32,4 +32,5 @@ PYBIND11_MODULE(_core, m) {
   layers::python::bind_data(m);
   layers::python::bind_measures(m);
   layers::python::bind_windows(m);
+  layers::python::bind_zoo(m);
 }

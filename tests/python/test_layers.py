@@ -136,6 +136,34 @@ def test_dataloader_workers_give_the_batches_of_one_process(fixture):
     assert batches(2) == one
 
 
+def test_the_zoo_lists_the_reference_models():
+    assert {"static", "skinned"} <= set(layers.models()), layers.plugin_problems()
+
+
+def test_a_rollout_from_python_equals_layers_rollout(fixture, evaluated, tmp_path):
+    experiment = os.path.join(fixture["folder"], "static.yaml")
+    subprocess.run([os.environ["LAYERS_BIN"], "rollout", experiment, "--sequence", "seq4", "--out",
+                    str(tmp_path / "cli")], check=True, capture_output=True, text=True)
+    result = layers.rollout(experiment, "seq4", str(tmp_path / "py"))
+    assert result["model"] == "static" and result["frames"] > 0
+    cli = layers.open_dataset(str(tmp_path / "cli" / "predictions.h5")).read_sequence("seq4")
+    py = layers.open_dataset(result["predictions"]).read_sequence("seq4")
+    assert len(result["garments"]) == len(cli["garments"]) == 2
+    for k, g in enumerate(cli["garments"]):
+        assert g["positions"].tobytes() == py["garments"][k]["positions"].tobytes()
+        assert g["positions"].tobytes() == result["garments"][k].numpy().tobytes()
+    assert cli["body"]["positions"].tobytes() == py["body"]["positions"].tobytes()
+
+
+def test_a_wrong_checkpoint_raises_the_cpp_message(fixture, evaluated, tmp_path):
+    experiment = os.path.join(fixture["folder"], "static.yaml")
+    junk = tmp_path / "junk.pt"
+    junk.write_bytes(b"not a checkpoint")
+    with pytest.raises(layers.Error) as e:
+        layers.rollout(experiment, "seq4", str(tmp_path / "out"), checkpoint=str(junk))
+    assert str(junk) in str(e.value)
+
+
 def test_measures_of_two_layers(fixture):
     seq = layers.open_dataset(fixture["dataset"]).read_sequence("seq1")
     inner, outer, body = seq["garments"][0], seq["garments"][1], seq["body"]
