@@ -26,6 +26,7 @@ from ._core import (  # noqa: F401
     open_dataset,
     plugin_problems,
     read_stats,
+    stretch,
 )
 from .zoo import rollout  # noqa: F401
 
@@ -49,6 +50,7 @@ __all__ = [
     "plugin_problems",
     "read_stats",
     "rollout",
+    "stretch",
     "WindowDataset",
     "collate_windows",
 ]

@@ -1,4 +1,5 @@
-// The evaluation's measures (metrics/measures.h, geometry/intersect.h) on
+// The evaluation's measures (metrics/measures.h, geometry/intersect.h) and
+// the generator's stretch (sim/measures.h) on
 // numpy arrays: the same C++ functions `layers eval` calls, not a Python
 // copy. Positions are [V,3] in metres (float32; others are converted),
 // faces [F,3] integer vertex indices; rates are shares 0..1, errors mm.
@@ -7,7 +8,9 @@
 #include "bindings.h"
 #include "layers/core/error.h"
 #include "layers/geometry/intersect.h"
+#include "layers/geometry/topology.h"
 #include "layers/metrics/measures.h"
+#include "layers/sim/measures.h"
 
 namespace layers::python {
 namespace {
@@ -85,6 +88,19 @@ void bind_measures(py::module_& m) {
       },
       "L-crossing: share of outer vertices on a face through an inner garment (exact)", py::arg("outer"),
       py::arg("inner"));
+  m.def(
+      "stretch",
+      [](const Floats& positions, const Floats& rest, const Ints& garment_faces) {
+        const geometry::TriMesh at_rest = mesh(rest, garment_faces, "rest");
+        const geometry::Points now = points(positions, "positions");
+        if (now.rows() != at_rest.vertices.rows())
+          throw InputError("positions", "shape", std::to_string(at_rest.vertices.rows()) + " vertices as the rest shape",
+                           std::to_string(now.rows()));
+        const geometry::Edges edges = geometry::unique_edges(at_rest.faces);
+        return sim::max_edge_stretch(now, edges, geometry::edge_lengths(at_rest.vertices, edges));
+      },
+      "largest edge stretch max(0, max |l| / l0 - 1) of a garment against its rest shape (the generator's measure)",
+      py::arg("positions"), py::arg("rest"), py::arg("faces"));
 }
 
 }  // namespace layers::python

@@ -173,6 +173,11 @@ def test_measures_of_two_layers(fixture):
     h = layers.h_crossing([(inner["positions"][3], inner["faces"])], body["positions"][3], body["faces"])
     lx = layers.l_crossing([(outer["positions"][3], outer["faces"])], [(inner["positions"][3], inner["faces"])])
     assert 0 <= h <= 1 and 0 <= lx <= 1
+    assert layers.stretch(inner["rest"], inner["rest"], inner["faces"]) < 1e-6  # float32 rounding
+    longer = inner["rest"] * np.float32(1.1)  # every edge 10% longer
+    assert abs(layers.stretch(longer, inner["rest"], inner["faces"]) - 0.1) < 1e-5
+    with pytest.raises(layers.InputError, match="vertices as the rest shape"):
+        layers.stretch(inner["rest"][:5], inner["rest"], inner["faces"])
 
 
 def test_wrong_input_is_the_cpp_line(fixture, tmp_path):
