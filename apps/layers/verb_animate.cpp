@@ -49,14 +49,10 @@ VerbRun register_animate(CLI::App& app, const Global&) {
         throw InputError("layers animate", "--format", "each format once", "'" + f + "' twice");
       formats.push_back(format);
     }
-    cfg::Node tree = cfg::load_file(a->config);
-    for (const auto& s : a->sets) cfg::apply_set(tree, s);
-    for (const char* s :
-         {"sequences=1", "splits.val=0", "splits.test=0", "splits.unseen_motions=[]", "splits.unseen_outfits=[]"})
-      cfg::apply_set(tree, s);
-    auto config = cfg::read<generate::GeneratorConfig>(tree);
-    generate::check(config, a->config);
-    generate::resolve_garment_files(config);
+    std::vector<std::string> sets = a->sets;  // one scene, in the train split
+    sets.insert(sets.end(), {"sequences=1", "splits.val=0", "splits.test=0", "splits.unseen_motions=[]",
+                             "splits.unseen_outfits=[]"});
+    const generate::GeneratorConfig config = generate::load_generator_config(a->config, sets);
     generate::GenerateOptions options;
     options.out = (fs::path(a->out) / "data").string();
     if (fs::exists(options.out))

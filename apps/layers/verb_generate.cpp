@@ -48,12 +48,8 @@ VerbRun register_generate(CLI::App& app, const Global&) {
   cmd->add_flag("--quiet", a->quiet, "no progress line");
   cmd->add_flag("--print-config", a->print_config, "print the resolved config (it is always saved as generator.yaml)");
   return [a]() {
-    cfg::Node tree = cfg::load_file(a->config);
-    for (const auto& s : a->sets) cfg::apply_set(tree, s);
     // The file holds the generator config at its top level.
-    auto config = cfg::read<generate::GeneratorConfig>(tree);
-    generate::check(config, a->config);
-    generate::resolve_garment_files(config);
+    const generate::GeneratorConfig config = generate::load_generator_config(a->config, a->sets);
     const std::string resolved = cfg::to_yaml(cfg::to_node(config));
     generate::GenerateOptions options;
     options.out = a->out.empty() ? "data/" + config.name : a->out;

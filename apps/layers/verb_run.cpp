@@ -37,11 +37,7 @@ bool make_dataset(const study::StudyDataset& d) {
                          std::string("no ") + f);
     return false;
   }
-  cfg::Node tree = cfg::load_file(d.config);
-  for (const auto& s : d.set) cfg::apply_set(tree, s);
-  auto config = cfg::read<generate::GeneratorConfig>(tree);
-  generate::check(config, d.config);
-  generate::resolve_garment_files(config);
+  const generate::GeneratorConfig config = generate::load_generator_config(d.config, d.set);
   const std::string resolved = cfg::to_yaml(cfg::to_node(config));
   if (generate::dataset_complete(d.folder, config)) {
     const fs::path saved = fs::path(d.folder) / "generator.yaml";

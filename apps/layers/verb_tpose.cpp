@@ -34,11 +34,7 @@ VerbRun register_tpose(CLI::App& app, const Global&) {
   cmd->add_option("--out", a->out, "output folder")->required();
   return [a]() {
     namespace fs = std::filesystem;
-    cfg::Node tree = cfg::load_file(a->config);
-    for (const auto& s : a->sets) cfg::apply_set(tree, s);
-    auto config = cfg::read<generate::GeneratorConfig>(tree);
-    generate::check(config, a->config);
-    generate::resolve_garment_files(config);
+    const generate::GeneratorConfig config = generate::load_generator_config(a->config, a->sets);
     if (a->scene >= config.sequences)
       throw InputError(a->config, "--scene", "a scene index below sequences (" + std::to_string(config.sequences) + ")",
                        std::to_string(a->scene));

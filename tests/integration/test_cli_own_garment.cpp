@@ -8,6 +8,7 @@
 
 #include <filesystem>
 
+#include "coarse_scene.h"
 #include "layers/data/dataset.h"
 #include "layers/data/obj.h"
 #include "run_command.h"
@@ -19,30 +20,21 @@ using test::run_command;
 
 namespace {
 
-// configs/data/tiny.yaml cut to one short, coarse scene; `outfit` replaces
-// its outfits.
-std::string settings(const std::string& outfit) {
-  return " --config " + test::source_dir() +
-         "/configs/data/tiny.yaml --set frames=3 --set drape_frames=2 --set body.transition_frames=2"
-         " --set garments.fit.edge_length=0.1 --set sim.validation.max_l_penetration=1"
-         " --set sim.validation.max_h_penetration=1 --set sim.validation.max_stretch=100"
-         " --set sim.validation.max_h_crossing_clear=1 --set 'garments.outfits=" +
-         outfit + "'";
-}
-
 TEST(CliOwnGarment, TposeThenAnimateTheGarmentFiles) {
   test::TempDir dir("own-garment");
   const std::string t = dir.file("tpose");
-  auto r = run_command(test::layers_bin() + " tpose" + settings("[{inner: [dress], outer: jacket}]") + " --out " + t);
+  auto r = run_command(test::layers_bin() + " tpose" +
+                       test::coarse_scene_settings("[{inner: [dress], outer: jacket}]") + " --out " + t);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const char* f : {"body.obj", "dress.obj", "jacket.obj"}) EXPECT_TRUE(fs::exists(t + "/" + f)) << f;
   EXPECT_FALSE(data::read_obj(t + "/dress.obj").uv_faces.empty()) << "the template's UVs are written";
-  r = run_command(test::layers_bin() + " tpose" + settings("[{inner: [dress], outer: jacket}]") + " --out " + t);
+  r = run_command(test::layers_bin() + " tpose" + test::coarse_scene_settings("[{inner: [dress], outer: jacket}]") +
+                  " --out " + t);
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("an existing file"), std::string::npos) << r.output;
 
   const std::string files = "[{inner: [\"file:" + t + "/dress.obj\"], outer: \"file:" + t + "/jacket.obj\"}]";
-  r = run_command(test::layers_bin() + " animate" + settings(files) + " --out " + dir.file("anim"));
+  r = run_command(test::layers_bin() + " animate" + test::coarse_scene_settings(files) + " --out " + dir.file("anim"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_TRUE(fs::exists(dir.file("anim/glb/seq-000000.glb"))) << r.output;
   const data::Dataset ds = data::Dataset::open(dir.file("anim/data"));
@@ -54,7 +46,7 @@ TEST(CliOwnGarment, TposeThenAnimateTheGarmentFiles) {
   EXPECT_EQ(statics->garments[1].layer, 1);
   EXPECT_EQ(statics->garments[0].n_vertices(), data::read_obj(t + "/dress.obj").n_vertices());
   // Again into the same folder: refused, the first run's files kept.
-  r = run_command(test::layers_bin() + " animate" + settings(files) + " --out " + dir.file("anim"));
+  r = run_command(test::layers_bin() + " animate" + test::coarse_scene_settings(files) + " --out " + dir.file("anim"));
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("a folder holding data/ from an earlier run"), std::string::npos) << r.output;
   EXPECT_TRUE(fs::exists(dir.file("anim/glb/seq-000000.glb")));
@@ -63,10 +55,12 @@ TEST(CliOwnGarment, TposeThenAnimateTheGarmentFiles) {
 TEST(CliOwnGarment, BadFilesAreOneLineAndChangedFilesAreNotResumed) {
   test::TempDir dir("own-garment");
   const std::string t = dir.file("tpose");
-  auto r = run_command(test::layers_bin() + " tpose" + settings("[{inner: [dress], outer: none}]") + " --out " + t);
+  auto r = run_command(test::layers_bin() + " tpose" + test::coarse_scene_settings("[{inner: [dress], outer: none}]") +
+                       " --out " + t);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string outfit = "[{inner: [\"file:" + t + "/dress.obj\"], outer: none}]";
-  const std::string generate = test::layers_bin() + " generate --quiet --set sequences=1" + settings(outfit);
+  const std::string generate =
+      test::layers_bin() + " generate --quiet --set sequences=1" + test::coarse_scene_settings(outfit);
   // Attributes out of their range and a mesh in centimetres: one line, exit 1, before any scene.
   dir.write("tpose/dress.yaml", "attributes: {friction: 500}\n");
   r = run_command(generate + " --out " + dir.file("a"));
@@ -91,14 +85,15 @@ TEST(CliOwnGarment, BadFilesAreOneLineAndChangedFilesAreNotResumed) {
 TEST(CliOwnGarment, AGarmentInsideTheBodyIsOneLineBeforeAnySimulation) {
   test::TempDir dir("own-garment");
   const std::string t = dir.file("tpose");
-  auto r = run_command(test::layers_bin() + " tpose" + settings("[{inner: [dress], outer: none}]") + " --out " + t);
+  auto r = run_command(test::layers_bin() + " tpose" + test::coarse_scene_settings("[{inner: [dress], outer: none}]") +
+                       " --out " + t);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   data::ObjMesh dress = data::read_obj(t + "/dress.obj");
   for (std::size_t i = 2; i < dress.positions.size(); i += 3) dress.positions[i] -= 0.08f;  // 8 cm back
   data::write_obj(dir.file("sunk.obj"), dress);
   r = run_command(test::layers_bin() + " animate" +
-                  settings("[{inner: [\"file:" + dir.file("sunk.obj") + "\"], outer: none}]") + " --out " +
-                  dir.file("anim"));
+                  test::coarse_scene_settings("[{inner: [\"file:" + dir.file("sunk.obj") + "\"], outer: none}]") +
+                  " --out " + dir.file("anim"));
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("sunk.obj: vertices: expected a garment outside the body in its T-pose (frame 0), got "),
             std::string::npos)

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "coarse_scene.h"
 #include "layers/data/dataset.h"
 #include "layers/geometry/nearest.h"
 #include "layers/import/mesh_import.h"
@@ -22,15 +23,6 @@
 using namespace layers;
 
 namespace {
-
-std::string settings(const std::string& outfit) {
-  return " --config " + test::source_dir() +
-         "/configs/data/tiny.yaml --set frames=3 --set drape_frames=2 --set body.transition_frames=2"
-         " --set garments.fit.edge_length=0.1 --set sim.validation.max_l_penetration=1"
-         " --set sim.validation.max_h_penetration=1 --set sim.validation.max_stretch=100"
-         " --set sim.validation.max_h_crossing_clear=1 --set 'garments.outfits=" +
-         outfit + "'";
-}
 
 // Mean garment vertex speed, mm per frame, of a one-scene dataset.
 double speed_mm(const std::string& dataset) {
@@ -51,8 +43,8 @@ double speed_mm(const std::string& dataset) {
 TEST(CliOwnGarmentBlender, BlenderExportsReadBackAsTheTemplate) {
   test::TempDir dir("own-garment-blender");
   const std::string t = dir.file("tpose");
-  auto r =
-      test::run_command(test::layers_bin() + " tpose" + settings("[{inner: [dress], outer: none}]") + " --out " + t);
+  auto r = test::run_command(test::layers_bin() + " tpose" +
+                             test::coarse_scene_settings("[{inner: [dress], outer: none}]") + " --out " + t);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   r = test::run_command(std::string(LAYERS_TEST_BLENDER) + " -b --python-exit-code 1 --python " + test::source_dir() +
                         "/scripts/blender/garment_roundtrip.py -- " + t + "/dress.obj " + dir.path());
@@ -73,11 +65,13 @@ TEST(CliOwnGarmentBlender, BlenderExportsReadBackAsTheTemplate) {
   }
 
   // Blender's OBJ as the dress: simulated like the template itself.
-  r = test::run_command(test::layers_bin() + " animate" +
-                        settings("[{inner: [\"file:" + dir.file("blender.obj") + "\"], outer: none}]") + " --out " +
-                        dir.file("own"));
+  r = test::run_command(
+      test::layers_bin() + " animate" +
+      test::coarse_scene_settings("[{inner: [\"file:" + dir.file("blender.obj") + "\"], outer: none}]") + " --out " +
+      dir.file("own"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  r = test::run_command(test::layers_bin() + " animate" + settings("[{inner: [dress], outer: none}]") + " --out " +
+  r = test::run_command(test::layers_bin() + " animate" +
+                        test::coarse_scene_settings("[{inner: [dress], outer: none}]") + " --out " +
                         dir.file("native"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const double own = speed_mm(dir.file("own/data")), ref = speed_mm(dir.file("native/data"));

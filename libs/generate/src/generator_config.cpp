@@ -7,6 +7,7 @@
 #include "layers/core/error.h"
 #include "layers/core/text_file.h"
 #include "layers/data/format.h"
+#include "layers/generate/imported_garment.h"
 #include "layers/import/garment_file.h"
 
 namespace layers::generate {
@@ -123,6 +124,15 @@ void check(const GeneratorConfig& c, const std::string& file) {
   check_holdouts(c, file);
   garment::validate(c.garments.fit);
   sim::check(c.sim, "sim");
+}
+
+GeneratorConfig load_generator_config(const std::string& file, const std::vector<std::string>& sets) {
+  cfg::Node tree = cfg::load_file(file);
+  for (const std::string& s : sets) cfg::apply_set(tree, s);
+  GeneratorConfig config = cfg::read<GeneratorConfig>(tree);
+  check(config, file);
+  resolve_garment_files(config);
+  return config;
 }
 
 std::optional<GeneratorConfig> recorded_generator_config(const std::string& generator_yaml, const std::string& file) {

@@ -26,8 +26,8 @@ const char* part_name(garment::Part p) {
 }
 
 // "<n> vertices inside <what>, most near the <part>" or "" when none.
-std::string inside_body(const geometry::Points& points, const garment::TPoseBody& body) {
-  const geometry::Surface surface = geometry::Surface::from_mesh(body.mesh, "T-pose body");
+std::string inside_body(const geometry::Points& points, const garment::TPoseBody& body,
+                        const geometry::Surface& surface) {
   const auto behind = surface.behind(points);
   std::array<int, 11> by_part{};
   int count = 0;
@@ -104,6 +104,7 @@ std::vector<data::GarmentData> imported_outfit(const garment::TPoseBody& body, c
                                                double layer_reach) {
   const Eigen::Vector3d axis(body.joints.at(0).x(), body.joints.at(0).y(), body.joints.at(0).z());
   std::vector<data::GarmentData> out;
+  const geometry::Surface body_surface = geometry::Surface::from_mesh(body.mesh, "T-pose body");  // once
   std::vector<geometry::TriMesh> inner;
   for (const GarmentSpec& g : spec.garments) {
     if (g.source.empty())
@@ -111,7 +112,7 @@ std::vector<data::GarmentData> imported_outfit(const garment::TPoseBody& body, c
     const import::GarmentFile file = import::read_garment_file(g.source);
     import::ImportedMesh m = import::import_mesh(file.mesh, file.scale);
     import::check_cloth_mesh(m.mesh, file.mesh);
-    const std::string inside = inside_body(m.mesh.vertices, body);
+    const std::string inside = inside_body(m.mesh.vertices, body, body_surface);
     if (!inside.empty())
       throw InputError(file.mesh, "vertices", "a garment outside the body in its T-pose (frame 0)", inside);
     if (g.layer == 1 && !inner.empty()) {

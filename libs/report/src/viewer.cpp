@@ -6,7 +6,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <optional>
 
 #include "layers/core/atomic_file.h"
 #include "layers/core/error.h"
@@ -126,19 +125,19 @@ Viewer write_viewer(const std::vector<RunResults>& runs, const PictureOptions& p
   };
   std::vector<std::vector<std::vector<double>>> values(
       shown.rows.size(), std::vector<std::vector<double>>(defs.size(), std::vector<double>(frames, NAN)));
+  // Each row's garments at the frame before (kept from the last step).
+  std::vector<std::vector<geometry::Points>> before;
   for (std::int64_t t = 0; t < frames; ++t) {
     const metrics::BodyFrame body(geometry::TriMesh{points_at(first.body.positions, t, body_v), body_faces});
-    std::optional<std::vector<geometry::Points>> truth;
-    if (shown.has_truth) truth = garment_points(0, t);
+    std::vector<std::vector<geometry::Points>> now;
+    for (std::size_t r = 0; r < shown.rows.size(); ++r) now.push_back(garment_points(r, t));
+    const std::vector<geometry::Points>* truth = shown.has_truth ? &now[0] : nullptr;
     for (std::size_t r = 0; r < shown.rows.size(); ++r) {
       const bool is_truth = shown.has_truth && r == 0;
-      const std::vector<geometry::Points> now = garment_points(r, t);
-      std::optional<std::vector<geometry::Points>> before;
-      if (t > 0) before = garment_points(r, t - 1);
       std::vector<geometry::TriMesh> meshes;
-      for (std::size_t g = 0; g < now.size(); ++g) meshes.push_back({now[g], garment_faces[g]});
-      const metrics::FrameScene scene(std::move(meshes), layers, is_truth || !truth ? nullptr : &*truth,
-                                      before ? &*before : nullptr, &body);
+      for (std::size_t g = 0; g < now[r].size(); ++g) meshes.push_back({now[r][g], garment_faces[g]});
+      const metrics::FrameScene scene(std::move(meshes), layers, is_truth ? nullptr : truth,
+                                      t > 0 ? &before[r] : nullptr, &body);
       for (std::size_t k = 0; k < defs.size(); ++k) {
         if (is_truth && !defs[k].truth) continue;
         try {
@@ -148,6 +147,7 @@ Viewer write_viewer(const std::vector<RunResults>& runs, const PictureOptions& p
         }
       }
     }
+    before = std::move(now);
   }
 
   json scene = {

@@ -211,6 +211,12 @@ struct GeneratorConfig {
 // made before it existed; a file the schema rejects is not the same.
 bool same_saved_config(const std::string& path, const std::string& resolved);
 
+// A generator config as every verb reads one: the file, its `--set`
+// overrides in order, the typed config, check(), and the garment files its
+// outfits name read and recorded (resolve_garment_files,
+// imported_garment.h). InputError naming the file on any problem.
+GeneratorConfig load_generator_config(const std::string& file, const std::vector<std::string>& sets);
+
 // The generator config a dataset's manifest records (dataset.yaml's
 // `generator`), read through the schema; nullopt for a dataset not made by
 // `layers generate`. InputError naming `file` when it does not read.
