@@ -8,16 +8,31 @@
 // garment inside the body, garments crossing, the validation limits) is
 // one line and exit 1. An --out holding data/ already is refused (its
 // scene may be of other garment files): nothing is replaced.
+//
+// With --model <experiment.yaml>, the trained model is rolled out on the
+// simulated scene from its first two frames (the evaluator with the
+// scene's dataset, normalised by the training dataset's statistics:
+// DIR/model/ holds predictions.h5 and metrics.json, its error against the
+// simulator) and the exports are of its prediction. Garment files or a
+// body the training data did not hold are allowed; each is named in a
+// note (generate/unseen.h).
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
+#include "config_loading.h"
 #include "layers/core/config.h"
 #include "layers/core/error.h"
 #include "layers/data/dataset.h"
 #include "layers/data/export.h"
+#include "layers/data/run_layout.h"
 #include "layers/generate/generator.h"
 #include "layers/generate/imported_garment.h"
+#include "layers/generate/unseen.h"
+#include "layers/metrics/registry.h"
+#include "layers/train/evaluator.h"
+#include "plugins.h"
 #include "verbs.h"
 
 namespace layers::app {
@@ -29,6 +44,7 @@ VerbRun register_animate(CLI::App& app, const Global&) {
     std::string config, out;
     std::vector<std::string> sets, formats{"glb"};
     std::int64_t glb_chunk = data::kGlbFramesPerChunk;
+    std::string model, checkpoint = "best";
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--config", a->config, "generator config: body, motion, outfit (templates or file:<mesh>), wind")
@@ -40,6 +56,11 @@ VerbRun register_animate(CLI::App& app, const Global&) {
   cmd->add_option("--glb-chunk", a->glb_chunk, "glb: frames per chunk (as `layers export --glb-chunk`)")
       ->capture_default_str()
       ->check(CLI::Range(std::int64_t{2}, std::int64_t{100000}));
+  cmd->add_option("--model", a->model,
+                  "a trained model's experiment: roll it out on the simulated scene and export its prediction")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--checkpoint", a->checkpoint, "with --model: best, last, or a checkpoint file")
+      ->capture_default_str();
   return [a]() {
     namespace fs = std::filesystem;
     std::vector<data::ExportFormat> formats;
@@ -53,6 +74,17 @@ VerbRun register_animate(CLI::App& app, const Global&) {
     sets.insert(sets.end(), {"sequences=1", "splits.val=0", "splits.test=0", "splits.unseen_motions=[]",
                              "splits.unseen_outfits=[]"});
     const generate::GeneratorConfig config = generate::load_generator_config(a->config, sets);
+    // The model, its checkpoint and its training statistics, before anything is simulated.
+    std::optional<LoadedConfig> experiment;
+    if (!a->model.empty()) {
+      experiment = load_config(ConfigArgs{a->model, {}});
+      const std::string checkpoint = train::resolve_checkpoint(experiment->typed, a->checkpoint);
+      if (!fs::exists(checkpoint))
+        throw InputError(a->model, "--checkpoint", "a trained model's checkpoint (layers train)",
+                         "'" + checkpoint + "' (no such file)");
+    } else if (a->checkpoint != "best") {
+      throw InputError("layers animate", "--checkpoint", "--model with it", "no --model");
+    }
     generate::GenerateOptions options;
     options.out = (fs::path(a->out) / "data").string();
     if (fs::exists(options.out))
@@ -67,8 +99,29 @@ VerbRun register_animate(CLI::App& app, const Global&) {
           "the scene was refused: " +
               (report.skip_reasons.empty() ? std::string("no reason given") : report.skip_reasons.front()));
     std::printf("%s: one scene simulated\n", options.out.c_str());
-    const data::Dataset ds = data::Dataset::open(options.out);
-    const std::string id = ds.ids().front();
+    const data::Dataset simulated = data::Dataset::open(options.out);
+    const std::string id = simulated.ids().front();
+    std::string exported = options.out;
+    if (experiment) {
+      for (const std::string& what : generate::unseen_in_training(config, experiment->typed.data.dataset))
+        std::printf("note: the model never saw the %s in training (not in %s): its prediction is an extrapolation\n",
+                    what.c_str(), experiment->typed.data.dataset.c_str());
+      experiment->typed.eval.save_predictions = true;
+      train::EvalOptions eval;
+      eval.checkpoint = a->checkpoint;
+      eval.sequences = {id};
+      eval.horizon = 0;
+      eval.dataset = options.out;
+      eval.out_dir = (fs::path(a->out) / "model").string();
+      eval.progress = false;
+      const train::EvalReport r = train::run_evaluation(experiment->typed, load_plugins().registry, eval);
+      std::printf("%s: %lld frames predicted, error %s mm against the simulator, %lld diverged\n", r.model.c_str(),
+                  static_cast<long long>(r.frames), metrics::format(r.overall.at(metrics::kError)).c_str(),
+                  static_cast<long long>(r.diverged));
+      exported = (fs::path(r.out_dir) / data::run_layout::kPredictions).string();
+      std::printf("written: %s (exported below)\n", exported.c_str());
+    }
+    const data::Dataset ds = data::Dataset::open(exported);
     for (std::size_t k = 0; k < formats.size(); ++k) {
       const std::string dir = (fs::path(a->out) / a->formats[k]).string();
       const auto files = data::export_sequence(ds, id, formats[k], 0, -1, dir, a->glb_chunk);

@@ -1,15 +1,18 @@
 // `layers tpose --config C [--scene K] --out DIR`: a generator config's
 // scene in the T-pose its garments are fitted in, as OBJ files: body.obj
-// and one <garment>.obj per garment with its UVs (generate/tpose.h). The
-// reference a user models an own garment around (docs/own-data.md). Files
-// already in DIR are never replaced.
+// and one <garment>.obj per garment with its UVs, and the body as a rig
+// with the scene's motion, body.glb (generate/tpose.h). The reference a
+// user models an own garment around, and a rig to animate
+// (docs/own-data.md). Files already in DIR are never replaced.
 #include <cstdio>
 #include <filesystem>
 
+#include "layers/core/atomic_file.h"
 #include "layers/core/config.h"
 #include "layers/core/error.h"
 #include "layers/data/export.h"
 #include "layers/data/obj.h"
+#include "layers/data/skinned_glb.h"
 #include "layers/generate/imported_garment.h"
 #include "layers/generate/tpose.h"
 #include "verbs.h"
@@ -44,16 +47,24 @@ VerbRun register_tpose(CLI::App& app, const Global&) {
     const std::vector<std::string> names = data::mesh_file_names(garment_names);  // as `layers export` names them
     std::vector<std::pair<std::string, const data::ObjMesh*>> files = {{names[0], &t.body}};
     for (std::size_t k = 0; k < t.garments.size(); ++k) files.emplace_back(names[k + 1], &t.garments[k].second);
+    const fs::path rig_path = fs::path(a->out) / (names[0] + ".glb");
     for (const auto& [name, mesh] : files) {
       const fs::path path = fs::path(a->out) / (name + ".obj");
       if (fs::exists(path)) throw InputError(path.string(), "--out", "a folder without this file", "an existing file");
     }
+    if (fs::exists(rig_path))
+      throw InputError(rig_path.string(), "--out", "a folder without this file", "an existing file");
     fs::create_directories(a->out);
     for (const auto& [name, mesh] : files) {
       const std::string path = (fs::path(a->out) / (name + ".obj")).string();
       data::write_obj(path, *mesh);
       std::printf("wrote %s (%lld vertices)\n", path.c_str(), static_cast<long long>(mesh->n_vertices()));
     }
+    write_new_text_file(rig_path.string(), data::skinned_glb_bytes(t.rig, static_cast<double>(data::kFps)),
+                        "a folder without this file");
+    std::printf("wrote %s (the body's rig and %lld frames: the T-pose, then the scene's motion)\n",
+                rig_path.string().c_str(),
+                static_cast<long long>(t.rig.joints.size() / (t.rig.joint_names.size() * 12)));
     if (!t.problem.empty()) std::printf("note: this scene cannot be simulated: %s\n", t.problem.c_str());
     return static_cast<int>(kOk);
   };

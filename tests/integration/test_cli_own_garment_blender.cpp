@@ -13,6 +13,7 @@
 #include <filesystem>
 
 #include "coarse_scene.h"
+#include "garment_motion.h"
 #include "layers/data/dataset.h"
 #include "layers/geometry/nearest.h"
 #include "layers/import/mesh_import.h"
@@ -23,22 +24,6 @@
 using namespace layers;
 
 namespace {
-
-// Mean garment vertex speed, mm per frame, of a one-scene dataset.
-double speed_mm(const std::string& dataset) {
-  const data::Dataset ds = data::Dataset::open(dataset);
-  const data::SequenceData s = ds.read_sequence(ds.ids().front());
-  const std::vector<float>& p = s.garments.at(0).positions;
-  const std::size_t n = s.garments[0].rest.size();
-  double sum = 0;
-  for (std::int64_t t = 1; t < s.n_frames; ++t)
-    for (std::size_t i = 0; i < n; i += 3) {
-      const float* a = p.data() + t * n + i;
-      const float* b = a - n;
-      sum += std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
-    }
-  return 1000.0 * sum / static_cast<double>((s.n_frames - 1) * static_cast<std::int64_t>(n / 3));
-}
 
 TEST(CliOwnGarmentBlender, BlenderExportsReadBackAsTheTemplate) {
   test::TempDir dir("own-garment-blender");
@@ -74,6 +59,12 @@ TEST(CliOwnGarmentBlender, BlenderExportsReadBackAsTheTemplate) {
                         test::coarse_scene_settings("[{inner: [dress], outer: none}]") + " --out " +
                         dir.file("native"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
+  // Mean speed of the dress over the one scene of each dataset.
+  const auto speed_mm = [](const std::string& dataset) {
+    const data::Dataset ds = data::Dataset::open(dataset);
+    const data::SequenceData s = ds.read_sequence(ds.ids().front());
+    return test::garment_speed_mm(s.garments.at(0), s.n_frames);
+  };
   const double own = speed_mm(dir.file("own/data")), ref = speed_mm(dir.file("native/data"));
   EXPECT_LE(std::abs(own - ref), 0.02 + 0.03 * ref) << own << " against " << ref << " mm per frame";
 }

@@ -19,7 +19,6 @@ namespace {
 
 constexpr double kDecimetre = 0.1;
 constexpr double kCaucasianShare = 1.0 / 3.0;
-constexpr double kSoleHeight = 0.015;  // skin vertices this close to the ground form the soles
 
 // Where a bone end sits: the mean of a joint cube or of listed vertices.
 struct JointRef {
@@ -396,19 +395,27 @@ Body BodyModel::build(const ShapeParams& shape) const {
     body.t_pose.local[j] = from_bone_axes(sk, j, euler("ZYX", zyx));
   }
 
-  // Soles: skin vertices near the ground that follow a foot or toe bone.
-  const char* feet[2][2] = {{"LeftFoot", "LeftToeBase"}, {"RightFoot", "RightToeBase"}};
-  for (int side = 0; side < 2; ++side) {
-    const int a = sk.index(feet[side][0]), b = sk.index(feet[side][1]);
-    for (int v = 0; v < m.num_skin; ++v) {
-      const int dominant = body.weights.index(v, 0);
-      if ((dominant == a || dominant == b) && body.rest.vertices(v, 1) < kSoleHeight) body.soles[side].push_back(v);
-    }
-  }
+  body.soles = sole_vertices(body);
   // The T-pose straightens the legs: put its soles back on the ground.
   auto t_soles = sole_heights(body, forward_kinematics(sk, body.t_pose));
   body.t_pose.root.y() -= std::min(t_soles[0], t_soles[1]);
   return body;
+}
+
+std::array<std::vector<int>, 2> sole_vertices(const Body& body) {
+  std::array<std::vector<int>, 2> soles;
+  if (body.rest.num_vertices() == 0) return soles;
+  const double ground = body.rest.vertices.col(1).minCoeff();
+  const char* feet[2][2] = {{"LeftFoot", "LeftToeBase"}, {"RightFoot", "RightToeBase"}};
+  for (int side = 0; side < 2; ++side) {
+    const int a = body.skeleton.index(feet[side][0]), b = body.skeleton.index(feet[side][1]);
+    if (a < 0 && b < 0) continue;
+    for (int v = 0; v < body.weights.num_vertices(); ++v) {
+      const int dominant = body.weights.index(v, 0);
+      if ((dominant == a || dominant == b) && body.rest.vertices(v, 1) < ground + kSoleHeight) soles[side].push_back(v);
+    }
+  }
+  return soles;
 }
 
 }  // namespace layers::body

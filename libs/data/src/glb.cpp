@@ -1,5 +1,8 @@
-// A sequence as a binary glTF 2.0 file with morph-target frames (see glb.h).
+// A sequence as a binary glTF 2.0 file with morph-target frames (see glb.h),
+// and the buffer builder and GLB container both writers use (glb_builder.h).
 #include "layers/data/glb.h"
+
+#include "glb_builder.h"
 
 #include <nlohmann/json.hpp>
 
@@ -10,70 +13,84 @@
 #include "layers/core/error.h"
 
 namespace layers::data {
+namespace glb {
+int Builder::view(const void* data, std::size_t bytes, int target) {
+  while (bin.size() % 4) bin.push_back('\0');
+  json v = {{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", bytes}};
+  if (target) v["target"] = target;
+  views.push_back(v);
+  bin.append(static_cast<const char*>(data), bytes);
+  return static_cast<int>(views.size()) - 1;
+}
+
+int Builder::accessor(int view, int component, std::size_t count, const char* type) {
+  accessors.push_back({{"bufferView", view}, {"componentType", component}, {"count", count}, {"type", type}});
+  return static_cast<int>(accessors.size()) - 1;
+}
+
+int Builder::vec3(const std::vector<float>& xyz) {
+  float lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) lo[a] = std::numeric_limits<float>::max(), hi[a] = -lo[a];
+  for (std::size_t i = 0; i < xyz.size(); ++i) {
+    lo[i % 3] = std::min(lo[i % 3], xyz[i]);
+    hi[i % 3] = std::max(hi[i % 3], xyz[i]);
+  }
+  const int a = accessor(view(xyz.data(), xyz.size() * sizeof(float), kArrayBuffer), kFloat, xyz.size() / 3, "VEC3");
+  accessors[a]["min"] = {lo[0], lo[1], lo[2]};
+  accessors[a]["max"] = {hi[0], hi[1], hi[2]};
+  return a;
+}
+
+int Builder::indices(const std::vector<std::int32_t>& faces) {
+  std::vector<std::uint32_t> u(faces.begin(), faces.end());
+  return accessor(view(u.data(), u.size() * sizeof(std::uint32_t), kElementArrayBuffer), kUInt, u.size(), "SCALAR");
+}
+
+int Builder::floats(const std::vector<float>& values, const char* type, bool bounds) {
+  const std::size_t per = std::string(type) == "SCALAR" ? 1
+                          : std::string(type) == "VEC3" ? 3
+                          : std::string(type) == "VEC4" ? 4
+                                                        : 16;
+  const int a = accessor(view(values.data(), values.size() * sizeof(float), 0), kFloat, values.size() / per, type);
+  if (bounds) {
+    accessors[a]["min"] = {*std::min_element(values.begin(), values.end())};
+    accessors[a]["max"] = {*std::max_element(values.begin(), values.end())};
+  }
+  return a;
+}
+
 namespace {
-
-using json = nlohmann::json;
-
-constexpr int kFloat = 5126, kUInt = 5125;
-constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
-
-// The binary chunk and the buffer views / accessors that point into it.
-struct Builder {
-  std::string bin;
-  json views = json::array(), accessors = json::array();
-
-  int view(const void* data, std::size_t bytes, int target) {
-    while (bin.size() % 4) bin.push_back('\0');
-    views.push_back({{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", bytes}, {"target", target}});
-    bin.append(static_cast<const char*>(data), bytes);
-    return static_cast<int>(views.size()) - 1;
-  }
-  // VEC3 float accessor with its bounds (POSITION and its morph targets).
-  int vec3(const std::vector<float>& xyz) {
-    float lo[3], hi[3];
-    for (int a = 0; a < 3; ++a) lo[a] = std::numeric_limits<float>::max(), hi[a] = -lo[a];
-    for (std::size_t i = 0; i < xyz.size(); ++i) {
-      lo[i % 3] = std::min(lo[i % 3], xyz[i]);
-      hi[i % 3] = std::max(hi[i % 3], xyz[i]);
-    }
-    const int v = view(xyz.data(), xyz.size() * sizeof(float), kArrayBuffer);
-    accessors.push_back({{"bufferView", v},
-                         {"componentType", kFloat},
-                         {"count", xyz.size() / 3},
-                         {"type", "VEC3"},
-                         {"min", {lo[0], lo[1], lo[2]}},
-                         {"max", {hi[0], hi[1], hi[2]}}});
-    return static_cast<int>(accessors.size()) - 1;
-  }
-  int indices(const std::vector<std::int32_t>& faces) {
-    std::vector<std::uint32_t> u(faces.begin(), faces.end());
-    const int v = view(u.data(), u.size() * sizeof(std::uint32_t), kElementArrayBuffer);
-    accessors.push_back({{"bufferView", v}, {"componentType", kUInt}, {"count", u.size()}, {"type", "SCALAR"}});
-    return static_cast<int>(accessors.size()) - 1;
-  }
-  // Animation data (no buffer-view target: not vertex data).
-  int scalars(const std::vector<float>& values, bool bounds) {
-    while (bin.size() % 4) bin.push_back('\0');
-    views.push_back({{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", values.size() * sizeof(float)}});
-    bin.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(float));
-    json a = {{"bufferView", static_cast<int>(views.size()) - 1},
-              {"componentType", kFloat},
-              {"count", values.size()},
-              {"type", "SCALAR"}};
-    if (bounds) {
-      a["min"] = {*std::min_element(values.begin(), values.end())};
-      a["max"] = {*std::max_element(values.begin(), values.end())};
-    }
-    accessors.push_back(a);
-    return static_cast<int>(accessors.size()) - 1;
-  }
-};
-
 void append_u32(std::string& out, std::uint32_t v) {
   char b[4];
   std::memcpy(b, &v, 4);
   out.append(b, 4);
 }
+}  // namespace
+
+std::string container(json doc, std::string bin) {
+  while (bin.size() % 4) bin.push_back('\0');
+  doc["buffers"] = json::array({{{"byteLength", bin.size()}}});
+  std::string text = doc.dump();
+  while (text.size() % 4) text.push_back(' ');
+  std::string out;
+  append_u32(out, 0x46546C67u);  // "glTF"
+  append_u32(out, 2);
+  append_u32(out, static_cast<std::uint32_t>(12 + 8 + text.size() + 8 + bin.size()));
+  append_u32(out, static_cast<std::uint32_t>(text.size()));
+  append_u32(out, 0x4E4F534Au);  // "JSON"
+  out += text;
+  append_u32(out, static_cast<std::uint32_t>(bin.size()));
+  append_u32(out, 0x004E4942u);  // "BIN\0"
+  out += bin;
+  return out;
+}
+
+}  // namespace glb
+
+namespace {
+
+using glb::Builder;
+using glb::json;
 
 }  // namespace
 
@@ -108,15 +125,7 @@ std::string glb_bytes(const std::vector<GlbMesh>& meshes, double fps, std::int64
     key(first, 1.0f);
     if (last < frames) key(last, 0.0f);
     const int input = b.scalars(times, true);
-    while (b.bin.size() % 4) b.bin.push_back('\0');
-    b.views.push_back({{"buffer", 0}, {"byteOffset", b.bin.size()}, {"byteLength", scales.size() * sizeof(float)}});
-    b.bin.append(reinterpret_cast<const char*>(scales.data()), scales.size() * sizeof(float));
-    b.accessors.push_back({{"bufferView", static_cast<int>(b.views.size()) - 1},
-                           {"componentType", kFloat},
-                           {"count", times.size()},
-                           {"type", "VEC3"}});
-    samplers.push_back(
-        {{"input", input}, {"output", static_cast<int>(b.accessors.size()) - 1}, {"interpolation", "STEP"}});
+    samplers.push_back({{"input", input}, {"output", b.floats(scales, "VEC3", false)}, {"interpolation", "STEP"}});
     channels.push_back(
         {{"sampler", static_cast<int>(samplers.size()) - 1}, {"target", {{"node", node}, {"path", "scale"}}}});
   };
@@ -167,30 +176,16 @@ std::string glb_bytes(const std::vector<GlbMesh>& meshes, double fps, std::int64
       nodes.push_back({{"name", mesh.name}, {"children", chunk_nodes}});
     }
   }
-  while (b.bin.size() % 4) b.bin.push_back('\0');
   json doc = {{"asset", {{"version", "2.0"}, {"generator", "layers export --format glb"}}},
               {"scene", 0},
               {"scenes", json::array({{{"nodes", roots}}})},
               {"nodes", nodes},
               {"meshes", gltf_meshes},
-              {"buffers", json::array({{{"byteLength", b.bin.size()}}})},
               {"bufferViews", b.views},
               {"accessors", b.accessors}};
   if (!channels.empty())
     doc["animations"] = json::array({{{"name", "frames"}, {"channels", channels}, {"samplers", samplers}}});
-  std::string text = doc.dump();
-  while (text.size() % 4) text.push_back(' ');
-  std::string out;
-  append_u32(out, 0x46546C67u);  // "glTF"
-  append_u32(out, 2);
-  append_u32(out, static_cast<std::uint32_t>(12 + 8 + text.size() + 8 + b.bin.size()));
-  append_u32(out, static_cast<std::uint32_t>(text.size()));
-  append_u32(out, 0x4E4F534Au);  // "JSON"
-  out += text;
-  append_u32(out, static_cast<std::uint32_t>(b.bin.size()));
-  append_u32(out, 0x004E4942u);  // "BIN\0"
-  out += b.bin;
-  return out;
+  return glb::container(std::move(doc), std::move(b.bin));
 }
 
 }  // namespace layers::data

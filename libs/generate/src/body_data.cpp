@@ -27,10 +27,12 @@ void fill_body(data::SequenceData& seq, const motion::GeneratedBody& generated, 
   const body::BodyArrays arrays = body::body_arrays(generated.body);
   seq.n_frames = count;
   seq.motion = s.motion;
-  seq.shape = {{"gender", generated.body.shape.gender},
-               {"muscle", generated.body.shape.muscle},
-               {"weight", generated.body.shape.weight},
-               {"height", generated.body.shape.height}};
+  // A user's body has no shape parameters of ours.
+  if (generated.body.file.empty())
+    seq.shape = {{"gender", generated.body.shape.gender},
+                 {"muscle", generated.body.shape.muscle},
+                 {"weight", generated.body.shape.weight},
+                 {"height", generated.body.shape.height}};
   data::BodyData& b = seq.body;
   b.faces.assign(arrays.faces.begin(), arrays.faces.end());
   b.joint_names = arrays.joint_names;

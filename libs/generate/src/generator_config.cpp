@@ -8,6 +8,7 @@
 #include "layers/core/text_file.h"
 #include "layers/data/format.h"
 #include "layers/generate/imported_garment.h"
+#include "layers/generate/own_body.h"
 #include "layers/import/garment_file.h"
 
 namespace layers::generate {
@@ -122,6 +123,7 @@ void check(const GeneratorConfig& c, const std::string& file) {
   }
   if (total <= 0) throw InputError(file, "garments.outfits", "at least one outfit with a positive weight", "all zero");
   check_holdouts(c, file);
+  check_own_body(c, file);
   garment::validate(c.garments.fit);
   sim::check(c.sim, "sim");
 }
@@ -132,6 +134,7 @@ GeneratorConfig load_generator_config(const std::string& file, const std::vector
   GeneratorConfig config = cfg::read<GeneratorConfig>(tree);
   check(config, file);
   resolve_garment_files(config);
+  resolve_own_body(config);
   return config;
 }
 

@@ -6,6 +6,7 @@
 #include <mutex>
 
 #include "layers/core/error.h"
+#include "layers/generate/generator_config.h"
 #include "layers/generate/random.h"
 #include "layers/motion/clip_ops.h"
 #include "layers/motion/procedural.h"
@@ -110,7 +111,8 @@ std::string vary_motion(const MotionVariation& v, const std::string& entry, int 
 
 std::string motion_family(const std::string& motion) {
   std::string family = motion.substr(0, motion.find(' '));
-  if (family.rfind("procedural:", 0) != 0 && family.rfind("bvh:", 0) != 0) family = "bvh:" + family;
+  if (family.rfind("procedural:", 0) != 0 && family.rfind("bvh:", 0) != 0 && family != kOwnAnimation)
+    family = "bvh:" + family;
   return family;
 }
 

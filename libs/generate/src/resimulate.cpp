@@ -10,6 +10,7 @@
 #include "layers/data/manifest.h"
 #include "layers/generate/generator_config.h"
 #include "layers/generate/imported_garment.h"
+#include "layers/generate/own_body.h"
 #include "layers/generate/scene_spec.h"
 #include "layers/generate/simulate.h"
 
@@ -37,6 +38,14 @@ GeneratorConfig recorded_config(const std::string& dataset_dir, std::int64_t fra
     resolve_garment_files(now);
     if (now.garments.files != recorded->garments.files)
       throw InputError(path, "generator.garments.files", "the garment files the dataset was made with",
+                       "files whose contents changed since");
+  }
+  if (recorded->body.own) {
+    // A user's body: the same files.
+    GeneratorConfig now = *recorded;
+    resolve_own_body(now);
+    if (now.body.own->hash != recorded->body.own->hash)
+      throw InputError(path, "generator.body.own", "the body files the dataset was made with",
                        "files whose contents changed since");
   }
   return *recorded;

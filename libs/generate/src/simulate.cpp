@@ -18,6 +18,7 @@
 #include "layers/generate/body_data.h"
 #include "layers/generate/imported_garment.h"
 #include "layers/generate/outfit.h"
+#include "layers/generate/own_body.h"
 #include "layers/geometry/intersect.h"
 #include "layers/geometry/normals.h"
 #include "layers/motion/body_sequence.h"
@@ -43,6 +44,7 @@ Eigen::Isometry3d rigid_fit(const geometry::Points& from, const geometry::Points
 constexpr double kDrapeDamping = 5.0;
 
 motion::GeneratedBody make_body(const GeneratorConfig& config, const SceneSpec& spec) {
+  if (config.body.own) return own_body(config, spec);
   motion::BodyMotionConfig body;
   body.shape = spec.shape;
   body.motion = spec.motion;

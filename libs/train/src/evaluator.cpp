@@ -314,7 +314,7 @@ void summarise(const EvalTally& tally, EvalReport& report) {
 
 // metrics.json (docs/metrics.md).
 json metrics_json(const EvalReport& report, const EvalTally& tally, const CheckpointState& state, const json& selection,
-                  const ExperimentConfig& config, int horizon, std::int64_t parameters) {
+                  const ExperimentConfig& config, const std::string& dataset, int horizon, std::int64_t parameters) {
   json by_step = json::array();
   for (std::size_t f = 0; f < tally.by_step.size(); ++f) {
     json step = {{"step", f + 1}};
@@ -338,7 +338,7 @@ json metrics_json(const EvalReport& report, const EvalTally& tally, const Checkp
           {"trained_epochs", state.epochs_done},
           {"selection", selection},
           {"experiment", config.source},
-          {"dataset", config.data.dataset},
+          {"dataset", dataset},
           {"split", report.split},
           {"subsets", config.data.subsets},
           {"inner_only", config.data.inner_only},
@@ -404,10 +404,10 @@ EvalPlan plan_evaluation(const ExperimentConfig& config, const EvalOptions& opti
   plan.ids =
       options.sequences.empty() ? select_sequences(s.dataset, report.split, config.data.subsets) : options.sequences;
   if (plan.ids.empty())
-    throw InputError(config.data.dataset + "/splits.yaml", report.split, "at least one sequence to evaluate", "none");
+    throw InputError(s.dataset.path() + "/splits.yaml", report.split, "at least one sequence to evaluate", "none");
   for (const std::string& id : plan.ids)
     if (!s.dataset.contains(id))
-      throw InputError(config.data.dataset, "sequence '" + id + "'", "a sequence of the dataset", "unknown id");
+      throw InputError(s.dataset.path(), "sequence '" + id + "'", "a sequence of the dataset", "unknown id");
   // Every evaluated sequence passes the integrity check before a file is written.
   s.dataset.verify(plan.ids);
   return plan;
@@ -442,7 +442,7 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
   dist::Group* group = options.group;
   const bool root = !group || group->is_root();
   const std::size_t ranks = group ? static_cast<std::size_t>(group->size()) : 1;
-  Session s = open_session(config, registry, group ? group->local_rank() : -1);
+  Session s = open_session(config, registry, group ? group->local_rank() : -1, options.dataset);
   EvalReport report;
   const EvalPlan plan = plan_evaluation(config, options, s, root, report);
   if (root) std::filesystem::create_directories(report.out_dir);
@@ -469,8 +469,9 @@ EvalReport run_evaluation(const ExperimentConfig& config, const zoo::Registry& r
 
   report.sequences = static_cast<std::int64_t>(plan.ids.size());
   summarise(tally, report);
-  const json doc =
-      metrics_json(report, tally, plan.state, plan.selection, config, plan.horizon, s.model->info().parameters);
+  const json doc = metrics_json(report, tally, plan.state, plan.selection, config,
+                                options.dataset.empty() ? config.data.dataset : options.dataset, plan.horizon,
+                                s.model->info().parameters);
   write_text_atomic((std::filesystem::path(report.out_dir) / data::run_layout::kMetrics).string(), doc.dump(2) + "\n");
   write_text_atomic((std::filesystem::path(report.out_dir) / data::run_layout::kSequences).string(), tally.csv.str());
   return report;

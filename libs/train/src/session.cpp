@@ -13,7 +13,8 @@
 
 namespace layers::train {
 
-Session open_session(const ExperimentConfig& config, const zoo::Registry& registry, int device_index) {
+Session open_session(const ExperimentConfig& config, const zoo::Registry& registry, int device_index,
+                     const std::string& dataset) {
   if (config.data.dataset.empty())
     throw InputError(config.source, "data.dataset", "a dataset folder (made by `layers generate`)", "nothing");
   {
@@ -31,7 +32,8 @@ Session open_session(const ExperimentConfig& config, const zoo::Registry& regist
   if (reader.allow_unhashed)
     spdlog::warn("{}: data.allow_unhashed: sequences without a recorded content hash are read unverified",
                  config.data.dataset);
-  Session s{config, data::Dataset::open(config.data.dataset, reader), nullptr, GarmentSelection{config.data.inner_only},
+  Session s{config, data::Dataset::open(dataset.empty() ? config.data.dataset : dataset, reader), nullptr,
+            GarmentSelection{config.data.inner_only},
             config.run.device == "cuda" && device_index >= 0
                 ? at::Device(at::kCUDA, static_cast<c10::DeviceIndex>(device_index))
                 : at::Device(config.run.device == "cuda" ? at::kCUDA : at::kCPU)};

@@ -20,61 +20,10 @@
 #include "layers/generate/tpose.h"
 #include "temp_dir.h"
 #include "test_paths.h"
+#include "tiny_scene.h"
 
 namespace layers::generate {
 namespace {
-
-void set_outfits(cfg::Node& tree, const std::string& yaml) { cfg::apply_set(tree, "garments.outfits=" + yaml); }
-
-// configs/data/tiny.yaml cut down to one short, coarse scene of a dress
-// under a jacket, on a fixed body shape.
-cfg::Node tiny_tree(const std::vector<std::string>& extra = {}) {
-  cfg::Node tree = cfg::load_file(test::source_dir() + "/configs/data/tiny.yaml");
-  std::vector<std::string> sets = {"sequences=1",
-                                   "frames=3",
-                                   "drape_frames=2",
-                                   "body.transition_frames=2",
-                                   "garments.fit.edge_length=0.1",
-                                   "splits.val=0",
-                                   "splits.test=0",
-                                   "sim.validation.max_h_penetration=1",
-                                   "sim.validation.max_l_penetration=1",
-                                   "sim.validation.max_stretch=100",
-                                   "sim.validation.max_h_crossing_clear=1"};
-  sets.insert(sets.end(), extra.begin(), extra.end());
-  for (const std::string& s : sets) cfg::apply_set(tree, s);
-  set_outfits(tree, "[{inner: [dress], outer: jacket}]");
-  return tree;
-}
-
-data::SequenceData generate_one(const GeneratorConfig& config, const std::string& out) {
-  GenerateOptions options;
-  options.out = out;
-  options.progress = false;
-  const GenerateReport report = generate_dataset(config, cfg::to_yaml(cfg::to_node(config)), options);
-  EXPECT_EQ(report.written, 1) << (report.skip_reasons.empty() ? "" : report.skip_reasons[0]);
-  return data::Dataset::open(out).read_sequence("seq-000000");
-}
-
-// Mean speed of a garment's vertices, mm per frame, over its frame steps.
-double garment_speed_mm(const data::GarmentData& g, std::int64_t frames) {
-  const std::size_t n = g.rest.size();
-  double sum = 0;
-  for (std::int64_t t = 1; t < frames; ++t)
-    for (std::size_t i = 0; i < n; i += 3) {
-      const float* p = g.positions.data() + t * n + i;
-      sum += std::sqrt(std::pow(p[0] - p[-n + 0], 2) + std::pow(p[1] - p[-n + 1], 2) + std::pow(p[2] - p[-n + 2], 2));
-    }
-  return 1000.0 * sum / static_cast<double>((frames - 1) * static_cast<std::int64_t>(n / 3));
-}
-
-// Mean distance, mm, between the same vertices of two runs over every frame.
-double mean_distance_mm(const std::vector<float>& a, const std::vector<float>& b) {
-  double sum = 0;
-  for (std::size_t i = 0; i < a.size(); i += 3)
-    sum += std::sqrt(std::pow(a[i] - b[i], 2) + std::pow(a[i + 1] - b[i + 1], 2) + std::pow(a[i + 2] - b[i + 2], 2));
-  return 1000.0 * sum / static_cast<double>(a.size() / 3);
-}
 
 TEST(ImportedGarment, TemplatesWrittenAndReadBackSimulateAsTheNativeScene) {
   test::TempDir dir("imported");

@@ -49,7 +49,8 @@ struct ShapeParams {
 std::vector<std::pair<std::string, double>> target_weights(const ShapeParams& shape);
 
 struct Body {
-  ShapeParams shape;
+  ShapeParams shape;                      // the MPFB2 body's; unused for a user's body
+  std::string file;                       // a user's body (generate/own_body.h): its file; "" for ours
   geometry::TriMesh rest;                 // skin in the rest (MPFB2 default, A-like) pose, metres, soles at y = 0
   Skeleton skeleton;                      // 31 cmu_mb joints
   SkinWeights weights;                    // per skin vertex, top 4 influences
@@ -60,6 +61,12 @@ struct Body {
   // Height of the rest mesh (top of the head to the soles).
   double stature() const;
 };
+
+// The soles: skin vertices within kSoleHeight of the lowest rest vertex
+// whose dominant joint is a foot or toe (LeftFoot, LeftToeBase; Right...).
+// A body without those joints has none.
+inline constexpr double kSoleHeight = 0.015;
+std::array<std::vector<int>, 2> sole_vertices(const Body& body);
 
 // Lowest sole point (y) of the left and right foot for posed joints.
 std::array<double, 2> sole_heights(const Body& body, const JointTransforms& transforms);

@@ -88,7 +88,37 @@ struct WindConfig {
   }
 };
 
+// A user's own body in place of ours in every scene (generate/own_body.h,
+// import/body_import.h). Its motions are `animation` (the file's own) or,
+// for a rigged body, BVH clips retargeted onto its skeleton.
+struct OwnBodyConfig {
+  std::string file;       // rigged glTF/GLB, FBX, Collada, ...; a .pc2 cache; or a folder of OBJ frames
+  std::string mesh;       // a .pc2's faces and rest pose (OBJ); a folder's rest pose (default: its first frame)
+  double scale = 1.0;     // the files' units to metres
+  std::string animation;  // a rigged file's animation by name ("" = its first)
+  std::string garment_pose = "bind";  // rigged: the pose the garments are made around: bind, or first_frame
+  std::string hash;                   // recorded by the generator: the content hash of the files
+
+  template <class V>
+  void visit(V& v) {
+    v("file", file, cfg::opt().help("rigged glTF/GLB, FBX or Collada, a .pc2 vertex cache, or a folder of OBJ frames"));
+    v("mesh", mesh, cfg::opt().help("OBJ with the faces and rest pose of a .pc2 (required) or an OBJ folder"));
+    v("scale", scale, cfg::opt().range(1e-6, 1e6).help("the files' units to metres"));
+    v("animation", animation, cfg::opt().help("the rigged file's animation to play, by name (default: the first)"));
+    v("garment_pose", garment_pose,
+      cfg::opt()
+          .choices({"bind", "first_frame"})
+          .help("a rigged body's pose the garments are made around: its bind pose, or the animation's first frame "
+                "(the motion then plays from the second)"));
+    v("hash", hash, cfg::opt().help("recorded by the generator: content hash of the body's files"));
+  }
+};
+
+// The motion entry that plays an own body's file animation.
+inline constexpr const char* kOwnAnimation = "animation";
+
 struct BodySampling {
+  std::optional<OwnBodyConfig> own;  // a user's body instead of ours; absent: ours
   motion::ShapeSampling shape;
   std::vector<std::string> motions{"procedural:walk"};  // drawn uniformly per scene
   std::optional<MotionVariation> variation;             // parametric families (motion_variation.h); absent: off
@@ -100,8 +130,10 @@ struct BodySampling {
 
   template <class V>
   void visit(V& v) {
+    v("own", own, cfg::opt().help("a user's own body (file, mesh, scale, animation) in place of ours"));
     v("shape", shape);
-    v("motions", motions, cfg::opt().help("motion specs: procedural:<kind>, bvh:<path> or a .bvh file"));
+    v("motions", motions,
+      cfg::opt().help("motion specs: procedural:<kind>, bvh:<path> or a .bvh file; with body.own: animation or bvh"));
     v("variation", variation, cfg::opt().help("per-scene motion parameters (speed, amplitude, phase, ...)"));
     v("transition_frames", transition_frames,
       cfg::opt().range(1, 300).help("frames blending from the T-pose into the motion"));

@@ -11,12 +11,19 @@
 #include <vector>
 
 #include "layers/data/obj.h"
+#include "layers/data/skinned_glb.h"
 #include "layers/generate/generator_config.h"
 
 namespace layers::generate {
 
 struct TPoseMeshes {
   data::ObjMesh body;
+  // The body as a rig (data/skinned_glb.h): bound in its rest pose, with
+  // the animation "motion" whose first frame is this T-pose and whose
+  // later frames are the scene's motion after the transition (its joints:
+  // skin untangling, body.skin_untangle, is not in it). Read back as
+  // `body.own` with garment_pose: first_frame, it is this scene's body.
+  data::SkinnedBody rig;
   std::vector<std::pair<std::string, data::ObjMesh>> garments;  // name, mesh with its UVs
   std::string problem;  // why the scene cannot be simulated ("" when it can; garments may then be missing)
 };

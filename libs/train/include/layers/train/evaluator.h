@@ -47,6 +47,9 @@ struct EvalOptions {
   int horizon = -1;                    // overrides eval.horizon when >= 0
   std::string out_dir;                 // default <run.output>/eval-<split>
   std::vector<std::string> sequences;  // only these ids (default: the whole split)
+  // Another dataset's sequences (default: data.dataset's), normalised with
+  // the training dataset's stats.h5: `layers animate --model`.
+  std::string dataset;
   bool progress = true;
   // Data-parallel ranks (layers/dist): each rolls out every size-th
   // sequence; rank 0 gathers the results in the split's order and alone

@@ -33,7 +33,11 @@ struct Session {
 // InputError naming the config file for a missing data.dataset, an
 // unknown model or bad parameters, or a CUDA device on a CPU-only build.
 // `device_index` >= 0 picks the CUDA device (a data-parallel rank's LOCAL_RANK).
-Session open_session(const ExperimentConfig& config, const zoo::Registry& registry, int device_index = -1);
+// `dataset` (when not empty) is where the sequences come from instead of
+// data.dataset, e.g. a scene of `layers animate --model`; the
+// normalisation is still the training dataset's stats.h5.
+Session open_session(const ExperimentConfig& config, const zoo::Registry& registry, int device_index = -1,
+                     const std::string& dataset = "");
 
 // One rollout per sequence from its first frames: ground truth at frames 0
 // and 1, then `horizon` predicted frames (0 or more than the sequence has:

@@ -1,0 +1,105 @@
+// A user's own body and a trained model through the CLI: `layers tpose`
+// writes the scene's body as a rig (body.glb), which `layers animate`
+// reads back as body.own with the garment files tpose wrote; a template
+// outfit or a body in centimetres on body.own is one line, exit 1; and
+// `layers animate --model` rolls a trained model (the `static` reference
+// model, trained on a three-scene dataset generated here) out on the
+// simulated scene, exports its prediction and names the garment files the
+// model never saw.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "coarse_scene.h"
+#include "layers/data/dataset.h"
+#include "run_command.h"
+#include "temp_dir.h"
+#include "test_paths.h"
+
+namespace fs = std::filesystem;
+using namespace layers;
+using test::run_command;
+
+namespace {
+
+TEST(CliOwnBody, TheTposeRigIsABodyAndBadBodiesAreOneLine) {
+  test::TempDir dir("own-body");
+  const std::string t = dir.file("tpose");
+  auto r = run_command(test::layers_bin() + " tpose" +
+                       test::coarse_scene_settings("[{inner: [dress], outer: jacket}]") + " --out " + t);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("body.glb (the body's rig and"), std::string::npos) << r.output;
+  const std::string files = "[{inner: [\"file:" + t + "/dress.obj\"], outer: \"file:" + t + "/jacket.obj\"}]";
+  const std::string own =
+      " --set 'body.motions=[animation]' --set 'body.own={file: \"" + t + "/body.glb\", garment_pose: first_frame}'";
+  r = run_command(test::layers_bin() + " animate" + test::coarse_scene_settings(files) + own + " --out " +
+                  dir.file("anim"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const data::Dataset ds = data::Dataset::open(dir.file("anim/data"));
+  const data::SequenceInfo& info = ds.info(ds.ids().front());
+  EXPECT_EQ(info.motion, "animation:body.glb#motion");
+  EXPECT_TRUE(fs::exists(dir.file("anim/glb/seq-000000.glb")));
+  // Templates on a user's body, and a body file in centimetres: one line, exit 1.
+  r = run_command(test::layers_bin() + " animate" + test::coarse_scene_settings("[{inner: [dress], outer: jacket}]") +
+                  own + " --out " + dir.file("templates"));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("garments.outfits[0]: expected garment files (file:<mesh>) with body.own"), std::string::npos)
+      << r.output;
+  r = run_command(test::layers_bin() + " animate" + test::coarse_scene_settings(files) + own +
+                  " --set body.own.scale=100 --out " + dir.file("cm"));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("body.glb: height: expected a body 0.5-2.5 m tall along y"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("terminate"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir.file("cm/data")));
+}
+
+TEST(CliOwnBody, AnimateWithAModelExportsItsPredictionAndNamesWhatItNeverSaw) {
+  test::TempDir dir("own-body");
+  const std::string t = dir.file("tpose");
+  const std::string templates = test::coarse_scene_settings("[{inner: [dress], outer: jacket}]");
+  auto r = run_command(test::layers_bin() + " tpose" + templates + " --out " + t);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  // A dataset of three template scenes (train, val, test), and the static model trained on it.
+  r = run_command(test::layers_bin() +
+                  " generate --quiet --set sequences=3 --set splits.val=0.34 --set splits.test=0.34" + templates +
+                  " --out " + dir.file("train_data"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string experiment = dir.write(
+      "static.yaml", "include: [" + test::source_dir() + "/configs/models/static.yaml, " + test::source_dir() +
+                         "/configs/experiments/tiny.yaml]\ndata: {dataset: " + dir.file("train_data") +
+                         "}\nrun: {output: " + dir.file("run") + "}\n");
+  r = run_command(test::layers_bin() + " train " + experiment + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+
+  // Garment files the model never saw: named, and the prediction exported.
+  const std::string files = "[{inner: [\"file:" + t + "/dress.obj\"], outer: \"file:" + t + "/jacket.obj\"}]";
+  r = run_command(test::layers_bin() + " animate" + test::coarse_scene_settings(files) + " --model " + experiment +
+                  " --format obj --out " + dir.file("anim"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("note: the model never saw the garment file " + t + "/dress.obj in training"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("error"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("mm against the simulator"), std::string::npos) << r.output;
+  const data::Dataset predicted = data::Dataset::open(dir.file("anim/model/predictions.h5"));
+  const data::Dataset simulated = data::Dataset::open(dir.file("anim/data"));
+  ASSERT_EQ(predicted.ids(), simulated.ids());
+  EXPECT_EQ(predicted.info(predicted.ids().front()).n_frames, simulated.info(simulated.ids().front()).n_frames);
+  std::ifstream metrics(dir.file("anim/model/metrics.json"));
+  EXPECT_EQ(nlohmann::json::parse(metrics)["dataset"], dir.file("anim/data"));
+  EXPECT_FALSE(fs::is_empty(dir.file("anim/obj")));
+  // The templates it was trained on: no note.
+  r = run_command(test::layers_bin() + " animate" + templates + " --model " + experiment + " --out " +
+                  dir.file("seen"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output.find("never saw"), std::string::npos) << r.output;
+  // --checkpoint without --model, and a model without a checkpoint: one line before any simulation.
+  r = run_command(test::layers_bin() + " animate" + templates + " --checkpoint last --out " + dir.file("x"));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("--checkpoint: expected --model with it, got no --model"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir.file("x")));
+}
+
+}  // namespace

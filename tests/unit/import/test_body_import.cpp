@@ -1,0 +1,156 @@
+// Users' bodies (libs/import/body_import.h) on files written inside the
+// tests: the tiny rig (tests/support/tiny_rig.h) as a skinned GLB from our
+// own writer (data/skinned_glb.h) read back joint by joint and frame by
+// frame against skinning worked out in the test; mesh sequences as a
+// folder of OBJ frames and as a .pc2 with its OBJ; and each refusal.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "error_of.h"
+#include "layers/core/error.h"
+#include "layers/data/glb.h"
+#include "layers/data/obj.h"
+#include "layers/data/pc2.h"
+#include "layers/import/body_import.h"
+#include "temp_dir.h"
+#include "tiny_rig.h"
+
+namespace layers::import {
+namespace {
+
+std::string message_of(const std::function<void()>& f) { return test::error_of<InputError>(f); }
+
+std::string write_bytes(const test::TempDir& dir, const std::string& name, const std::string& bytes) {
+  const std::string path = dir.file(name);
+  std::ofstream(path, std::ios::binary) << bytes;
+  return path;
+}
+
+// Linear blend skinning of the imported arrays (the generator's own is
+// body::skin; here the import alone is under test).
+Eigen::Vector3d skinned(const ImportedBody& b, int frame, int v) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  const Eigen::Vector3d x = b.rest.vertices.row(v).cast<double>().transpose();
+  for (int k = 0; k < 4; ++k) {
+    const int j = b.skin_index(v, k);
+    const BodyFrame& f = b.frames[static_cast<std::size_t>(frame)];
+    sum += b.skin_weight(v, k) * (f.rotation[j] * (x - b.joint_rest[j]) + f.position[j]);
+  }
+  return sum;
+}
+
+TEST(BodyImport, SkinnedGlbReadsBackItsRigAndEveryFrame) {
+  test::TempDir dir("body_import");
+  const test::TinyRig rig(5);
+  const std::string path = write_bytes(dir, "rig.glb", data::skinned_glb_bytes(rig.body, 30.0));
+  const ImportedBody b = import_rigged_body(path);
+  EXPECT_TRUE(b.rigged());
+  EXPECT_EQ(b.joint_names, (std::vector<std::string>{"Hips", "Spine", "Head"}));  // namespace gone
+  EXPECT_EQ(b.parents, (std::vector<int>{-1, 0, 1}));
+  ASSERT_EQ(b.rest.vertices.rows(), 30);
+  ASSERT_EQ(b.rest.faces.rows(), 48);
+  for (int v = 0; v < 30; ++v)
+    for (int a = 0; a < 3; ++a) EXPECT_NEAR(b.rest.vertices(v, a), rig.body.rest[v * 3 + a], 1e-6);
+  for (int j = 0; j < 3; ++j) EXPECT_LT((b.joint_rest[j] - rig.rest_joint(j)).norm(), 1e-6);
+  EXPECT_EQ(b.skin_index(20, 0) + b.skin_index(20, 1), 1);  // the middle ring: Hips and Spine
+  EXPECT_NEAR(b.skin_weight(20, 0), 0.5f, 1e-6);
+  EXPECT_EQ(b.animation, "motion");
+  ASSERT_EQ(b.num_frames(), 5);
+  double worst = 0;
+  for (int f = 0; f < 5; ++f) {
+    const auto [rotation, position] = rig.pose(f);
+    for (int j = 0; j < 3; ++j) {
+      EXPECT_LT(b.frames[f].rotation[j].angularDistance(rotation[j]), 1e-5) << f << " " << j;
+      EXPECT_LT((b.frames[f].position[j] - position[j]).norm(), 1e-5) << f << " " << j;
+    }
+    const std::vector<double> want = rig.posed(f);
+    for (int v = 0; v < 30; ++v)
+      worst =
+          std::max(worst, (skinned(b, f, v) - Eigen::Vector3d(want[v * 3], want[v * 3 + 1], want[v * 3 + 2])).norm());
+  }
+  EXPECT_LT(worst, 1e-5);
+}
+
+TEST(BodyImport, ScaleAnimationNameAndUnskinnedFilesAreOneLineEach) {
+  test::TempDir dir("body_import");
+  const test::TinyRig rig(3);
+  const std::string path = write_bytes(dir, "rig.glb", data::skinned_glb_bytes(rig.body, 30.0));
+  // In centimetres the body is 170 tall; with its scale it reads.
+  test::TinyRig cm(3);
+  for (float& x : cm.body.rest) x *= 100;
+  for (float& x : cm.body.rest_joints) x *= 100;
+  cm.body.joints.clear();
+  const std::string cm_path = write_bytes(dir, "cm.glb", data::skinned_glb_bytes(cm.body, 30.0));
+  std::string e = message_of([&] { import_rigged_body(cm_path); });
+  EXPECT_NE(e.find(cm_path + ": height: expected a body 0.5-2.5 m tall along y"), std::string::npos) << e;
+  EXPECT_NEAR(import_rigged_body(cm_path, 0.01).rest.vertices.col(1).maxCoeff(), 1.7, 1e-5);
+  EXPECT_TRUE(import_rigged_body(cm_path, 0.01).frames.empty());  // no animation: no frames
+  e = message_of([&] { import_rigged_body(path, 1.0, "walk"); });
+  EXPECT_NE(e.find("animation: expected one of 'motion', got 'walk'"), std::string::npos) << e;
+  // A morph-target GLB (our export) has no skin.
+  data::GlbMesh mesh{"cloth", rig.body.faces, {rig.body.rest, rig.body.rest}};
+  const std::string morph = write_bytes(dir, "morph.glb", data::glb_bytes({mesh}, 30.0));
+  e = message_of([&] { import_rigged_body(morph); });
+  EXPECT_NE(e.find("expected a mesh skinned to a skeleton, got no skinned mesh"), std::string::npos) << e;
+  e = message_of([&] { import_rigged_body(dir.file("none.glb")); });
+  EXPECT_NE(e.find("no such file"), std::string::npos) << e;
+}
+
+// The rig's frames as a mesh sequence: one OBJ per frame, or a .pc2.
+struct Sequence {
+  test::TinyRig rig{4};
+  data::ObjMesh frame(int f) const {
+    data::ObjMesh m;
+    for (double x : rig.posed(f)) m.positions.push_back(static_cast<float>(x));
+    m.faces = rig.body.faces;
+    return m;
+  }
+};
+
+TEST(BodyImport, ObjFramesAndPc2GiveTheVerticesAndTheirRigidMotion) {
+  test::TempDir dir("body_import");
+  const Sequence s;
+  std::filesystem::create_directories(dir.file("frames"));
+  for (int f = 0; f < 4; ++f) data::write_obj(dir.file("frames/f" + std::to_string(f) + ".obj"), s.frame(f));
+  data::ObjMesh rest;
+  rest.positions = s.rig.body.rest;
+  rest.faces = s.rig.body.faces;
+  data::write_obj(dir.file("rest.obj"), rest);
+  data::Pc2Writer pc2(dir.file("walk.pc2"), {30, 0.0f, 1.0f, 4});
+  for (int f = 0; f < 4; ++f) pc2.append(s.frame(f).positions.data());
+  pc2.commit();
+
+  for (const auto& [path, mesh] : {std::pair<std::string, std::string>{dir.file("frames"), dir.file("rest.obj")},
+                                   {dir.file("walk.pc2"), dir.file("rest.obj")}}) {
+    ASSERT_TRUE(is_mesh_sequence(path));
+    const ImportedBody b = import_body(path, mesh);
+    EXPECT_FALSE(b.rigged());
+    EXPECT_EQ(b.joint_names, std::vector<std::string>{"Root"});
+    ASSERT_EQ(b.num_frames(), 4);
+    ASSERT_EQ(b.vertices.size(), 4u);
+    for (int f = 0; f < 4; ++f) {
+      const std::vector<double> want = s.rig.posed(f);
+      for (int i = 0; i < 90; ++i) EXPECT_NEAR(b.vertices[f].data()[i], want[i], 1e-6);
+    }
+    // Frame 0 is the rest pose: no motion; later frames move it.
+    EXPECT_LT(b.frames[0].rotation[0].angularDistance(Eigen::Quaterniond::Identity()), 1e-6);
+    EXPECT_LT((b.frames[0].position[0] - b.joint_rest[0]).norm(), 1e-6);
+    EXPECT_GT((b.frames[3].position[0] - b.joint_rest[0]).norm(), 0.05);
+  }
+  // Without a mesh, a folder's first frame is the rest pose.
+  EXPECT_NEAR(import_body(dir.file("frames")).rest.vertices(0, 0), s.rig.body.rest[0], 1e-6);
+  std::string e = message_of([&] { import_body(dir.file("walk.pc2")); });
+  EXPECT_NE(e.find("walk.pc2: mesh: expected an OBJ with the cache's faces and rest pose, got none given"),
+            std::string::npos)
+      << e;
+  data::ObjMesh more = s.frame(1);
+  more.positions.insert(more.positions.end(), {0.0f, 0.0f, 0.0f});
+  data::write_obj(dir.file("frames/f9.obj"), more);
+  e = message_of([&] { import_body(dir.file("frames")); });
+  EXPECT_NE(e.find("f9.obj: vertices: expected 30 vertices (the body mesh's), got 31"), std::string::npos) << e;
+}
+
+}  // namespace
+}  // namespace layers::import
