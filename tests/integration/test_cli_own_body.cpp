@@ -1,7 +1,8 @@
 // A user's own body and a trained model through the CLI: `layers tpose`
 // writes the scene's body as a rig (body.glb), which `layers animate`
 // reads back as body.own with the garment files tpose wrote; a template
-// outfit or a body in centimetres on body.own is one line, exit 1; and
+// outfit or a body in centimetres on body.own is one line, exit 1; our
+// body's frames exported as a .pc2 drive a scene as a vertex cache; and
 // `layers animate --model` rolls a trained model (the `static` reference
 // model, trained on a three-scene dataset generated here) out on the
 // simulated scene, exports its prediction and names the garment files the
@@ -100,6 +101,32 @@ TEST(CliOwnBody, AnimateWithAModelExportsItsPredictionAndNamesWhatItNeverSaw) {
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("--checkpoint: expected --model with it, got no --model"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir.file("x")));
+}
+
+TEST(CliOwnBody, AVertexCacheDrivesTheSceneFrameForFrame) {
+  test::TempDir dir("own-body");
+  const std::string t = dir.file("tpose");
+  auto r = run_command(test::layers_bin() + " tpose" +
+                       test::coarse_scene_settings("[{inner: [dress], outer: jacket}]") + " --out " + t);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string files = "[{inner: [\"file:" + t + "/dress.obj\"], outer: \"file:" + t + "/jacket.obj\"}]";
+  // Our body's recorded frames as a .pc2 (layers animate's export), with the T-pose OBJ as its rest pose.
+  r = run_command(test::layers_bin() + " animate" + test::coarse_scene_settings(files) + " --format pc2 --out " +
+                  dir.file("ours"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string cache = dir.file("ours/pc2/seq-000000_body.pc2");
+  ASSERT_TRUE(fs::exists(cache)) << r.output;
+  r = run_command(test::layers_bin() + " animate" + test::coarse_scene_settings(files) +
+                  " --set 'body.motions=[animation]' --set 'body.own={file: \"" + cache + "\", mesh: \"" + t +
+                  "/body.obj\"}' --out " + dir.file("own"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const data::Dataset a_ds = data::Dataset::open(dir.file("ours/data")),
+                      b_ds = data::Dataset::open(dir.file("own/data"));
+  const data::SequenceData a = a_ds.read_sequence(a_ds.ids().front()), b = b_ds.read_sequence(b_ds.ids().front());
+  EXPECT_EQ(b.motion, "animation:seq-000000_body.pc2");
+  EXPECT_EQ(b.body.positions, a.body.positions) << "the cache's frames, as stored";
+  EXPECT_EQ(b.body.joint_names, std::vector<std::string>{"Root"});
+  ASSERT_EQ(b.garments.size(), 2u);
 }
 
 }  // namespace

@@ -31,17 +31,32 @@ body::Body to_body(const import::ImportedBody& in) {
   sk.parents = in.parents;
   sk.rest_head = in.joint_rest;
   const int n = static_cast<int>(sk.names.size());
-  // Bone tails (bone lengths): the mean of the children's heads, or for a
-  // leaf a third of its parent bone further on (10 cm up for a lone root).
+  // Bone tails (a bone's direction and length, which BVH retargeting aims
+  // along): the head of the child that continues the bone -- the one most
+  // in line with the parent bone (the neck after the chest, the fingers
+  // after the hand), for the root the one carrying the most joints below
+  // it (the spine) -- or for a leaf a third of its parent bone further on
+  // (10 cm up for a lone root). A file has no tails: a leaf's direction
+  // is a guess (docs/own-data.md).
+  std::vector<int> below(static_cast<std::size_t>(n), 0);
+  for (int j = n - 1; j > 0; --j)
+    below[static_cast<std::size_t>(sk.parents[j])] += below[static_cast<std::size_t>(j)] + 1;
   for (int j = 0; j < n; ++j) {
-    body::Vec3 sum = body::Vec3::Zero();
-    int children = 0;
+    const int parent = sk.parents[j];
+    const auto score = [&](int c) {
+      const body::Vec3 d = sk.rest_head[c] - sk.rest_head[j];
+      return parent < 0 ? static_cast<double>(below[static_cast<std::size_t>(c)])
+                        : d.normalized().dot((sk.rest_head[j] - sk.rest_head[parent]).normalized());
+    };
+    int chain = -1;
     for (int c = 0; c < n; ++c)
-      if (sk.parents[c] == j) sum += sk.rest_head[c], ++children;
-    if (children > 0 && (sum / children - sk.rest_head[j]).norm() > 1e-6)
-      sk.rest_tail.push_back(sum / children);
-    else if (sk.parents[j] >= 0)
-      sk.rest_tail.push_back(sk.rest_head[j] + (sk.rest_head[j] - sk.rest_head[sk.parents[j]]) / 3.0);
+      if (sk.parents[c] == j && (sk.rest_head[c] - sk.rest_head[j]).norm() > 1e-6 &&
+          (chain < 0 || score(c) > score(chain)))
+        chain = c;
+    if (chain >= 0)
+      sk.rest_tail.push_back(sk.rest_head[chain]);
+    else if (parent >= 0)
+      sk.rest_tail.push_back(sk.rest_head[j] + (sk.rest_head[j] - sk.rest_head[parent]) / 3.0);
     else
       sk.rest_tail.push_back(sk.rest_head[j] + body::Vec3(0, 0.1, 0));
     sk.bone_frame.push_back(body::Mat3::Identity());

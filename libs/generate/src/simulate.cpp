@@ -172,9 +172,13 @@ SceneSimulation::SceneSimulation(const GeneratorConfig& config, const SceneSpec&
 
 void SceneSimulation::add_garments() {
   const garment::TPoseBody t_pose = garment::t_pose_body(generated_.body);
-  const garment::MotionRoom room = motion_room(t_pose);
-  garments_ = has_imported_garments(spec_) ? imported_outfit(t_pose, spec_, config_.garments.fit.layer_reach)
-                                           : fit_outfit(t_pose, spec_, config_.garments.fit, &room);
+  if (has_imported_garments(spec_)) {
+    garments_ = imported_outfit(t_pose, spec_, config_.garments.fit.layer_reach);
+  } else {
+    // The room a motion asks of the templates (measured on our body's landmarks).
+    const garment::MotionRoom room = motion_room(t_pose);
+    garments_ = fit_outfit(t_pose, spec_, config_.garments.fit, &room);
+  }
   // Templates fitted at a coarse resolution are moved apart where they
   // cross; a user's garments are taken as they are (crossings refuse the
   // scene below).

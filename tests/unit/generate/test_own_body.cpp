@@ -195,5 +195,31 @@ TEST(OwnBody, TheTposeRigReadBackSimulatesAsTheNativeScene) {
   }
 }
 
+// A BVH clip retargeted onto a rig with our joint names (our body's
+// rig, read back): the clip's frames after the transition, the feet on
+// the ground. (Not our body's frames: a user's motion is not repaired
+// where the body passes through itself, and a file's rig has no bone
+// tails for its leaves, so the toes and thumbs aim where the rig
+// suggests; docs/own-data.md.)
+TEST(OwnBody, ABvhClipIsRetargetedOntoARigWithOurJointNames) {
+  test::TempDir dir("own_body");
+  const std::vector<std::string> clip = {"body.motions=[bvh:cmu/131_01_start_walk_stop.bvh]", "frames=20"};
+  const TPoseMeshes t = tpose_meshes(cfg::read<GeneratorConfig>(tiny_tree(clip)), 0);
+  cfg::Node tree = tiny_tree(clip);
+  cfg::apply_set(tree, "body.own={file: '" + write_rig(dir, "body.glb", t.rig) + "', garment_pose: first_frame}");
+  const GeneratorConfig own = cfg::read<GeneratorConfig>(tree);
+  SceneSpec spec;
+  spec.motion = "bvh:cmu/131_01_start_walk_stop.bvh";
+  const motion::GeneratedBody g = own_body(own, spec);
+  ASSERT_EQ(g.sequence.num_frames, 22);
+  EXPECT_EQ(g.sequence.motion, "bvh:cmu/131_01_start_walk_stop.bvh");
+  const std::size_t nv = static_cast<std::size_t>(g.sequence.num_vertices);
+  for (int f = 2; f < 22; ++f) {
+    float lowest = 1e9f;
+    for (std::size_t v = 0; v < nv; ++v) lowest = std::min(lowest, g.sequence.positions[(f * nv + v) * 3 + 1]);
+    EXPECT_NEAR(lowest, 0.0, 0.02) << "frame " << f << ": a foot on the ground";
+  }
+}
+
 }  // namespace
 }  // namespace layers::generate
