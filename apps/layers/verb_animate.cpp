@@ -32,6 +32,7 @@
 #include "layers/generate/unseen.h"
 #include "layers/metrics/registry.h"
 #include "layers/train/evaluator.h"
+#include "layers/train/session.h"
 #include "plugins.h"
 #include "verbs.h"
 
@@ -82,6 +83,7 @@ VerbRun register_animate(CLI::App& app, const Global&) {
       if (!fs::exists(checkpoint))
         throw InputError(a->model, "--checkpoint", "a trained model's checkpoint (layers train)",
                          "'" + checkpoint + "' (no such file)");
+      train::open_session(experiment->typed, load_plugins().registry);  // the model, its dataset and stats.h5
     } else if (a->checkpoint != "best") {
       throw InputError("layers animate", "--checkpoint", "--model with it", "no --model");
     }

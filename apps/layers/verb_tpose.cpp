@@ -60,11 +60,15 @@ VerbRun register_tpose(CLI::App& app, const Global&) {
       data::write_obj(path, *mesh);
       std::printf("wrote %s (%lld vertices)\n", path.c_str(), static_cast<long long>(mesh->n_vertices()));
     }
-    write_new_text_file(rig_path.string(), data::skinned_glb_bytes(t.rig, static_cast<double>(data::kFps)),
-                        "a folder without this file");
-    std::printf("wrote %s (the body's rig and %lld frames: the T-pose, then the scene's motion)\n",
-                rig_path.string().c_str(),
-                static_cast<long long>(t.rig.joints.size() / (t.rig.joint_names.size() * 12)));
+    if (t.rig.joint_names.empty()) {
+      std::printf("note: no %s: the scene's body is a mesh sequence, which has no rig\n", rig_path.string().c_str());
+    } else {
+      write_new_text_file(rig_path.string(), data::skinned_glb_bytes(t.rig, static_cast<double>(data::kFps)),
+                          "a folder without this file");
+      std::printf("wrote %s (the body's rig and %lld frames: the T-pose, then the scene's motion)\n",
+                  rig_path.string().c_str(),
+                  static_cast<long long>(t.rig.joints.size() / (t.rig.joint_names.size() * 12)));
+    }
     if (!t.problem.empty()) std::printf("note: this scene cannot be simulated: %s\n", t.problem.c_str());
     return static_cast<int>(kOk);
   };

@@ -111,8 +111,8 @@ std::string vary_motion(const MotionVariation& v, const std::string& entry, int 
 
 std::string motion_family(const std::string& motion) {
   std::string family = motion.substr(0, motion.find(' '));
-  if (family.rfind("procedural:", 0) != 0 && family.rfind("bvh:", 0) != 0 && family != kOwnAnimation)
-    family = "bvh:" + family;
+  const bool own = family == kOwnAnimation || family.rfind(std::string(kOwnAnimation) + ":", 0) == 0;
+  if (family.rfind("procedural:", 0) != 0 && family.rfind("bvh:", 0) != 0 && !own) family = "bvh:" + family;
   return family;
 }
 

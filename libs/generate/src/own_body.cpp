@@ -1,13 +1,16 @@
 // A user's own body as a scene's body and motion (see own_body.h).
 #include "layers/generate/own_body.h"
 
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <memory>
 
 #include "layers/body/pose_body.h"
 #include "layers/core/checksum.h"
 #include "layers/core/error.h"
-#include "layers/core/text_file.h"
 #include "layers/import/body_import.h"
 #include "layers/import/garment_file.h"
 #include "layers/motion/body_sequence.h"
@@ -69,7 +72,9 @@ body::Body to_body(const import::ImportedBody& in) {
 }
 
 std::string describe_animation(const import::ImportedBody& in) {
-  std::string d = std::string(kOwnAnimation) + ":" + fs::path(in.file).filename().string();
+  fs::path file = fs::path(in.file).lexically_normal();
+  if (file.filename().empty()) file = file.parent_path();  // a folder written with a trailing '/'
+  std::string d = std::string(kOwnAnimation) + ":" + file.filename().string();
   return in.animation.empty() ? d : d + "#" + in.animation;
 }
 
@@ -132,9 +137,25 @@ void check_own_body(const GeneratorConfig& config, const std::string& file) {
   if (!fs::exists(own.file))
     throw InputError(file, "body.own.file", "an existing file or folder", "'" + own.file + "'");
   const bool sequence = import::is_mesh_sequence(own.file);
+  // Settings that would be ignored are refused.
+  if (sequence && own.garment_pose != "bind")
+    throw InputError(file, "body.own.garment_pose",
+                     "bind for a mesh sequence (its garments' pose is its rest pose: body.own.mesh or the first frame)",
+                     "'" + own.garment_pose + "'");
+  if (sequence && !own.animation.empty())
+    throw InputError(file, "body.own.animation", "nothing for a mesh sequence (it has one motion)",
+                     "'" + own.animation + "'");
+  if (!sequence && !own.mesh.empty())
+    throw InputError(file, "body.own.mesh", "nothing for a rigged file (its meshes are the body)",
+                     "'" + own.mesh + "'");
+  if (config.body.variation)
+    throw InputError(file, "body.variation", "nothing with body.own (a user's motion is played as it is)",
+                     "a variation block");
   for (std::size_t i = 0; i < config.body.motions.size(); ++i) {
     const std::string& m = config.body.motions[i];
-    const bool bvh = m.rfind("bvh:", 0) == 0 || (m.size() > 4 && m.compare(m.size() - 4, 4, ".bvh") == 0);
+    std::string tail = m.size() > 4 ? m.substr(m.size() - 4) : "";
+    for (char& c : tail) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const bool bvh = m.rfind("bvh:", 0) == 0 || tail == ".bvh";
     if (m == kOwnAnimation || (bvh && !sequence)) continue;
     throw InputError(file, "body.motions[" + std::to_string(i) + "]",
                      sequence ? "animation (a mesh sequence plays its own frames)"
@@ -156,19 +177,27 @@ void resolve_own_body(GeneratorConfig& config) {
   if (!config.body.own) return;
   OwnBodyConfig& own = *config.body.own;
   const import::ImportedBody body = import::import_body(own.file, own.mesh, own.scale, own.animation);
-  std::string hashes;
-  std::vector<std::string> files;
-  if (fs::is_directory(own.file)) {
-    for (const auto& e : fs::directory_iterator(own.file))
-      if (e.is_regular_file()) files.push_back(e.path().string());
-    std::sort(files.begin(), files.end());
-  } else {
-    files.push_back(own.file);
-  }
-  if (!own.mesh.empty()) files.push_back(own.mesh);
-  for (const std::string& f : files)
-    hashes += fs::path(f).filename().string() + "=" + content_hash(read_text_file(f)) + ";";
-  own.hash = content_hash(hashes);
+  if (body.skipped_meshes > 0)
+    spdlog::warn("{}: {} mesh{} bound to no joint left out of the body", own.file, body.skipped_meshes,
+                 body.skipped_meshes == 1 ? "" : "es");
+  // The hash of what was read (whatever files it came from: a .gltf's
+  // buffers, a folder's frames): mesh, rig, weights and every frame.
+  std::string bytes;
+  const auto add = [&](const void* p, std::size_t n) { bytes.append(static_cast<const char*>(p), n); };
+  add(body.rest.vertices.data(), sizeof(float) * static_cast<std::size_t>(body.rest.vertices.size()));
+  add(body.rest.faces.data(), sizeof(int) * static_cast<std::size_t>(body.rest.faces.size()));
+  for (const std::string& name : body.joint_names) bytes += name + '\n';
+  add(body.parents.data(), sizeof(int) * body.parents.size());
+  add(body.skin_index.data(), sizeof(int) * static_cast<std::size_t>(body.skin_index.size()));
+  add(body.skin_weight.data(), sizeof(float) * static_cast<std::size_t>(body.skin_weight.size()));
+  for (const Eigen::Vector3d& p : body.joint_rest) add(p.data(), sizeof(double) * 3);
+  for (const import::BodyFrame& f : body.frames)
+    for (std::size_t j = 0; j < f.rotation.size(); ++j) {
+      add(f.rotation[j].coeffs().data(), sizeof(double) * 4);
+      add(f.position[j].data(), sizeof(double) * 3);
+    }
+  for (const geometry::Points& v : body.vertices) add(v.data(), sizeof(float) * static_cast<std::size_t>(v.size()));
+  own.hash = content_hash(bytes);
 }
 
 motion::GeneratedBody own_body(const GeneratorConfig& config, const SceneSpec& spec) {
@@ -204,6 +233,11 @@ motion::GeneratedBody own_body(const GeneratorConfig& config, const SceneSpec& s
     if (!missing.empty())
       throw InputError(own.file, "skeleton", "the joints a BVH clip is retargeted onto (our names, e.g. Mixamo's)",
                        "no " + missing);
+    if (out.body.soles[0].empty() || out.body.soles[1].empty())
+      throw InputError(own.file, "soles",
+                       "skin at the lowest point of the rest pose carried by each foot or toe joint (a BVH clip is "
+                       "put on the ground by them)",
+                       "none on the " + std::string(out.body.soles[0].empty() ? "left" : "right"));
     motion::MotionSpec ms;
     ms.motion = spec.motion;
     ms.frames = transition + frames;

@@ -6,6 +6,7 @@
 #include "layers/garment/garment_body.h"
 #include "layers/generate/scene_spec.h"
 #include "layers/generate/simulate.h"
+#include "layers/import/body_import.h"
 #include "layers/motion/body_sequence.h"
 
 namespace layers::generate {
@@ -19,21 +20,6 @@ TPoseMeshes tpose_meshes(const GeneratorConfig& config, int index) {
   out.body.positions.assign(v.data(), v.data() + v.size());
   const body::BodyArrays arrays = body::body_arrays(scene.body().body);
   out.body.faces = arrays.faces;
-  out.rig.rest = arrays.rest_vertices;
-  out.rig.faces = arrays.faces;
-  out.rig.joint_names = arrays.joint_names;
-  out.rig.joint_parents = arrays.joint_parents;
-  out.rig.rest_joints = arrays.rest_joints;
-  out.rig.skin_index = arrays.skin_index;
-  out.rig.skin_weight = arrays.skin_weight;
-  const body::Body& b = scene.body().body;
-  const motion::BodySequence& s = scene.body().sequence;
-  const std::size_t per_frame = static_cast<std::size_t>(s.num_joints) * 12;
-  out.rig.joints.resize(per_frame);
-  body::joint_matrices(body::forward_kinematics(b.skeleton, b.t_pose), out.rig.joints.data());
-  const std::size_t first = static_cast<std::size_t>(std::min(config.body.transition_frames, s.num_frames));
-  out.rig.joints.insert(out.rig.joints.end(), s.joints.begin() + static_cast<std::ptrdiff_t>(first * per_frame),
-                        s.joints.end());
   const Eigen::Isometry3d back = scene.placement().inverse();
   for (const data::GarmentData& g : scene.garments()) {
     data::ObjMesh m;
@@ -46,6 +32,25 @@ TPoseMeshes tpose_meshes(const GeneratorConfig& config, int index) {
                          {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())});
     }
     out.garments.emplace_back(g.name, std::move(m));
+  }
+  // The rig: none for a user's mesh sequence (its one joint is a fit).
+  const std::string& file = scene.body().body.file;
+  if (file.empty() || !import::is_mesh_sequence(file)) {
+    out.rig.rest = arrays.rest_vertices;
+    out.rig.faces = arrays.faces;
+    out.rig.joint_names = arrays.joint_names;
+    out.rig.joint_parents = arrays.joint_parents;
+    out.rig.rest_joints = arrays.rest_joints;
+    out.rig.skin_index = arrays.skin_index;
+    out.rig.skin_weight = arrays.skin_weight;
+    const body::Body& b = scene.body().body;
+    const motion::BodySequence& s = scene.body().sequence;
+    const std::size_t per_frame = static_cast<std::size_t>(s.num_joints) * 12;
+    out.rig.joints.resize(per_frame);
+    body::joint_matrices(body::forward_kinematics(b.skeleton, b.t_pose), out.rig.joints.data());
+    const std::size_t first = static_cast<std::size_t>(std::min(config.body.transition_frames, s.num_frames));
+    out.rig.joints.insert(out.rig.joints.end(), s.joints.begin() + static_cast<std::ptrdiff_t>(first * per_frame),
+                          s.joints.end());
   }
   return out;
 }

@@ -10,21 +10,24 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <set>
 
 #include "body_checks.h"
 #include "layers/core/error.h"
+#include "layers/data/format.h"
 
 namespace layers::import {
 namespace {
 
 using Mat4 = Eigen::Matrix4d;
 
-constexpr double kFramesPerSecond = 30.0;
-constexpr double kRigidTolerance = 1e-3;  // |L^T L - I| of a joint's skinning matrix
-constexpr float kSameWeight = 1e-5f;      // weights of two seam copies that may be welded
+constexpr double kRigidTolerance = 1e-3;   // |L^T L - I| of a joint's skinning matrix
+constexpr double kOffsetTolerance = 1e-4;  // m a joint may stray from its fixed offset to its parent
+constexpr double kMaxSeconds = 3600;       // the longest animation read (as a BVH clip's bound)
+constexpr float kSameWeight = 1e-5f;       // weights of two seam copies that may be welded
 
 Mat4 to_eigen(const aiMatrix4x4& m) {
   Mat4 r;
@@ -187,6 +190,11 @@ ImportedBody import_rigged_body(const std::string& path, double scale, const std
   for (int j = 0; j < joints; ++j) {
     out.joint_names.push_back(strip_namespace(rig.nodes[j]->mName.C_Str()));
     out.parents.push_back(rig.parents[j]);
+    for (int k = 0; k < j; ++k)
+      if (out.joint_names[k] == out.joint_names[j])
+        throw InputError(path, "skeleton", "distinct joint names (after the namespace, e.g. 'mixamorig:')",
+                         "'" + std::string(rig.nodes[k]->mName.C_Str()) + "' and '" + rig.nodes[j]->mName.C_Str() +
+                             "' both named '" + out.joint_names[j] + "'");
   }
 
   // Bind pose of each joint in the world (from the first mesh bound to it:
@@ -284,12 +292,14 @@ ImportedBody import_rigged_body(const std::string& path, double scale, const std
     channels[anim->mChannels[c]->mNodeName.C_Str()] = anim->mChannels[c];
   const double ticks_per_second = anim->mTicksPerSecond > 0 ? anim->mTicksPerSecond : 25.0;
   const double seconds = anim->mDuration / ticks_per_second;
-  if (!std::isfinite(seconds) || seconds < 0)
-    throw InputError(path, "animation '" + out.animation + "'", "a finite duration", std::to_string(seconds) + " s");
-  const int n_frames = static_cast<int>(std::floor(seconds * kFramesPerSecond + 1e-6)) + 1;
+  if (!std::isfinite(seconds) || seconds < 0 || seconds > kMaxSeconds)
+    throw InputError(path, "animation '" + out.animation + "'", "a duration of 0-3600 s",
+                     std::to_string(seconds) + " s");
+  const double fps = static_cast<double>(data::kFps);
+  const int n_frames = static_cast<int>(std::floor(seconds * fps + 1e-6)) + 1;
   std::map<const aiNode*, Mat4> world;
   for (int f = 0; f < n_frames; ++f) {
-    const double t = f / kFramesPerSecond * ticks_per_second;
+    const double t = f / fps * ticks_per_second;
     world.clear();
     world_transforms(
         scene->mRootNode, Mat4::Identity(),
@@ -311,6 +321,20 @@ ImportedBody import_rigged_body(const std::string& path, double scale, const std
       if (!frame.position.back().allFinite())
         throw InputError(path, "animation '" + out.animation + "'", "finite joint positions",
                          "a non-finite value in frame " + std::to_string(f));
+      // Only the root moves on its own: a joint stays at its bind offset
+      // from its parent, turned with it (the body/joints convention).
+      const int p = out.parents[j];
+      if (p >= 0) {
+        const Eigen::Vector3d fixed = frame.position[p] + frame.rotation[p] * (out.joint_rest[j] - out.joint_rest[p]);
+        const double off = (frame.position.back() - fixed).norm();
+        if (off > kOffsetTolerance) {
+          char mm[32];
+          std::snprintf(mm, sizeof mm, "%.1f", off * 1000);
+          throw InputError(path, "animation '" + out.animation + "'",
+                           "joints that keep their offset from their parent (only the root may move)",
+                           "joint '" + out.joint_names[j] + "' " + mm + " mm off it in frame " + std::to_string(f));
+        }
+      }
     }
     out.frames.push_back(std::move(frame));
   }

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <map>
 
+#include "file_names.h"
 #include "layers/core/error.h"
 #include "layers/data/obj.h"
 
@@ -73,11 +74,7 @@ Collected read_obj_file(const std::string& path, double scale) {
   return c;
 }
 
-bool is_obj(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-  return ext == ".obj";
-}
+bool is_obj(const std::string& path) { return lower_extension(path) == ".obj"; }
 
 Collected read_with_assimp(const std::string& path, double scale) {
   Assimp::Importer importer;

@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "body_checks.h"
+#include "file_names.h"
 #include "layers/core/error.h"
 #include "layers/data/obj.h"
 #include "layers/data/pc2.h"
@@ -17,12 +18,6 @@ namespace layers::import {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string lower_extension(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
 
 geometry::TriMesh read_obj_mesh(const std::string& path, double scale) {
   if (!fs::is_regular_file(path)) throw InputError(path, "", "an OBJ file", "no such file");
@@ -35,6 +30,28 @@ geometry::TriMesh read_obj_mesh(const std::string& path, double scale) {
   std::copy(obj.faces.begin(), obj.faces.end(), m.faces.data());
   if (m.faces.rows() == 0) throw InputError(path, "", "a mesh with triangles", "no triangle in the file");
   return m;
+}
+
+// Name order with digit runs compared as numbers ("f2.obj" before "f10.obj").
+bool natural_less(const std::string& a, const std::string& b) {
+  std::size_t i = 0, j = 0;
+  while (i < a.size() && j < b.size()) {
+    if (std::isdigit(static_cast<unsigned char>(a[i])) && std::isdigit(static_cast<unsigned char>(b[j]))) {
+      std::size_t ei = i, ej = j;
+      while (ei < a.size() && std::isdigit(static_cast<unsigned char>(a[ei]))) ++ei;
+      while (ej < b.size() && std::isdigit(static_cast<unsigned char>(b[ej]))) ++ej;
+      const std::string x = a.substr(i, ei - i), y = b.substr(j, ej - j);
+      const std::string xs = x.substr(std::min(x.find_first_not_of('0'), x.size())),
+                        ys = y.substr(std::min(y.find_first_not_of('0'), y.size()));
+      if (xs.size() != ys.size()) return xs.size() < ys.size();
+      if (xs != ys) return xs < ys;
+      i = ei, j = ej;
+    } else {
+      if (a[i] != b[j]) return a[i] < b[j];
+      ++i, ++j;
+    }
+  }
+  return a.size() - i < b.size() - j;
 }
 
 void check_frame(const geometry::Points& v, const geometry::TriMesh& mesh, const std::string& file,
@@ -69,13 +86,13 @@ ImportedBody import_mesh_sequence(const std::string& path, const std::string& me
     std::vector<std::string> files;
     for (const auto& e : fs::directory_iterator(path))
       if (e.is_regular_file() && lower_extension(e.path().string()) == ".obj") files.push_back(e.path().string());
-    std::sort(files.begin(), files.end());
+    std::sort(files.begin(), files.end(), natural_less);
     if (files.empty()) throw InputError(path, "", "a folder of OBJ frames", "no .obj file");
     out.rest = read_obj_mesh(mesh.empty() ? files.front() : mesh, scale);
     for (const std::string& f : files) {
       const geometry::TriMesh frame = read_obj_mesh(f, scale);
       check_frame(frame.vertices, out.rest, f, "vertices");
-      if (frame.faces != out.rest.faces)
+      if (frame.faces.rows() != out.rest.faces.rows() || frame.faces != out.rest.faces)
         throw InputError(f, "faces", "the faces of " + (mesh.empty() ? files.front() : mesh), "other faces");
       out.vertices.push_back(frame.vertices);
     }
@@ -84,6 +101,9 @@ ImportedBody import_mesh_sequence(const std::string& path, const std::string& me
     if (mesh.empty()) throw InputError(path, "mesh", "an OBJ with the cache's faces and rest pose", "none given");
     out.rest = read_obj_mesh(mesh, scale);
     const data::Pc2Cache cache = data::read_pc2(path);
+    if (cache.header.sample_rate != 1.0f)
+      throw InputError(path, "sample rate", "1 (one sample per frame, at 30 fps)",
+                       std::to_string(cache.header.sample_rate));
     if (cache.header.n_points != out.rest.num_vertices())
       throw InputError(path, "points", std::to_string(out.rest.num_vertices()) + " (the vertices of " + mesh + ")",
                        std::to_string(cache.header.n_points));

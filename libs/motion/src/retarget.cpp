@@ -235,10 +235,13 @@ std::unique_ptr<PoseTrack> retarget(const BvhClip& clip, const body::Body& body,
   }
   if (to_bvh[0] < 0)
     throw InputError(clip.source, "HIERARCHY", "a joint that maps onto the rig root '" + sk.names[0] + "'", "none");
+  // At least half of the joints the two skeletons could share match (a
+  // user's rig may have many more joints than the clip: fingers, twists).
   int mapped = static_cast<int>(std::count_if(to_bvh.begin(), to_bvh.end(), [](int b) { return b >= 0; }));
-  if (mapped < nr / 2)
+  const int shareable = std::min(nr, clip.num_joints());
+  if (mapped < shareable / 2)
     throw InputError(clip.source, "HIERARCHY", "joint names of the CMU skeleton (3dsMax or MotionBuilder style)",
-                     std::to_string(mapped) + " of " + std::to_string(nr) + " rig joints matched");
+                     std::to_string(mapped) + " of " + std::to_string(shareable) + " joints matched");
 
   // Rest alignment per rig bone.
   const BvhWorld rest = bvh_world(clip, -1);

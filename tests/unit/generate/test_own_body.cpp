@@ -9,6 +9,7 @@
 // makes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -44,6 +45,34 @@ GeneratorConfig own_config(const std::string& file, int frames, int transition, 
   c.body.own->file = file;
   c.body.own->garment_pose = pose;
   return c;
+}
+
+// `rig` as a Mixamo-style file names it ("mixamorig:<joint>"), with
+// `extra` more leaf joints under the left hand that carry no skin (the
+// finger joints such a rig has beyond ours), moving with the hand.
+data::SkinnedBody mixamo_style(const data::SkinnedBody& rig, int extra) {
+  data::SkinnedBody out = rig;
+  const std::size_t nj = rig.joint_names.size(), frames = rig.joints.size() / (nj * 12);
+  const auto hand = static_cast<std::size_t>(std::find(rig.joint_names.begin(), rig.joint_names.end(), "LeftHand") -
+                                             rig.joint_names.begin());
+  for (std::string& name : out.joint_names) name = "mixamorig:" + name;
+  out.joints.clear();
+  for (int k = 0; k < extra; ++k) {
+    out.joint_names.push_back("mixamorig:LeftHandExtra" + std::to_string(k));
+    out.joint_parents.push_back(static_cast<std::int32_t>(hand));
+    for (int a = 0; a < 3; ++a) out.rest_joints.push_back(rig.rest_joints[hand * 3 + a] + (a == 2 ? 0.002f * k : 0.0f));
+  }
+  for (std::size_t f = 0; f < frames; ++f) {
+    const float* m = rig.joints.data() + f * nj * 12;
+    out.joints.insert(out.joints.end(), m, m + nj * 12);
+    const float* h = m + hand * 12;
+    for (int k = 0; k < extra; ++k)  // p = p_hand + R_hand (0, 0, 0.002 k)
+      for (int row = 0; row < 3; ++row) {
+        out.joints.insert(out.joints.end(), h + row * 4, h + row * 4 + 3);
+        out.joints.push_back(h[row * 4 + 3] + h[row * 4 + 2] * 0.002f * k);
+      }
+  }
+  return out;
 }
 
 double frame_error(const motion::BodySequence& s, int frame, const std::vector<double>& want) {
@@ -124,6 +153,17 @@ TEST(OwnBody, TemplatesProceduralMotionsAndClipsOnASequenceAreRefused) {
   c.body.own->file = dir.file("frames");
   e = test::error_of<InputError>([&] { check_own_body(c, "c.yaml"); });
   EXPECT_NE(e.find("expected animation (a mesh sequence plays its own frames)"), std::string::npos) << e;
+  // Settings that would be ignored.
+  c.body.motions = {kOwnAnimation};
+  c.body.own->garment_pose = "first_frame";
+  e = test::error_of<InputError>([&] { check_own_body(c, "c.yaml"); });
+  EXPECT_NE(e.find("c.yaml: body.own.garment_pose: expected bind for a mesh sequence"), std::string::npos) << e;
+  c.body.own->garment_pose = "bind";
+  c.body.variation = MotionVariation{};
+  e = test::error_of<InputError>([&] { check_own_body(c, "c.yaml"); });
+  EXPECT_NE(e.find("c.yaml: body.variation: expected nothing with body.own"), std::string::npos) << e;
+  c.body.variation.reset();
+  c.body.motions = {"bvh:cmu/01_01.bvh"};
   // A clip on a rig without the joints retargeting needs.
   c.body.own->file = path;
   SceneSpec spec;
@@ -195,9 +235,10 @@ TEST(OwnBody, TheTposeRigReadBackSimulatesAsTheNativeScene) {
   }
 }
 
-// A BVH clip retargeted onto a rig with our joint names (our body's
-// rig, read back): the clip's frames after the transition, the feet on
-// the ground. (Not our body's frames: a user's motion is not repaired
+// A BVH clip retargeted onto a Mixamo-style rig with our joint names
+// (our body's rig, its joints named "mixamorig:<joint>" and 30 more under
+// the left hand, as a rig with fingers has): the clip's frames after the
+// transition, the feet on the ground. (Not our body's frames: a user's motion is not repaired
 // where the body passes through itself, and a file's rig has no bone
 // tails for its leaves, so the toes and thumbs aim where the rig
 // suggests; docs/own-data.md.)
@@ -206,12 +247,15 @@ TEST(OwnBody, ABvhClipIsRetargetedOntoARigWithOurJointNames) {
   const std::vector<std::string> clip = {"body.motions=[bvh:cmu/131_01_start_walk_stop.bvh]", "frames=20"};
   const TPoseMeshes t = tpose_meshes(cfg::read<GeneratorConfig>(tiny_tree(clip)), 0);
   cfg::Node tree = tiny_tree(clip);
-  cfg::apply_set(tree, "body.own={file: '" + write_rig(dir, "body.glb", t.rig) + "', garment_pose: first_frame}");
+  cfg::apply_set(tree, "body.own={file: '" + write_rig(dir, "body.glb", mixamo_style(t.rig, 30)) +
+                           "', garment_pose: first_frame}");
   const GeneratorConfig own = cfg::read<GeneratorConfig>(tree);
   SceneSpec spec;
   spec.motion = "bvh:cmu/131_01_start_walk_stop.bvh";
   const motion::GeneratedBody g = own_body(own, spec);
   ASSERT_EQ(g.sequence.num_frames, 22);
+  EXPECT_EQ(g.sequence.num_joints, 61);
+  EXPECT_EQ(g.body.skeleton.names[0], "Hips");
   EXPECT_EQ(g.sequence.motion, "bvh:cmu/131_01_start_walk_stop.bvh");
   const std::size_t nv = static_cast<std::size_t>(g.sequence.num_vertices);
   for (int f = 2; f < 22; ++f) {

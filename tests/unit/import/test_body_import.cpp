@@ -2,11 +2,16 @@
 // tests: the tiny rig (tests/support/tiny_rig.h) as a skinned GLB from our
 // own writer (data/skinned_glb.h) read back joint by joint and frame by
 // frame against skinning worked out in the test; mesh sequences as a
-// folder of OBJ frames and as a .pc2 with its OBJ; and each refusal.
+// folder of OBJ frames (in number order) and as a .pc2 with its OBJ; and
+// the refusals: units, animation name, no skin, a missing file, a joint
+// that leaves its parent, twin joint names, a .pc2 sample rate, a frame
+// with other faces or another vertex count.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "error_of.h"
 #include "layers/core/error.h"
@@ -26,6 +31,37 @@ std::string write_bytes(const test::TempDir& dir, const std::string& name, const
   const std::string path = dir.file(name);
   std::ofstream(path, std::ios::binary) << bytes;
   return path;
+}
+
+// A GLB with one more animation channel: `node`'s translation, one VEC3
+// per keyframe of the first sampler's times (a stretchy bone, which our
+// writer never makes).
+std::string with_translation(const std::string& glb, int node, const std::vector<float>& xyz) {
+  std::uint32_t json_length = 0, bin_length = 0;
+  std::memcpy(&json_length, glb.data() + 12, 4);
+  std::memcpy(&bin_length, glb.data() + 20 + json_length, 4);
+  nlohmann::json doc = nlohmann::json::parse(glb.substr(20, json_length));
+  std::string bin = glb.substr(28 + json_length, bin_length);
+  const std::size_t offset = bin.size();
+  bin.append(reinterpret_cast<const char*>(xyz.data()), xyz.size() * sizeof(float));
+  doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", xyz.size() * sizeof(float)}});
+  doc["accessors"].push_back({{"bufferView", doc["bufferViews"].size() - 1},
+                              {"componentType", 5126},
+                              {"count", xyz.size() / 3},
+                              {"type", "VEC3"}});
+  auto& animation = doc["animations"][0];
+  animation["samplers"].push_back({{"input", animation["samplers"][0]["input"]},
+                                   {"output", doc["accessors"].size() - 1},
+                                   {"interpolation", "LINEAR"}});
+  animation["channels"].push_back(
+      {{"sampler", animation["samplers"].size() - 1}, {"target", {{"node", node}, {"path", "translation"}}}});
+  doc["buffers"][0]["byteLength"] = bin.size();
+  std::string text = doc.dump();
+  while (text.size() % 4) text.push_back(' ');
+  const auto u32 = [](std::uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+  return u32(0x46546C67u) + u32(2) + u32(static_cast<std::uint32_t>(28 + text.size() + bin.size())) +
+         u32(static_cast<std::uint32_t>(text.size())) + u32(0x4E4F534Au) + text +
+         u32(static_cast<std::uint32_t>(bin.size())) + u32(0x004E4942u) + bin;
 }
 
 // Linear blend skinning of the imported arrays (the generator's own is
@@ -96,6 +132,23 @@ TEST(BodyImport, ScaleAnimationNameAndUnskinnedFilesAreOneLineEach) {
   EXPECT_NE(e.find("expected a mesh skinned to a skeleton, got no skinned mesh"), std::string::npos) << e;
   e = message_of([&] { import_rigged_body(dir.file("none.glb")); });
   EXPECT_NE(e.find("no such file"), std::string::npos) << e;
+  // A joint other than the root moved off its offset from its parent (a stretchy bone).
+  // Spine's offset from the hips (0, 0.25, 0), 10 mm longer along x in frame 2.
+  const std::string moved_path = write_bytes(
+      dir, "moved.glb",
+      with_translation(data::skinned_glb_bytes(rig.body, 30.0), 1, {0, 0.25f, 0, 0, 0.25f, 0, 0.01f, 0.25f, 0}));
+  e = message_of([&] { import_rigged_body(moved_path); });
+  EXPECT_NE(e.find("expected joints that keep their offset from their parent (only the root may move), got joint "
+                   "'Spine' 10.0 mm off it in frame 2"),
+            std::string::npos)
+      << e;
+  // Two joints of one name once the namespace is gone.
+  test::TinyRig twins(2);
+  twins.body.joint_names = {"a:Hips", "b:Hips", "Head"};
+  const std::string twins_path = write_bytes(dir, "twins.glb", data::skinned_glb_bytes(twins.body, 30.0));
+  e = message_of([&] { import_rigged_body(twins_path); });
+  EXPECT_NE(e.find("skeleton: expected distinct joint names"), std::string::npos) << e;
+  EXPECT_NE(e.find("'a:Hips' and 'b:Hips' both named 'Hips'"), std::string::npos) << e;
 }
 
 // The rig's frames as a mesh sequence: one OBJ per frame, or a .pc2.
@@ -113,7 +166,8 @@ TEST(BodyImport, ObjFramesAndPc2GiveTheVerticesAndTheirRigidMotion) {
   test::TempDir dir("body_import");
   const Sequence s;
   std::filesystem::create_directories(dir.file("frames"));
-  for (int f = 0; f < 4; ++f) data::write_obj(dir.file("frames/f" + std::to_string(f) + ".obj"), s.frame(f));
+  // Named f0, f5, f10, f15: in number order, not character order.
+  for (int f = 0; f < 4; ++f) data::write_obj(dir.file("frames/f" + std::to_string(5 * f) + ".obj"), s.frame(f));
   data::ObjMesh rest;
   rest.positions = s.rig.body.rest;
   rest.faces = s.rig.body.faces;
@@ -145,11 +199,24 @@ TEST(BodyImport, ObjFramesAndPc2GiveTheVerticesAndTheirRigidMotion) {
   EXPECT_NE(e.find("walk.pc2: mesh: expected an OBJ with the cache's faces and rest pose, got none given"),
             std::string::npos)
       << e;
+  // A cache at another sample rate; a frame with other faces; one with another vertex count.
+  data::Pc2Writer half(dir.file("half.pc2"), {30, 0.0f, 2.0f, 1});
+  half.append(s.frame(0).positions.data());
+  half.commit();
+  e = message_of([&] { import_body(dir.file("half.pc2"), dir.file("rest.obj")); });
+  EXPECT_NE(e.find("half.pc2: sample rate: expected 1 (one sample per frame, at 30 fps), got 2"), std::string::npos)
+      << e;
+  data::ObjMesh fewer = s.frame(1);
+  fewer.faces.resize(fewer.faces.size() - 3);
+  data::write_obj(dir.file("frames/f16.obj"), fewer);
+  e = message_of([&] { import_body(dir.file("frames")); });
+  EXPECT_NE(e.find("f16.obj: faces: expected the faces of"), std::string::npos) << e;
+  std::filesystem::remove(dir.file("frames/f16.obj"));
   data::ObjMesh more = s.frame(1);
   more.positions.insert(more.positions.end(), {0.0f, 0.0f, 0.0f});
-  data::write_obj(dir.file("frames/f9.obj"), more);
+  data::write_obj(dir.file("frames/f99.obj"), more);
   e = message_of([&] { import_body(dir.file("frames")); });
-  EXPECT_NE(e.find("f9.obj: vertices: expected 30 vertices (the body mesh's), got 31"), std::string::npos) << e;
+  EXPECT_NE(e.find("f99.obj: vertices: expected 30 vertices (the body mesh's), got 31"), std::string::npos) << e;
 }
 
 }  // namespace

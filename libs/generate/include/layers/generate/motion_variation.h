@@ -72,7 +72,8 @@ std::string vary_motion(const MotionVariation& variation, const std::string& ent
                         int occurrence = 0, std::uint64_t dataset_seed = 0, const std::string& asset_root = "");
 
 // The family of a motion description: its first word ("procedural:walk",
-// "bvh:cmu/131_01_start_walk_stop.bvh", or "animation", an own body's own);
+// "bvh:cmu/131_01_start_walk_stop.bvh", or an own body's "animation" or
+// "animation:<file>#<name>");
 // a clip entry without "bvh:" gets it.
 std::string motion_family(const std::string& motion);
 

@@ -9,8 +9,8 @@
 // its skeleton, blended in from the rest pose over
 // body.transition_frames, posed by our skinning; or a mesh sequence's
 // frames as they are. The user's motion is taken as it is: no arm or
-// thigh room, no repair of self-intersections (they are counted, and
-// the scene's validation measures them as for ours).
+// thigh room, no repair of self-intersections (a rig's are counted; the
+// scene's validation measures the body as ours in either case).
 #pragma once
 
 #include <string>
@@ -22,21 +22,24 @@
 namespace layers::generate {
 
 // Checks what body.own asks against the rest of the config (each failure
-// one InputError naming `file` and the key): the body file exists; every
-// motion is `animation`, or a BVH clip for a rigged body; every outfit is
-// made of garment files (templates are fitted to our body's landmarks).
+// one InputError naming `file` and the key): the body file exists; no
+// setting that would be ignored (garment_pose or animation on a mesh
+// sequence, mesh on a rigged file, body.variation); every motion is
+// `animation`, or a BVH clip for a rigged body; every outfit is made of
+// garment files (templates are fitted to our body's landmarks).
 void check_own_body(const GeneratorConfig& config, const std::string& file);
 
-// Reads the body's files (every check of import_body) and records their
-// content hash in body.own.hash, so that a dataset is not resumed with
-// another body. No-op without body.own.
+// Reads the body's files (every check of import_body) and records the
+// content hash of what was read (mesh, rig, weights, frames) in
+// body.own.hash, so that a dataset is not resumed with another body.
+// No-op without body.own.
 void resolve_own_body(GeneratorConfig& config);
 
 // The scene's body and motion: config.body.transition_frames from the
 // rest pose, then config.frames frames of the motion spec.motion. An
 // animation shorter than config.frames, or a skeleton a BVH clip cannot be
-// retargeted onto (the joints retargeting needs), is an InputError naming
-// the file.
+// retargeted onto (the joints retargeting needs, soles on both feet), is
+// an InputError naming the file.
 motion::GeneratedBody own_body(const GeneratorConfig& config, const SceneSpec& spec);
 
 }  // namespace layers::generate

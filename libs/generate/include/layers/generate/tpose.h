@@ -23,6 +23,7 @@ struct TPoseMeshes {
   // later frames are the scene's motion after the transition (its joints:
   // skin untangling, body.skin_untangle, is not in it). Read back as
   // `body.own` with garment_pose: first_frame, it is this scene's body.
+  // Empty (no joints) for a user's mesh sequence, which has no rig.
   data::SkinnedBody rig;
   std::vector<std::pair<std::string, data::ObjMesh>> garments;  // name, mesh with its UVs
   std::string problem;  // why the scene cannot be simulated ("" when it can; garments may then be missing)

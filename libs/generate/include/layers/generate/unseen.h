@@ -13,8 +13,9 @@
 namespace layers::generate {
 
 // One line per unseen input ("garment file mine/dress.obj", "body
-// mine/character.glb"); empty when everything was in the training data.
-// `training_dataset`: the folder the model was trained on; a dataset
+// mine/character.glb", or our body for a model trained on a user's);
+// empty when everything was in the training data. `training_dataset`:
+// the folder (or a shard file of it) the model was trained on; a dataset
 // without a recorded generator config saw no user file.
 std::vector<std::string> unseen_in_training(const GeneratorConfig& scene, const std::string& training_dataset);
 

@@ -12,9 +12,10 @@
 //   position (the `body/joints` convention of LAYERS-H5). Joint names lose
 //   a namespace prefix ("mixamorig:Hips" -> "Hips").
 // - a mesh sequence: a POINTCACHE2 file with an OBJ giving its faces and
-//   rest pose, or a folder of OBJ files (one per frame, in name order, the
-//   same faces in each; the first is the rest pose unless an OBJ is
-//   given), frames at 30 a second. It has one joint, `Root`, that carries
+//   rest pose (one sample per frame), or a folder of OBJ files (one per
+//   frame, in name order with numbers compared as numbers, the same faces
+//   in each; the first is the rest pose unless an OBJ is given), frames at
+//   30 a second. It has one joint, `Root`, that carries
 //   every vertex: per frame the rigid motion closest to the vertices'
 //   (least squares from the rest pose).
 //
@@ -63,14 +64,17 @@ bool is_mesh_sequence(const std::string& path);
 // the file's first; a file without any gives no frames). Refused: a
 // missing or unreadable file, no skinned mesh, more than one root joint,
 // a vertex with no weight, a joint that scales or shears in a frame (the
-// skinning here is rigid per joint), a body outside kMin/kMaxBodyHeight,
-// an animation name the file does not hold, a non-finite value.
+// skinning here is rigid per joint), a joint other than the root that
+// leaves its fixed offset from its parent, two joints of one name, an
+// animation longer than 3,600 s, a body outside kMin/kMaxBodyHeight, an
+// animation name the file does not hold, a non-finite value.
 ImportedBody import_rigged_body(const std::string& path, double scale = 1.0, const std::string& animation = "");
 
 // A mesh sequence: `path` a .pc2 file (`mesh` an OBJ, required) or a
 // folder of .obj files (`mesh` optional). Refused: a missing file, a frame
 // whose vertex count or faces differ from the mesh's, fewer than one
-// frame, a body outside the height range, a non-finite value.
+// frame, a .pc2 sample rate other than 1, a body outside the height
+// range, a non-finite value.
 ImportedBody import_mesh_sequence(const std::string& path, const std::string& mesh = "", double scale = 1.0);
 
 // Either of the above, by is_mesh_sequence(path).
