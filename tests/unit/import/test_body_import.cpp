@@ -4,8 +4,9 @@
 // frame against skinning worked out in the test; mesh sequences as a
 // folder of OBJ frames (in number order) and as a .pc2 with its OBJ; and
 // the refusals: units, animation name, no skin, a missing file, a joint
-// that leaves its parent, twin joint names, a .pc2 sample rate, a frame
-// with other faces or another vertex count.
+// that leaves its parent or scales, two roots, a vertex without weight
+// (files edited here from our writer's), twin joint names, a .pc2 sample
+// rate, a frame with other faces or another vertex count.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -33,36 +34,45 @@ std::string write_bytes(const test::TempDir& dir, const std::string& name, const
   return path;
 }
 
-// A GLB with one more animation channel: `node`'s translation, one VEC3
-// per keyframe of the first sampler's times (a stretchy bone, which our
-// writer never makes).
-std::string with_translation(const std::string& glb, int node, const std::vector<float>& xyz) {
-  std::uint32_t json_length = 0, bin_length = 0;
-  std::memcpy(&json_length, glb.data() + 12, 4);
-  std::memcpy(&bin_length, glb.data() + 20 + json_length, 4);
-  nlohmann::json doc = nlohmann::json::parse(glb.substr(20, json_length));
-  std::string bin = glb.substr(28 + json_length, bin_length);
-  const std::size_t offset = bin.size();
-  bin.append(reinterpret_cast<const char*>(xyz.data()), xyz.size() * sizeof(float));
-  doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", xyz.size() * sizeof(float)}});
-  doc["accessors"].push_back({{"bufferView", doc["bufferViews"].size() - 1},
-                              {"componentType", 5126},
-                              {"count", xyz.size() / 3},
-                              {"type", "VEC3"}});
-  auto& animation = doc["animations"][0];
-  animation["samplers"].push_back({{"input", animation["samplers"][0]["input"]},
-                                   {"output", doc["accessors"].size() - 1},
-                                   {"interpolation", "LINEAR"}});
-  animation["channels"].push_back(
-      {{"sampler", animation["samplers"].size() - 1}, {"target", {{"node", node}, {"path", "translation"}}}});
-  doc["buffers"][0]["byteLength"] = bin.size();
-  std::string text = doc.dump();
-  while (text.size() % 4) text.push_back(' ');
-  const auto u32 = [](std::uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
-  return u32(0x46546C67u) + u32(2) + u32(static_cast<std::uint32_t>(28 + text.size() + bin.size())) +
-         u32(static_cast<std::uint32_t>(text.size())) + u32(0x4E4F534Au) + text +
-         u32(static_cast<std::uint32_t>(bin.size())) + u32(0x004E4942u) + bin;
-}
+// A GLB's JSON and binary chunk, to edit, and packed again.
+struct Glb {
+  nlohmann::json doc;
+  std::string bin;
+  explicit Glb(const std::string& glb) {
+    std::uint32_t json_length = 0, bin_length = 0;
+    std::memcpy(&json_length, glb.data() + 12, 4);
+    std::memcpy(&bin_length, glb.data() + 20 + json_length, 4);
+    doc = nlohmann::json::parse(glb.substr(20, json_length));
+    bin = glb.substr(28 + json_length, bin_length);
+  }
+  // One more animation channel: `node`'s `path` (translation, scale),
+  // one VEC3 per keyframe of the first sampler's times.
+  Glb& channel(int node, const char* path, const std::vector<float>& xyz) {
+    const std::size_t offset = bin.size();
+    bin.append(reinterpret_cast<const char*>(xyz.data()), xyz.size() * sizeof(float));
+    doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", xyz.size() * sizeof(float)}});
+    doc["accessors"].push_back({{"bufferView", doc["bufferViews"].size() - 1},
+                                {"componentType", 5126},
+                                {"count", xyz.size() / 3},
+                                {"type", "VEC3"}});
+    auto& animation = doc["animations"][0];
+    animation["samplers"].push_back({{"input", animation["samplers"][0]["input"]},
+                                     {"output", doc["accessors"].size() - 1},
+                                     {"interpolation", "LINEAR"}});
+    animation["channels"].push_back(
+        {{"sampler", animation["samplers"].size() - 1}, {"target", {{"node", node}, {"path", path}}}});
+    return *this;
+  }
+  std::string bytes() {
+    doc["buffers"][0]["byteLength"] = bin.size();
+    std::string text = doc.dump();
+    while (text.size() % 4) text.push_back(' ');
+    const auto u32 = [](std::uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+    return u32(0x46546C67u) + u32(2) + u32(static_cast<std::uint32_t>(28 + text.size() + bin.size())) +
+           u32(static_cast<std::uint32_t>(text.size())) + u32(0x4E4F534Au) + text +
+           u32(static_cast<std::uint32_t>(bin.size())) + u32(0x004E4942u) + bin;
+  }
+};
 
 // Linear blend skinning of the imported arrays (the generator's own is
 // body::skin; here the import alone is under test).
@@ -134,9 +144,10 @@ TEST(BodyImport, ScaleAnimationNameAndUnskinnedFilesAreOneLineEach) {
   EXPECT_NE(e.find("no such file"), std::string::npos) << e;
   // A joint other than the root moved off its offset from its parent (a stretchy bone).
   // Spine's offset from the hips (0, 0.25, 0), 10 mm longer along x in frame 2.
-  const std::string moved_path = write_bytes(
-      dir, "moved.glb",
-      with_translation(data::skinned_glb_bytes(rig.body, 30.0), 1, {0, 0.25f, 0, 0, 0.25f, 0, 0.01f, 0.25f, 0}));
+  const std::string moved_path = write_bytes(dir, "moved.glb",
+                                             Glb(data::skinned_glb_bytes(rig.body, 30.0))
+                                                 .channel(1, "translation", {0, 0.25f, 0, 0, 0.25f, 0, 0.01f, 0.25f, 0})
+                                                 .bytes());
   e = message_of([&] { import_rigged_body(moved_path); });
   EXPECT_NE(e.find("expected joints that keep their offset from their parent (only the root may move), got joint "
                    "'Spine' 10.0 mm off it in frame 2"),
@@ -149,6 +160,32 @@ TEST(BodyImport, ScaleAnimationNameAndUnskinnedFilesAreOneLineEach) {
   e = message_of([&] { import_rigged_body(twins_path); });
   EXPECT_NE(e.find("skeleton: expected distinct joint names"), std::string::npos) << e;
   EXPECT_NE(e.find("'a:Hips' and 'b:Hips' both named 'Hips'"), std::string::npos) << e;
+  // A joint that grows (scale 1.5 in frame 2).
+  e = message_of([&] {
+    import_rigged_body(write_bytes(dir, "scaled.glb",
+                                   Glb(data::skinned_glb_bytes(rig.body, 30.0))
+                                       .channel(2, "scale", {1, 1, 1, 1, 1, 1, 1.5f, 1.5f, 1.5f})
+                                       .bytes()));
+  });
+  EXPECT_NE(e.find("expected joints that rotate and move only (rigid skinning), got joint 'Head' scaled or sheared in "
+                   "frame 2"),
+            std::string::npos)
+      << e;
+  // Two roots: the head taken out of the spine's children, into the scene.
+  Glb roots(data::skinned_glb_bytes(rig.body, 30.0));
+  roots.doc["nodes"][1].erase("children");
+  roots.doc["scenes"][0]["nodes"].push_back(2);
+  e = message_of([&] { import_rigged_body(write_bytes(dir, "roots.glb", roots.bytes())); });
+  EXPECT_NE(e.find("skeleton: expected one root joint, got 2 ('mixamorig:Hips', 'mixamorig:Head')"), std::string::npos)
+      << e;
+  // A vertex without weight: vertex 0's WEIGHTS_0 zeroed in the buffer.
+  Glb unweighted(data::skinned_glb_bytes(rig.body, 30.0));
+  const auto& primitive = unweighted.doc["meshes"][0]["primitives"][0];
+  const int view = unweighted.doc["accessors"][primitive["attributes"]["WEIGHTS_0"].get<int>()]["bufferView"];
+  const std::size_t at = unweighted.doc["bufferViews"][view]["byteOffset"];
+  std::memset(&unweighted.bin[at], 0, 4 * sizeof(float));
+  e = message_of([&] { import_rigged_body(write_bytes(dir, "unweighted.glb", unweighted.bytes())); });
+  EXPECT_NE(e.find("expected a bone weight on every vertex, got vertex 0 has none"), std::string::npos) << e;
 }
 
 // The rig's frames as a mesh sequence: one OBJ per frame, or a .pc2.
