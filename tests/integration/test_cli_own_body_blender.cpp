@@ -19,6 +19,7 @@
 
 #include "coarse_scene.h"
 #include "garment_motion.h"
+#include "imported_skinning.h"
 #include "layers/data/dataset.h"
 #include "layers/geometry/nearest.h"
 #include "layers/import/body_import.h"
@@ -29,17 +30,6 @@
 using namespace layers;
 
 namespace {
-
-// Linear blend skinning of an imported body's frame f, vertex v.
-Eigen::Vector3d posed(const import::ImportedBody& b, int f, Eigen::Index v) {
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  const Eigen::Vector3d x = b.rest.vertices.row(v).cast<double>().transpose();
-  for (int k = 0; k < 4; ++k) {
-    const int j = b.skin_index(v, k);
-    sum += b.skin_weight(v, k) * (b.frames[f].rotation[j] * (x - b.joint_rest[j]) + b.frames[f].position[j]);
-  }
-  return sum;
-}
 
 TEST(CliOwnBodyBlender, BlendersRigReadsBackAsOurBodyAndDrivesTheScene) {
   test::TempDir dir("own-body-blender");
@@ -67,7 +57,7 @@ TEST(CliOwnBodyBlender, BlendersRigReadsBackAsOurBodyAndDrivesTheScene) {
       const auto near = index.nearest(b.rest.vertices.row(v));
       rest = std::max<double>(rest, near.distance);
       for (int f = 0; f < ours.num_frames(); ++f)
-        worst = std::max(worst, (posed(b, f, v) - posed(ours, f, near.index)).norm());
+        worst = std::max(worst, (test::skinned_vertex(b, f, v) - test::skinned_vertex(ours, f, near.index)).norm());
     }
     EXPECT_LT(rest, 1e-5) << file << ": the rest pose";
     EXPECT_LT(worst, 1e-5) << file << ": over " << ours.num_frames() << " frames";

@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <map>
 #include <memory>
+#include <mutex>
 
 #include "layers/body/pose_body.h"
 #include "layers/core/checksum.h"
@@ -15,15 +17,12 @@
 #include "layers/import/garment_file.h"
 #include "layers/motion/body_sequence.h"
 #include "layers/motion/motion.h"
+#include "layers/motion/retarget.h"
 
 namespace layers::generate {
 namespace {
 
 namespace fs = std::filesystem;
-
-// The joints BVH retargeting places the legs and feet with (motion/retarget.cpp).
-constexpr const char* kRetargetJoints[] = {"Hips",       "LeftUpLeg", "LeftLeg",   "LeftFoot",    "LeftToeBase",
-                                           "RightUpLeg", "RightLeg",  "RightFoot", "RightToeBase"};
 
 body::Body to_body(const import::ImportedBody& in) {
   body::Body b;
@@ -69,6 +68,22 @@ body::Body to_body(const import::ImportedBody& in) {
   b.t_pose = body::rest_pose(sk);
   b.soles = body::sole_vertices(b);
   return b;
+}
+
+// The body as read for the scenes of one config: every scene of a dataset
+// (threads included) shares one import of its files, keyed by the settings
+// and the content hash resolve_own_body recorded.
+std::shared_ptr<const import::ImportedBody> imported(const OwnBodyConfig& own) {
+  static std::mutex mutex;
+  static std::map<std::string, std::shared_ptr<const import::ImportedBody>> cache;
+  const std::string key =
+      own.file + '\n' + own.mesh + '\n' + std::to_string(own.scale) + '\n' + own.animation + '\n' + own.hash;
+  std::lock_guard<std::mutex> lock(mutex);
+  auto& body = cache[key];
+  if (!body)
+    body =
+        std::make_shared<const import::ImportedBody>(import::import_body(own.file, own.mesh, own.scale, own.animation));
+  return body;
 }
 
 std::string describe_animation(const import::ImportedBody& in) {
@@ -202,7 +217,7 @@ void resolve_own_body(GeneratorConfig& config) {
 
 motion::GeneratedBody own_body(const GeneratorConfig& config, const SceneSpec& spec) {
   const OwnBodyConfig& own = *config.body.own;
-  import::ImportedBody in = import::import_body(own.file, own.mesh, own.scale, own.animation);
+  import::ImportedBody in = *imported(own);  // a copy: first_frame takes its first frame off
   motion::GeneratedBody out{to_body(in), {}};
   const int transition = config.body.transition_frames, frames = config.frames;
   if (in.rigged() && own.garment_pose == "first_frame") {
@@ -228,7 +243,7 @@ motion::GeneratedBody own_body(const GeneratorConfig& config, const SceneSpec& s
     m = motion::with_t_pose_transition(file_animation(out.body, in, frames), out.body, transition);
   } else {
     std::string missing;
-    for (const char* j : kRetargetJoints)
+    for (const char* j : motion::kRetargetLegJoints)
       if (out.body.skeleton.index(j) < 0) missing += (missing.empty() ? "" : ", ") + std::string(j);
     if (!missing.empty())
       throw InputError(own.file, "skeleton", "the joints a BVH clip is retargeted onto (our names, e.g. Mixamo's)",

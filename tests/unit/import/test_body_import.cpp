@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "error_of.h"
+#include "imported_skinning.h"
 #include "layers/core/error.h"
 #include "layers/data/glb.h"
 #include "layers/data/obj.h"
@@ -74,19 +75,6 @@ struct Glb {
   }
 };
 
-// Linear blend skinning of the imported arrays (the generator's own is
-// body::skin; here the import alone is under test).
-Eigen::Vector3d skinned(const ImportedBody& b, int frame, int v) {
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  const Eigen::Vector3d x = b.rest.vertices.row(v).cast<double>().transpose();
-  for (int k = 0; k < 4; ++k) {
-    const int j = b.skin_index(v, k);
-    const BodyFrame& f = b.frames[static_cast<std::size_t>(frame)];
-    sum += b.skin_weight(v, k) * (f.rotation[j] * (x - b.joint_rest[j]) + f.position[j]);
-  }
-  return sum;
-}
-
 TEST(BodyImport, SkinnedGlbReadsBackItsRigAndEveryFrame) {
   test::TempDir dir("body_import");
   const test::TinyRig rig(5);
@@ -113,8 +101,9 @@ TEST(BodyImport, SkinnedGlbReadsBackItsRigAndEveryFrame) {
     }
     const std::vector<double> want = rig.posed(f);
     for (int v = 0; v < 30; ++v)
-      worst =
-          std::max(worst, (skinned(b, f, v) - Eigen::Vector3d(want[v * 3], want[v * 3 + 1], want[v * 3 + 2])).norm());
+      worst = std::max(
+          worst,
+          (test::skinned_vertex(b, f, v) - Eigen::Vector3d(want[v * 3], want[v * 3 + 1], want[v * 3 + 2])).norm());
   }
   EXPECT_LT(worst, 1e-5);
 }

@@ -39,7 +39,9 @@ void resolve_own_body(GeneratorConfig& config);
 // rest pose, then config.frames frames of the motion spec.motion. An
 // animation shorter than config.frames, or a skeleton a BVH clip cannot be
 // retargeted onto (the joints retargeting needs, soles on both feet), is
-// an InputError naming the file.
+// an InputError naming the file. The files are read once per process
+// for all scenes of one config (resolve_own_body reads them afresh, for
+// their hash).
 motion::GeneratedBody own_body(const GeneratorConfig& config, const SceneSpec& spec);
 
 }  // namespace layers::generate

@@ -41,6 +41,11 @@ struct FootContacts {
 };
 FootContacts foot_contacts(const body::Body& body, const std::vector<body::Pose>& poses);
 
+// The rig joints retargeting places the legs and feet with (besides the
+// root): a rig without one of them cannot take a clip.
+inline constexpr const char* kRetargetLegJoints[] = {"LeftUpLeg",  "LeftLeg",  "LeftFoot",  "LeftToeBase",
+                                                     "RightUpLeg", "RightLeg", "RightFoot", "RightToeBase"};
+
 // `clip` should already be at 30 fps (see resample()).
 std::unique_ptr<PoseTrack> retarget(const BvhClip& clip, const body::Body& body, const RetargetOptions& options = {});
 
