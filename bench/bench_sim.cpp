@@ -100,6 +100,12 @@ void BM_GeneratorFrame(benchmark::State& state) {
   state.counters["Lx_pct"] = benchmark::Counter(100 * measures.mean_l_crossing(), benchmark::Counter::kAvgThreads);
   state.counters["Hx_pct"] = benchmark::Counter(100 * measures.mean_h_crossing(), benchmark::Counter::kAvgThreads);
   state.counters["stretch_pct"] = benchmark::Counter(100 * measures.max_stretch(), benchmark::Counter::kAvgThreads);
+  state.counters["cand_builds"] = benchmark::Counter(
+      static_cast<double>(t.candidate_builds) / static_cast<double>(t.frames), benchmark::Counter::kAvgThreads);
+  state.counters["cand_body"] = benchmark::Counter(
+      static_cast<double>(t.candidate_body_builds) / static_cast<double>(t.frames), benchmark::Counter::kAvgThreads);
+  state.counters["cand_pairs"] = benchmark::Counter(
+      static_cast<double>(t.candidate_pairs) / static_cast<double>(t.frames), benchmark::Counter::kAvgThreads);
   state.counters["cap_sweeps"] = benchmark::Counter(static_cast<double>(t.cap_sweeps) / static_cast<double>(t.frames),
                                                     benchmark::Counter::kAvgThreads);
 }

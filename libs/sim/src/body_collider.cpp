@@ -35,11 +35,20 @@ void BodyCollider::reset(const geometry::TriMesh& body) {
     return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | static_cast<std::uint32_t>(std::max(a, b));
   };
   for (Eigen::Index e = 0; e < edges_.rows(); ++e) index.emplace(key(edges_(e, 0), edges_(e, 1)), static_cast<int>(e));
-  face_edges_.resize(topology_.faces.size());
-  for (std::size_t f = 0; f < face_edges_.size(); ++f) {
+  // Each edge's faces (counting sort by edge).
+  edge_face_start_.assign(static_cast<std::size_t>(edges_.rows()) + 1, 0);
+  for (const auto& v : topology_.faces)
+    for (int k = 0; k < 3; ++k) ++edge_face_start_[index.at(key(v[k], v[(k + 1) % 3])) + 1];
+  for (std::size_t e = 0; e + 1 < edge_face_start_.size(); ++e) edge_face_start_[e + 1] += edge_face_start_[e];
+  edge_faces_.resize(static_cast<std::size_t>(edge_face_start_.back()));
+  std::vector<int> fill(edge_face_start_.begin(), edge_face_start_.end() - 1);
+  for (std::size_t f = 0; f < topology_.faces.size(); ++f) {
     const auto& v = topology_.faces[f];
-    for (int k = 0; k < 3; ++k) face_edges_[f][k] = index.at(key(v[k], v[(k + 1) % 3]));
+    for (int k = 0; k < 3; ++k) edge_faces_[fill[index.at(key(v[k], v[(k + 1) % 3]))]++] = static_cast<int>(f);
   }
+  edge_normals_.assign(static_cast<std::size_t>(edges_.rows()), Vec3::Zero());
+  edge_normal_stamp_.assign(static_cast<std::size_t>(edges_.rows()), -1);
+  ++sweep_revision_;
 }
 
 void BodyCollider::set_pose(const geometry::Points& pose) {
@@ -48,9 +57,11 @@ void BodyCollider::set_pose(const geometry::Points& pose) {
   }
   copy_pose(pose, start_, "positions");
   end_ = current_ = previous_ = start_;
+  ++sweep_revision_;
 }
 
 void BodyCollider::begin_frame(const geometry::Points* next) {
+  ++sweep_revision_;
   if (next == nullptr) {
     end_ = start_;
     return;
@@ -62,7 +73,7 @@ void BodyCollider::begin_frame(const geometry::Points* next) {
   copy_pose(*next, end_, "next positions");
 }
 
-void BodyCollider::begin_substep(double s, double cloth_step, double thickness, double edge_thickness) {
+void BodyCollider::begin_substep(double s, double cloth_step, double thickness) {
   std::swap(previous_, current_);
   double motion2 = 0;
   for (std::size_t i = 0; i < start_.size(); ++i) {
@@ -71,23 +82,11 @@ void BodyCollider::begin_substep(double s, double cloth_step, double thickness, 
   }
   radius_ = 1.5 * thickness + topology_.reach() + std::sqrt(motion2) + cloth_step;
   grid_.build(current_, radius_);
-  if (edge_thickness <= 0) return;
-  // Outward direction of each edge: the sum of its faces' area normals.
-  edge_normals_.assign(static_cast<std::size_t>(edges_.rows()), Vec3::Zero());
-  for (std::size_t f = 0; f < face_edges_.size(); ++f) {
-    const auto& v = topology_.faces[f];
-    const Vec3 n = (current_[v[1]] - current_[v[0]]).cross(current_[v[2]] - current_[v[0]]);
-    for (int e : face_edges_[f]) edge_normals_[e] += n;
-  }
-  for (Vec3& n : edge_normals_) {
-    const double len = n.norm();
-    n = len > 0 ? Vec3(n / len) : Vec3::Zero();
-  }
-  edge_contact_.file({&edges_, &previous_, nullptr, &current_, nullptr, nullptr, &edge_normals_}, edge_thickness,
-                     0.5 * topology_.max_edge_length);
+  ++substep_;
 }
 
 void BodyCollider::end_frame() {
+  ++sweep_revision_;
   start_ = end_;
   current_ = previous_ = end_;
 }
@@ -196,11 +195,26 @@ double BodyCollider::collide(Cloth::State& state, Memory& memory, double thickne
   return largest;
 }
 
-double BodyCollider::collide_edges(const Cloth& cloth, Cloth::State& state, double edge_thickness, Vec3s& push) {
-  if (edge_thickness <= 0 || edges_.rows() == 0) return 0.0;
+double BodyCollider::collide_edges(const Cloth& cloth, Cloth::State& state, double edge_thickness, Vec3s& push,
+                                   const std::vector<std::array<int, 2>>& pairs) {
+  if (edge_thickness <= 0 || edges_.rows() == 0 || pairs.empty()) return 0.0;
+  // The outward direction of each listed body edge at this substep's pose:
+  // the sum of its faces' area normals.
+  for (const auto& pair : pairs) {
+    const int e = pair[1];
+    if (edge_normal_stamp_[e] == substep_) continue;
+    edge_normal_stamp_[e] = substep_;
+    Vec3 n = Vec3::Zero();
+    for (int k = edge_face_start_[e]; k < edge_face_start_[e + 1]; ++k) {
+      const auto& v = topology_.faces[edge_faces_[k]];
+      n += (current_[v[1]] - current_[v[0]]).cross(current_[v[2]] - current_[v[0]]);
+    }
+    const double len = n.norm();
+    edge_normals_[e] = len > 0 ? Vec3(n / len) : Vec3::Zero();
+  }
   const EdgeContact::Side body{&edges_, &previous_, nullptr, &current_, nullptr, nullptr, &edge_normals_};
   const EdgeContact::Side garment{&cloth.edges(), &state.x_start, &state.x, nullptr, &state.inv_mass, &push};
-  return edge_contact_.collide(body, garment, edge_thickness);
+  return EdgeContact::collide(body, garment, edge_thickness, pairs);
 }
 
 }  // namespace layers::sim::detail

@@ -24,7 +24,8 @@
 //  - edges (optional): garment edges are kept `edge_thickness` from the
 //    body's edges (EdgeContact, the body side fixed, outward = the mean
 //    normal of an edge's faces), so a ridge of the body (a shoulder, an
-//    elbow) cannot poke between the vertices of a coarser garment.
+//    elbow) cannot poke between the vertices of a coarser garment; the
+//    pairs come from the solver's shared candidate list.
 // Because the body advances only 1/substeps of a frame per substep and
 // contacts are found afresh every substep, fast limbs cannot skip over a
 // vertex unless they move more than the search radius in one substep.
@@ -79,9 +80,11 @@ class BodyCollider {
   void set_pose(const geometry::Points& pose);
   void begin_frame(const geometry::Points* next);
   // Interpolates to fraction s in (0, 1] of the frame and rebuilds the grid;
-  // `cloth_step` bounds how far any cloth vertex can have moved. With
-  // edge_thickness > 0 it also files the body's edges for collide_edges().
-  void begin_substep(double s, double cloth_step, double thickness, double edge_thickness = 0);
+  // `cloth_step` bounds how far any cloth vertex can have moved.
+  void begin_substep(double s, double cloth_step, double thickness);
+  // Names the frame's sweep (start and end poses): changes whenever either
+  // does (the shared candidate list makes its body pairs once per sweep).
+  long sweep_revision() const { return sweep_revision_; }
   void end_frame();
 
   // At the start of a frame: supports the vertices that ended the last
@@ -104,9 +107,11 @@ class BodyCollider {
   // The projection pass (see above); h is the substep. Returns the largest
   // push along the normal it gave a vertex.
   double collide(Cloth::State& state, Memory& memory, double thickness, double mu, double h) const;
-  // The edge pass (see above; after begin_substep with the same
-  // edge_thickness): the pushes are added to `push`. Returns the largest.
-  double collide_edges(const Cloth& cloth, Cloth::State& state, double edge_thickness, Vec3s& push);
+  // The edge pass (see above) over `pairs` (a garment edge, a body edge;
+  // from the shared candidate list): the pushes are added to `push`.
+  // Returns the largest.
+  double collide_edges(const Cloth& cloth, Cloth::State& state, double edge_thickness, Vec3s& push,
+                       const std::vector<std::array<int, 2>>& pairs);
 
  private:
   bool nearest_point(const Vec3& p, int& nearest, SurfaceHit& hit) const;
@@ -118,9 +123,11 @@ class BodyCollider {
   double radius_ = 0;         // this substep's search radius (= grid cell)
   SpatialHash grid_;
   geometry::Edges edges_;                       // unique edges
-  std::vector<std::array<int, 3>> face_edges_;  // per face: its edges (corner k to k+1)
-  Vec3s edge_normals_;                          // this substep's outward direction per edge
-  EdgeContact edge_contact_;
+  std::vector<int> edge_face_start_, edge_faces_;  // per edge: its faces
+  Vec3s edge_normals_;                             // outward direction per edge, at this substep's pose ...
+  std::vector<long> edge_normal_stamp_;            // ... for the edges whose stamp is substep_
+  long substep_ = 0;                               // counts begin_substep()
+  long sweep_revision_ = 0;
 };
 
 }  // namespace layers::sim::detail

@@ -24,8 +24,7 @@ namespace layers::sim::detail {
 // edge (the body), an outer edge found on its inside is pushed outwards
 // instead (it has crossed: put it back). Mass-weighted by the points'
 // barycentric weights; no friction; vertices with zero inverse mass stay.
-class EdgeContact {
- public:
+struct EdgeContact {
   // One surface's edges and positions for a substep.
   struct Side {
     const geometry::Edges* edges = nullptr;
@@ -37,39 +36,11 @@ class EdgeContact {
     const Vec3s* outward = nullptr;                 // per edge, unit (optional; inner side only)
     const Vec3s& now() const { return x != nullptr ? *x : *fixed; }
   };
-  // Files the inner side's edges (positions now, boxes grown by thickness)
-  // in a grid of cells of size `cell`; then collide() meets them.
-  void file(const Side& inner, double thickness, double cell);
-  // Pushes apart every pair of an outer edge and a filed inner edge closer
-  // than thickness. Returns the largest move it gave an outer vertex.
-  double collide(const Side& inner, const Side& outer, double thickness);
-
-  // Inner edges filed under the grid cells their boxes overlap (a cell may
-  // share its slot with others: callers test the boxes).
-  struct Cells {
-    double inv_cell = 1;
-    std::uint64_t mask = 0;
-    std::vector<int> start, fill, entries;
-    void build(const geometry::Edges& edges, const Vec3s& x, double grow, double cell);
-    template <class F>
-    void for_cells(const Vec3& lo, const Vec3& hi, F&& f) const {
-      const auto c = [&](double v) { return cell_coord(v, inv_cell); };
-      for (std::int64_t ix = c(lo.x()); ix <= c(hi.x()); ++ix)
-        for (std::int64_t iy = c(lo.y()); iy <= c(hi.y()); ++iy)
-          for (std::int64_t iz = c(lo.z()); iz <= c(hi.z()); ++iz) f(cell_slot(ix, iy, iz, mask));
-    }
-    template <class F>
-    void visit(const Vec3& lo, const Vec3& hi, F&& f) const {
-      if (entries.empty() || !lo.allFinite() || !hi.allFinite()) return;
-      for_cells(lo, hi, [&](std::uint32_t s) {
-        for (int k = start[s]; k < start[s + 1]; ++k) f(entries[k]);
-      });
-    }
-  };
-
- private:
-  Cells cells_;
-  std::vector<int> seen_;  // per inner edge: the outer edge that last met it
+  // Pushes apart every listed pair (an outer edge, an inner edge; from the
+  // shared candidate list, contact_candidates.h) closer than thickness, in
+  // the list's order. Returns the largest move it gave an outer vertex.
+  static double collide(const Side& inner, const Side& outer, double thickness,
+                        const std::vector<std::array<int, 2>>& pairs);
 };
 
 // Two-way contact between an inner and an outer garment.
@@ -83,7 +54,7 @@ class EdgeContact {
 //    (without the collision pass, a vertex found less than a thickness on
 //    the wrong side is taken back to the preferred side); an open boundary (a hem, a cuff) is a thin rod to keep
 //    `thickness` from. Layers that start crossed are not untangled: the warm-up must begin from separated garments.
-//    Then edge-edge proximity (EdgeContact) at `edge_thickness` (0: off).
+//    Then edge-edge proximity (EdgeContact, collide_edges()).
 //  - support: an outer vertex touching an inner garment at the start of a
 //    frame is kept, in the outer garment's elastic solve, outside the plane
 //    of the inner face it touches (a one-sided attachment like the body
@@ -117,8 +88,14 @@ class LayerContact {
   // Normal pushes are added to `inner_push` and `outer_push`.
   void collide(int inner_index, const Cloth& inner, Cloth::State& inner_state, Memory& inner_memory, int outer_index,
                const Cloth& outer, Cloth::State& outer_state, Memory& outer_memory,
-               const std::vector<std::uint8_t>& backed, double thickness, double edge_thickness, double mu,
-               Vec3s& inner_push, Vec3s& outer_push);
+               const std::vector<std::uint8_t>& backed, double thickness, double mu, Vec3s& inner_push,
+               Vec3s& outer_push);
+  // Then the pair's edge-edge proximity at `edge_thickness` over `pairs`
+  // (an outer edge, an inner edge), the inner vertices held as collide()
+  // held them.
+  void collide_edges(const Cloth& inner, Cloth::State& inner_state, const Cloth& outer, Cloth::State& outer_state,
+                     double edge_thickness, const std::vector<std::array<int, 2>>& pairs, Vec3s& inner_push,
+                     Vec3s& outer_push);
 
   // After the body has had its say: the outer garment's vertices alone are
   // pushed back outside the inner one (the inner garment does not move), so
@@ -142,7 +119,6 @@ class LayerContact {
 
  private:
   SpatialHash grid_;
-  EdgeContact edges_;
   bool guarded_ = false;
   std::vector<double> inner_inv_mass_;
   Vec3s no_push_;

@@ -22,84 +22,16 @@ Box swept_box(const Vec3s& x0, const Vec3s& x1, const int* v, int n, double grow
   return b;
 }
 
-bool shares_vertex(const int* a, int na, const int* b, int nb) {
-  for (int i = 0; i < na; ++i)
-    for (int j = 0; j < nb; ++j)
-      if (a[i] == b[j]) return true;
-  return false;
-}
-
 }  // namespace
 
-void CollisionPass::layout(const std::vector<Cloth>& cloths, const SweptBody& body) {
-  std::vector<long> revisions;
-  for (const Cloth& c : cloths) revisions.push_back(c.revision());
-  const int nb = body.start != nullptr ? static_cast<int>(body.start->size()) : 0;
-  if (revisions == revisions_ && body.faces == body_faces_ && body.edges == body_edges_ && nb == body_vertices_) return;
-  revisions_ = revisions;
-  body_faces_ = body.faces;
-  body_edges_ = body.edges;
-  body_vertices_ = nb;
-  offset_.clear();
-  edge_offset_.clear();
-  face_offset_.clear();
-  owner_.clear();
-  self_.clear();
-  edges_.clear();
-  faces_.clear();
-  double length = 0;
-  long count = 0;
-  for (std::size_t c = 0; c < cloths.size(); ++c) {
-    const Cloth& cloth = cloths[c];
-    const int off = static_cast<int>(owner_.size());
-    offset_.push_back(off);
-    edge_offset_.push_back(static_cast<int>(edges_.size()));
-    face_offset_.push_back(static_cast<int>(faces_.size()));
-    owner_.insert(owner_.end(), static_cast<std::size_t>(cloth.num_vertices()), static_cast<int>(c));
-    self_.push_back(cloth.self_contact() ? 1 : 0);
-    const geometry::Edges& e = cloth.edges();
-    for (Eigen::Index k = 0; k < e.rows(); ++k) edges_.push_back({off + e(k, 0), off + e(k, 1)});
-    for (const auto& f : cloth.topology().faces) faces_.push_back({off + f[0], off + f[1], off + f[2]});
-    length += cloth.rest_lengths().sum();
-    count += cloth.rest_lengths().size();
-  }
-  cloth_vertices_ = static_cast<int>(owner_.size());
-  cloth_edges_ = static_cast<int>(edges_.size());
-  cloth_faces_ = static_cast<int>(faces_.size());
-  offset_.push_back(cloth_vertices_);
-  edge_offset_.push_back(cloth_edges_);
-  face_offset_.push_back(cloth_faces_);
-  vertex_grids_.resize(cloths.size());
-  edge_grids_.resize(cloths.size());
-  face_grids_.resize(cloths.size());
-  owner_.insert(owner_.end(), static_cast<std::size_t>(nb), -1);
-  if (nb > 0 && body.faces != nullptr && body.edges != nullptr) {
-    const int off = cloth_vertices_;
-    for (Eigen::Index k = 0; k < body.edges->rows(); ++k)
-      edges_.push_back({off + (*body.edges)(k, 0), off + (*body.edges)(k, 1)});
-    for (const auto& f : *body.faces) faces_.push_back({off + f[0], off + f[1], off + f[2]});
-  }
-  // Cells about one mean edge long: a feature's swept box overlaps a few.
-  cell_ = count > 0 ? std::max(length / count, 1e-4) : 0.01;
-  // The body's grids: cells two mean body edges long (a cloth feature's
-  // query then meets few body features per cell).
-  body_cell_ = cell_;
-  if (nb > 0 && body.edges != nullptr && body.edges->rows() > 0) {
-    double sum = 0;
-    for (Eigen::Index k = 0; k < body.edges->rows(); ++k)
-      sum += ((*body.start)[(*body.edges)(k, 0)] - (*body.start)[(*body.edges)(k, 1)]).norm();
-    body_cell_ = std::max(std::min(cell_, 2 * sum / static_cast<double>(body.edges->rows())), 1e-4);
-  }
-}
-
 bool CollisionPass::starts_inside(const std::array<int, 4>& v, bool edge_edge) const {
-  const auto body = [&](int i) { return owner_[i] < 0; };
+  const auto body = [&](int i) { return layout_->owner[i] < 0; };
   if (edge_edge) {
     // Cloth edge first, body edge second (see detect()).
     double s = 0, t = 0;
     segment_segment_distance2(x0_[v[0]], x0_[v[1]], x0_[v[2]], x0_[v[3]], &s, &t);
     const Vec3 d = (1 - s) * x0_[v[0]] + s * x0_[v[1]] - ((1 - t) * x0_[v[2]] + t * x0_[v[3]]);
-    const Vec3 out = body_normals_[v[2] - cloth_vertices_] + body_normals_[v[3] - cloth_vertices_];
+    const Vec3 out = body_normals_[v[2] - layout_->cloth_vertices] + body_normals_[v[3] - layout_->cloth_vertices];
     return d.dot(out) < 0;
   }
   if (body(v[1])) {
@@ -115,7 +47,7 @@ bool CollisionPass::starts_inside(const std::array<int, 4>& v, bool edge_edge) c
     Vec3 n = (x0_[v[2]] - x0_[v[1]]).cross(x0_[v[3]] - x0_[v[1]]);
     if (b[0] <= kRim || b[1] <= kRim || b[2] <= kRim) {
       n = Vec3::Zero();
-      for (int k = 0; k < 3; ++k) n += b[k] * body_normals_[v[1 + k] - cloth_vertices_];
+      for (int k = 0; k < 3; ++k) n += b[k] * body_normals_[v[1 + k] - layout_->cloth_vertices];
     }
     return (x0_[v[0]] - c).dot(n) < 0;
   }
@@ -123,7 +55,7 @@ bool CollisionPass::starts_inside(const std::array<int, 4>& v, bool edge_edge) c
   std::array<double, 3> b;
   point_triangle_distance2(x0_[v[0]], x0_[v[1]], x0_[v[2]], x0_[v[3]], &b);
   const Vec3 c = b[0] * x0_[v[1]] + b[1] * x0_[v[2]] + b[2] * x0_[v[3]];
-  return (c - x0_[v[0]]).dot(body_normals_[v[0] - cloth_vertices_]) < 0;
+  return (c - x0_[v[0]]).dot(body_normals_[v[0] - layout_->cloth_vertices]) < 0;
 }
 
 bool CollisionPass::test(const std::array<int, 4>& v, bool edge_edge, double gap, std::vector<Hit>& hits) const {
@@ -135,157 +67,71 @@ bool CollisionPass::test(const std::array<int, 4>& v, bool edge_edge, double gap
   }
   double toi = 0;
   if (!sweep_hits(sweep, gap, toi)) return false;
-  if ((owner_[v[0]] < 0 || owner_[v[3]] < 0) && starts_inside(v, edge_edge)) return false;
+  if ((layout_->owner[v[0]] < 0 || layout_->owner[v[3]] < 0) && starts_inside(v, edge_edge)) return false;
   hits.push_back({v, edge_edge, toi});
   return true;
 }
 
 void CollisionPass::detect(double gap, std::vector<Hit>& hits, bool incremental) {
+  const ContactLayout& L = *layout_;
   std::vector<Hit> kept;
   if (incremental) {
     for (const Hit& h : hits)
       if (!touched(h.v.data(), 4)) kept.push_back(h);
   }
   hits.swap(kept);
+  // The candidates hold every pair that can come within the gap while the
+  // cloth stays in its bounds: made again only when it left them.
+  candidates_->ensure(
+      L, [&](int g) -> const Vec3& { return x0_[g]; }, [&](int g) -> const Vec3& { return x1_[g]; }, sweep_);
   const double grow = 0.5 * gap;
-  vertex_boxes_.resize(static_cast<std::size_t>(cloth_vertices_));
-  edge_boxes_.resize(static_cast<std::size_t>(cloth_edges_));
-  face_boxes_.resize(static_cast<std::size_t>(cloth_faces_));
-  for (int v = 0; v < cloth_vertices_; ++v) vertex_boxes_[v] = swept_box(x0_, x1_, &v, 1, grow);
-  for (int e = 0; e < cloth_edges_; ++e) edge_boxes_[e] = swept_box(x0_, x1_, edges_[e].data(), 2, grow);
-  for (int f = 0; f < cloth_faces_; ++f) face_boxes_[f] = swept_box(x0_, x1_, faces_[f].data(), 3, grow);
-  // One grid per cloth: a cloth without self-contact never meets its own
-  // features.
-  const int nc = static_cast<int>(self_.size());
-  for (int c = 0; c < nc; ++c) {
-    vertex_grids_[c].build(vertex_boxes_, cell_, offset_[c], offset_[c + 1] - offset_[c]);
-    edge_grids_[c].build(edge_boxes_, cell_, edge_offset_[c], edge_offset_[c + 1] - edge_offset_[c]);
-    face_grids_[c].build(face_boxes_, cell_, face_offset_[c], face_offset_[c + 1] - face_offset_[c]);
-  }
-  // The cloths a feature of cloth c can meet.
-  const auto partners = [&](int c, auto&& f) {
-    for (int d = 0; d < nc; ++d)
-      if (d != c || self_[c]) f(d);
-  };
-  // Which features to query, and which pairs to test: everything, or (when
-  // incremental) the features with a moved vertex, each pair once.
+  vertex_boxes_.resize(static_cast<std::size_t>(L.cloth_vertices));
+  edge_boxes_.resize(static_cast<std::size_t>(L.cloth_edges));
+  face_boxes_.resize(static_cast<std::size_t>(L.cloth_faces));
+  for (int v = 0; v < L.cloth_vertices; ++v) vertex_boxes_[v] = swept_box(x0_, x1_, &v, 1, grow);
+  for (int e = 0; e < L.cloth_edges; ++e) edge_boxes_[e] = swept_box(x0_, x1_, L.edges[e].data(), 2, grow);
+  for (int f = 0; f < L.cloth_faces; ++f) face_boxes_[f] = swept_box(x0_, x1_, L.faces[f].data(), 3, grow);
+  // Which pairs to test: everything, or (when incremental) those with a
+  // feature that has a moved vertex.
   const auto moved = [&](const int* v, int n) { return !incremental || touched(v, n); };
-
-  // The body's grids cover the region the cloths sweep (grown by a
-  // margin); a moved feature outside it has the body filed again.
-  const bool body = static_cast<int>(x0_.size()) > cloth_vertices_;
-  if (body) {
-    Box region{Vec3::Constant(1e300), Vec3::Constant(-1e300)};
-    for (const Box& b : vertex_boxes_) {
-      region.lo = region.lo.cwiseMin(b.lo);
-      region.hi = region.hi.cwiseMax(b.hi);
-    }
-    const bool inside =
-        (region.lo.array() >= body_region_.lo.array()).all() && (region.hi.array() <= body_region_.hi.array()).all();
-    if (!inside || body_.frame != body_frame_ || body_.frame < 0) {
-      region.lo.array() -= 2 * cell_;
-      region.hi.array() += 2 * cell_;
-      file_body(gap, region, body_);
-    }
+  // A cloth feature's sweep against a body feature's over the frame.
+  const auto meets_body = [&](const Box& cloth, const Box& body) {
+    return (cloth.lo.array() <= body.hi.array() + grow).all() && (body.lo.array() - grow <= cloth.hi.array()).all();
+  };
+  const int off = L.cloth_vertices;
+  for (const auto& [v, f] : candidates_->cloth_vertex_face()) {
+    const auto& t = L.faces[f];
+    if (!moved(&v, 1) && !moved(t.data(), 3)) continue;
+    if (vertex_boxes_[v].overlaps(face_boxes_[f])) test({v, t[0], t[1], t[2]}, false, gap, hits);
   }
-  const int off = cloth_vertices_;
-
-  // Cloth vertices against cloth faces.
-  for (int v = 0; v < cloth_vertices_; ++v) {
-    if (!moved(&v, 1)) continue;
-    partners(owner_[v], [&](int d) {
-      face_grids_[d].visit(vertex_boxes_[v], [&](int f) {
-        const auto& t = faces_[f];
-        if (t[0] == v || t[1] == v || t[2] == v) return;
-        test({v, t[0], t[1], t[2]}, false, gap, hits);
-      });
-    });
-    if (!body) continue;
-    body_face_grid_.visit(vertex_boxes_[v], [&](int f) {
-      const auto& t = faces_[cloth_faces_ + f];
-      test({v, t[0], t[1], t[2]}, false, gap, hits);
-    });
+  for (const auto& [v, i] : candidates_->body_vertex_face()) {
+    if (!moved(&v, 1) || !meets_body(vertex_boxes_[v], candidates_->body_face_boxes()[i])) continue;
+    const auto& t = L.faces[L.cloth_faces + i];
+    test({v, t[0], t[1], t[2]}, false, gap, hits);
   }
-  for (int f = 0; f < cloth_faces_; ++f) {
-    const auto& t = faces_[f];
-    if (!moved(t.data(), 3)) continue;
-    // Moved faces against the cloth vertices that did not move ...
-    if (incremental) {
-      partners(owner_[t[0]], [&](int d) {
-        vertex_grids_[d].visit(face_boxes_[f], [&](int v) {
-          if (dirty_[v] || t[0] == v || t[1] == v || t[2] == v) return;
-          test({v, t[0], t[1], t[2]}, false, gap, hits);
-        });
-      });
-    }
-    // ... and against the body's vertices.
-    if (body)
-      body_vertex_grid_.visit(face_boxes_[f], [&](int i) { test({off + i, t[0], t[1], t[2]}, false, gap, hits); });
+  for (const auto& [f, i] : candidates_->body_face_vertex()) {
+    const auto& t = L.faces[f];
+    if (!moved(t.data(), 3) || !meets_body(face_boxes_[f], candidates_->body_vertex_boxes()[i])) continue;
+    test({off + i, t[0], t[1], t[2]}, false, gap, hits);
   }
-  // Cloth edges against cloth edges (each pair once).
-  for (int e = 0; e < cloth_edges_; ++e) {
-    const auto& a = edges_[e];
-    if (!moved(a.data(), 2)) continue;
-    partners(owner_[a[0]], [&](int d) {
-      edge_grids_[d].visit(edge_boxes_[e], [&](int o) {
-        const auto& b = edges_[o];
-        if (o <= e && moved(b.data(), 2)) return;
-        if (shares_vertex(a.data(), 2, b.data(), 2)) return;
-        test({a[0], a[1], b[0], b[1]}, true, gap, hits);
-      });
-    });
-    if (!body) continue;
-    body_edge_grid_.visit(edge_boxes_[e], [&](int i) {
-      const auto& c = edges_[cloth_edges_ + i];
-      test({a[0], a[1], c[0], c[1]}, true, gap, hits);
-    });
+  for (const auto& [e, o] : candidates_->cloth_edge_edge()) {
+    const auto& a = L.edges[e];
+    const auto& b = L.edges[o];
+    if (!moved(a.data(), 2) && !moved(b.data(), 2)) continue;
+    if (edge_boxes_[e].overlaps(edge_boxes_[o])) test({a[0], a[1], b[0], b[1]}, true, gap, hits);
   }
-}
-
-void CollisionPass::file_body(double gap, const Box& region, const SweptBody& body) {
-  // The body's features that sweep through `region` during the frame (or,
-  // without a frame sweep, the substep), in their own grids.
-  const double grow = 0.5 * gap;
-  const bool frame = body.frame_start != nullptr && body.frame_end != nullptr;
-  Vec3s& from = frame_from_;
-  Vec3s& to = frame_to_;
-  from.assign(x0_.size(), Vec3::Zero());
-  to.assign(x0_.size(), Vec3::Zero());
-  for (int i = 0; i < body_vertices_; ++i) {
-    from[cloth_vertices_ + i] = frame ? (*body.frame_start)[i] : x0_[cloth_vertices_ + i];
-    to[cloth_vertices_ + i] = frame ? (*body.frame_end)[i] : x1_[cloth_vertices_ + i];
+  for (const auto& [e, i] : candidates_->body_edge_edge()) {
+    const auto& a = L.edges[e];
+    if (!moved(a.data(), 2) || !meets_body(edge_boxes_[e], candidates_->body_edge_boxes()[i])) continue;
+    const auto& c = L.edges[L.cloth_edges + i];
+    test({a[0], a[1], c[0], c[1]}, true, gap, hits);
   }
-  const Box none{Vec3::Constant(std::nan("")), Vec3::Constant(std::nan(""))};
-  const int nv = static_cast<int>(x0_.size()) - cloth_vertices_;
-  const int ne = static_cast<int>(edges_.size()) - cloth_edges_;
-  const int nf = static_cast<int>(faces_.size()) - cloth_faces_;
-  body_vertex_boxes_.assign(static_cast<std::size_t>(nv), none);
-  body_edge_boxes_.assign(static_cast<std::size_t>(ne), none);
-  body_face_boxes_.assign(static_cast<std::size_t>(nf), none);
-  for (int i = 0; i < nv; ++i) {
-    const int v = cloth_vertices_ + i;
-    const Box b = swept_box(from, to, &v, 1, grow);
-    if (b.overlaps(region)) body_vertex_boxes_[i] = b;
-  }
-  for (int i = 0; i < ne; ++i) {
-    const Box b = swept_box(from, to, edges_[cloth_edges_ + i].data(), 2, grow);
-    if (b.overlaps(region)) body_edge_boxes_[i] = b;
-  }
-  for (int i = 0; i < nf; ++i) {
-    const Box b = swept_box(from, to, faces_[cloth_faces_ + i].data(), 3, grow);
-    if (b.overlaps(region)) body_face_boxes_[i] = b;
-  }
-  body_vertex_grid_.build(body_vertex_boxes_, body_cell_);
-  body_edge_grid_.build(body_edge_boxes_, body_cell_);
-  body_face_grid_.build(body_face_boxes_, body_cell_);
-  body_region_ = region;
-  body_frame_ = body.frame;
 }
 
 Vec3 CollisionPass::body_normal(const Hit& h) const {
   Vec3 n = Vec3::Zero();
   for (int v : h.v)
-    if (owner_[v] < 0) n += body_normals_[v - cloth_vertices_];
+    if (layout_->owner[v] < 0) n += body_normals_[v - layout_->cloth_vertices];
   const double len = n.norm();
   return len > 0 ? Vec3(n / len) : n;
 }
@@ -294,14 +140,14 @@ void CollisionPass::mark_pinched(const std::vector<Hit>& hits) {
   for (const Hit& h : hits) {
     // Only a cloth vertex against a body face: an edge or a face of the
     // cloth spans too much to say the body presses it from both sides.
-    if (h.edge_edge || owner_[h.v[0]] < 0 || owner_[h.v[1]] >= 0) continue;
+    if (h.edge_edge || layout_->owner[h.v[0]] < 0 || layout_->owner[h.v[1]] >= 0) continue;
     const Vec3 n = body_normal(h);
     if (n.squaredNorm() == 0) continue;
     int from = -1;
     for (int v : h.v)
-      if (owner_[v] < 0) from = v - cloth_vertices_;
+      if (layout_->owner[v] < 0) from = v - layout_->cloth_vertices;
     for (int v : h.v) {
-      if (owner_[v] < 0) continue;
+      if (layout_->owner[v] < 0) continue;
       if (pinch_dir_[v].squaredNorm() == 0) {
         pinch_dir_[v] = n;
         pinch_from_[v] = from;
@@ -317,9 +163,9 @@ bool CollisionPass::correct(const Hit& hit, double gap) {
   // A body pair with a cloth vertex the body presses from two opposite
   // sides: the body yields there (pushing it out of one side pushes it
   // into the other, and stretches the cloth round it).
-  if (owner_[hit.v[0]] < 0 || owner_[hit.v[3]] < 0) {
+  if (layout_->owner[hit.v[0]] < 0 || layout_->owner[hit.v[3]] < 0) {
     for (int v : hit.v)
-      if (owner_[v] >= 0 && pinched_[v]) return true;
+      if (layout_->owner[v] >= 0 && pinched_[v]) return true;
   }
   // The pair where CCD stopped, and weights w with sum_k w_k x_k = the
   // vector between its closest points (first feature minus second).
@@ -381,9 +227,18 @@ CollisionPassStats CollisionPass::run(const std::vector<Cloth>& cloths, const st
                                       std::vector<std::vector<std::uint8_t>>& reverted,
                                       const std::vector<std::vector<std::uint8_t>>* moved) {
   if (moved != nullptr) return resume(cloths, states, gap, rounds, pushes, reverted, *moved);
-  layout(cloths, body);
+  layout_->update(cloths, body.faces, body.edges, body.start);
+  ContactCandidates::Reach reach = candidates_->reach();
+  reach.gap = gap;
+  if (candidates_ == &own_candidates_) reach.margin = kDefaultMargin;
+  candidates_->set_reach(reach);
   body_ = body;
-  const std::size_t total = owner_.size();
+  // The body's sweep over the frame (or this substep alone, made again at
+  // every detection).
+  const bool frame = body.frame_start != nullptr && body.frame_end != nullptr;
+  sweep_ = {frame ? body.frame_start : body.start, frame ? body.frame_end : body.end, frame ? body.frame : -1};
+  if (body.start == nullptr) sweep_ = {};
+  const std::size_t total = layout_->owner.size();
   x0_.resize(total);
   x1_.resize(total);
   inv_mass_.resize(total);
@@ -395,22 +250,22 @@ CollisionPassStats CollisionPass::run(const std::vector<Cloth>& cloths, const st
   for (std::size_t c = 0; c < states.size(); ++c) {
     const Cloth::State& s = *states[c];
     for (std::size_t i = 0; i < s.x.size(); ++i) {
-      x0_[offset_[c] + i] = s.x_start[i];
-      x1_[offset_[c] + i] = s.x[i];
-      inv_mass_[offset_[c] + i] = s.inv_mass[i];
+      x0_[layout_->offset[c] + i] = s.x_start[i];
+      x1_[layout_->offset[c] + i] = s.x[i];
+      inv_mass_[layout_->offset[c] + i] = s.inv_mass[i];
     }
   }
-  for (int i = 0; i < body_vertices_; ++i) {
-    x0_[cloth_vertices_ + i] = (*body.start)[i];
-    x1_[cloth_vertices_ + i] = (*body.end)[i];
-    inv_mass_[cloth_vertices_ + i] = 0.0;
+  for (int i = 0; i < layout_->body_vertices; ++i) {
+    x0_[layout_->cloth_vertices + i] = (*body.start)[i];
+    x1_[layout_->cloth_vertices + i] = (*body.end)[i];
+    inv_mass_[layout_->cloth_vertices + i] = 0.0;
   }
   // The body's vertex normals at the start (for starts_inside()).
-  body_normals_.assign(static_cast<std::size_t>(std::max(body_vertices_, 0)), Vec3::Zero());
-  for (int f = cloth_faces_; f < static_cast<int>(faces_.size()); ++f) {
-    const auto& t = faces_[f];
+  body_normals_.assign(static_cast<std::size_t>(std::max(layout_->body_vertices, 0)), Vec3::Zero());
+  for (int f = layout_->cloth_faces; f < static_cast<int>(layout_->faces.size()); ++f) {
+    const auto& t = layout_->faces[f];
     const Vec3 n = (x0_[t[1]] - x0_[t[0]]).cross(x0_[t[2]] - x0_[t[0]]);
-    for (int k = 0; k < 3; ++k) body_normals_[t[k] - cloth_vertices_] += n;
+    for (int k = 0; k < 3; ++k) body_normals_[t[k] - layout_->cloth_vertices] += n;
   }
   hits_.clear();
   detect(gap, hits_, false);
@@ -426,7 +281,7 @@ CollisionPassStats CollisionPass::resume(const std::vector<Cloth>& cloths, const
     const Cloth::State& s = *states[c];
     for (std::size_t i = 0; i < s.x.size(); ++i) {
       if (!moved[c][i]) continue;
-      const int g = offset_[c] + static_cast<int>(i);
+      const int g = layout_->offset[c] + static_cast<int>(i);
       x1_[g] = s.x[i];
       dirty_[g] = 1;
       if (back_[g] && x1_[g] != x0_[g]) back_[g] = 0;
@@ -448,7 +303,7 @@ void CollisionPass::move_zones(std::vector<int>& parent, Find&& find, CollisionP
     bool pinned = false;
   };
   std::vector<int> members;
-  for (int v = 0; v < cloth_vertices_; ++v)
+  for (int v = 0; v < layout_->cloth_vertices; ++v)
     if (parent[v] >= 0) members.push_back(v);
   std::unordered_map<int, Zone> zones;
   for (int v : members) {
@@ -521,15 +376,15 @@ CollisionPassStats CollisionPass::resolve(const std::vector<Cloth::State*>& stat
   // with its mass's mean motion and spin (Harmon et al. 2008), which keeps
   // a zone's own pairs as far apart as they started; zones grow while new
   // pairs fail, for at most kZoneRounds rounds.
-  const auto with_body = [&](const Hit& h) { return owner_[h.v[0]] < 0 || owner_[h.v[3]] < 0; };
+  const auto with_body = [&](const Hit& h) { return layout_->owner[h.v[0]] < 0 || layout_->owner[h.v[3]] < 0; };
   std::vector<int> parent;
   for (int round = 0; round < kZoneRounds; ++round) {
     bool any = false;
     for (const Hit& h : hits) any = any || !with_body(h);
     if (!any) break;
     if (parent.empty()) {
-      parent.resize(static_cast<std::size_t>(cloth_vertices_));
-      for (int v = 0; v < cloth_vertices_; ++v) parent[v] = -1;  // -1: in no zone
+      parent.resize(static_cast<std::size_t>(layout_->cloth_vertices));
+      for (int v = 0; v < layout_->cloth_vertices; ++v) parent[v] = -1;  // -1: in no zone
     }
     const auto find = [&](int v) {
       while (parent[v] != v) v = parent[v] = parent[parent[v]];
@@ -574,7 +429,7 @@ CollisionPassStats CollisionPass::resolve(const std::vector<Cloth::State*>& stat
   for (std::size_t c = 0; c < states.size(); ++c) {
     Cloth::State& s = *states[c];
     for (std::size_t i = 0; i < s.x.size(); ++i) {
-      const int g = offset_[c] + static_cast<int>(i);
+      const int g = layout_->offset[c] + static_cast<int>(i);
       pushes[c][i] += x1_[g] - s.x[i];
       s.x[i] = x1_[g];
       reverted[c][i] = back_[g];

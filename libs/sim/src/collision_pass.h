@@ -14,11 +14,12 @@
 //    crossed at the start of the substep (a cloth vertex behind a body
 //    face's plane; the cloth on the inner side of a body vertex or edge,
 //    by the body's vertex normals) are left to the proximity passes.
-// Broad phase: swept boxes of the cloths' vertices, edges and faces, grown
-// by half the gap, in BoxGrids (one per cloth) rebuilt for each detection; the body's
-// features that sweep through the cloths' region (grown by two cells)
-// over the whole frame in grids of their own, filed once per frame (again
-// when a cloth leaves the region). Cloth features query both.
+// Broad phase: the shared candidate list (contact_candidates.h), which
+// holds every pair that can come within the gap while the cloth stays
+// within its bounds and the body on its frame's sweep; each detection
+// tests the listed pairs whose swept boxes (grown by half the gap; the
+// body's over the frame) overlap. Repeat detections test only the pairs
+// with a feature moved since the last one.
 //
 // Response, in rounds (at most `rounds`): each pair found is pushed apart
 // along the direction between its closest points at the time CCD stopped,
@@ -49,6 +50,7 @@
 
 #include "box_grid.h"
 #include "ccd.h"
+#include "contact_candidates.h"
 #include "layers/sim/cloth.h"
 
 namespace layers::sim::detail {
@@ -71,8 +73,9 @@ struct SweptBody {
   const Vec3s* end = nullptr;    // pose at its end
   const std::vector<std::array<int, 3>>* faces = nullptr;
   const geometry::Edges* edges = nullptr;
-  // The whole frame's sweep (the body moves linearly across it) and the
-  // frame's number: the body's features are filed once per frame.
+  // The whole frame's sweep (the body moves linearly across it) and a
+  // number naming that sweep (-1: none): candidate pairs with the body are
+  // made once per sweep.
   const Vec3s* frame_start = nullptr;
   const Vec3s* frame_end = nullptr;
   long frame = -1;
@@ -83,6 +86,17 @@ struct SweptBody {
 
 class CollisionPass {
  public:
+  // Room each cloth vertex gets in the pass's own candidate list (m).
+  static constexpr double kDefaultMargin = 0.002;
+  CollisionPass() = default;
+  CollisionPass(const CollisionPass&) = delete;  // points into itself
+  CollisionPass& operator=(const CollisionPass&) = delete;
+  // The layout and candidate list to use, shared with the solver's other
+  // contacts (null: the pass's own). The pass sets the list's gap.
+  void share(ContactLayout* layout, ContactCandidates* candidates) {
+    layout_ = layout != nullptr ? layout : &own_layout_;
+    candidates_ = candidates != nullptr ? candidates : &own_candidates_;
+  }
   // `states` are the cloths' states (x_start and x; x is corrected in
   // place), in the order of `cloths`. Corrections are added to
   // pushes[cloth]; reverted[cloth][v] tells whether vertex v is put back.
@@ -103,7 +117,6 @@ class CollisionPass {
   };
 
  private:
-  void layout(const std::vector<Cloth>& cloths, const SweptBody& body);
   CollisionPassStats resume(const std::vector<Cloth>& cloths, const std::vector<Cloth::State*>& states, double gap,
                             int rounds, std::vector<Vec3s>& pushes, std::vector<std::vector<std::uint8_t>>& reverted,
                             const std::vector<std::vector<std::uint8_t>>& moved);
@@ -132,8 +145,6 @@ class CollisionPass {
   template <class Find>
   void move_zones(std::vector<int>& parent, Find&& find, CollisionPassStats& stats);
   bool test(const std::array<int, 4>& v, bool edge_edge, double gap, std::vector<Hit>& hits) const;
-  // Files the body's features that sweep through `region` in the body grids.
-  void file_body(double gap, const Box& region, const SweptBody& body);
   // A body pair whose cloth feature starts the substep on the body's
   // inside: crossed already, which
   // continuous detection cannot undo; left to the proximity passes.
@@ -144,20 +155,13 @@ class CollisionPass {
     return false;
   }
 
-  // Everything indexed globally: cloth vertices first (cloth by cloth),
-  // then the body's.
-  int cloth_vertices_ = 0;
-  std::vector<int> offset_;                     // per cloth, its first global vertex (and one past the last cloth's)
-  std::vector<int> edge_offset_, face_offset_;  // the same for edges_ and faces_
-  std::vector<int> owner_;                      // per global vertex: its cloth, or -1 for the body
-  std::vector<char> self_;                      // per cloth: self-contact on
-  std::vector<std::array<int, 2>> edges_;
-  std::vector<std::array<int, 3>> faces_;
-  int cloth_edges_ = 0, cloth_faces_ = 0;  // edges_ and faces_ hold the cloths' first, then the body's
-  std::vector<long> revisions_;
-  const std::vector<std::array<int, 3>>* body_faces_ = nullptr;
-  const geometry::Edges* body_edges_ = nullptr;
-  int body_vertices_ = -1;
+  // Everything indexed globally (ContactLayout): cloth vertices first
+  // (cloth by cloth), then the body's.
+  ContactLayout own_layout_;
+  ContactCandidates own_candidates_;
+  ContactLayout* layout_ = &own_layout_;
+  ContactCandidates* candidates_ = &own_candidates_;
+  ContactCandidates::BodySweep sweep_;  // this run's body over its frame
 
   Vec3s x0_, x1_;                 // start and end of every global vertex
   std::vector<double> inv_mass_;  // 0 for the body and pinned vertices
@@ -168,15 +172,8 @@ class CollisionPass {
   std::vector<std::uint8_t> dirty_;    // moved since the last detection
   std::vector<Hit> hits_;              // the pairs of the last detection
   Vec3s body_normals_;                 // the body's vertex normals at the start of the substep (area-weighted)
-  std::vector<Box> vertex_boxes_, edge_boxes_, face_boxes_;
-  std::vector<BoxGrid> vertex_grids_, edge_grids_, face_grids_;             // per cloth
-  std::vector<Box> body_vertex_boxes_, body_edge_boxes_, body_face_boxes_;  // NaN: outside the filed region
-  BoxGrid body_vertex_grid_, body_edge_grid_, body_face_grid_;
-  Box body_region_{Vec3::Zero(), Vec3::Zero()};
-  long body_frame_ = -2;         // the frame whose sweep the body grids hold
-  Vec3s frame_from_, frame_to_;  // scratch: the body's frame sweep, globally indexed
-  SweptBody body_;               // this run's body
-  double cell_ = 0.01, body_cell_ = 0.01;
+  std::vector<Box> vertex_boxes_, edge_boxes_, face_boxes_;  // this detection's swept boxes, grown by half the gap
+  SweptBody body_;                                            // this run's body
 };
 
 }  // namespace layers::sim::detail

@@ -89,8 +89,8 @@ void LayerContact::Memory::forget_touching() { std::fill(touching.begin(), touch
 
 void LayerContact::collide(int inner_index, const Cloth& inner, Cloth::State& inner_state, Memory& inner_memory,
                            int outer_index, const Cloth& outer, Cloth::State& outer_state, Memory& outer_memory,
-                           const std::vector<std::uint8_t>& backed, double thickness, double edge_thickness, double mu,
-                           Vec3s& inner_push, Vec3s& outer_push) {
+                           const std::vector<std::uint8_t>& backed, double thickness, double mu, Vec3s& inner_push,
+                           Vec3s& outer_push) {
   inner_inv_mass_ = inner_state.inv_mass;
   for (std::size_t i = 0; i < backed.size(); ++i) {
     if (backed[i]) inner_inv_mass_[i] = 0.0;
@@ -101,14 +101,17 @@ void LayerContact::collide(int inner_index, const Cloth& inner, Cloth::State& in
   grid_.build(outer_state.x, 1.5 * thickness + outer.topology().reach());
   points_against_surface(inner_state, inner_inv_mass_, outer, outer_state, outer_state.inv_mass, grid_, -1.0, thickness,
                          mu, outer_index, inner_memory, false, guarded_, inner_push, outer_push);
-  if (edge_thickness > 0) {
-    const EdgeContact::Side in{&inner.edges(), &inner_state.x_start, &inner_state.x,
-                               nullptr,        &inner_inv_mass_,     &inner_push};
-    const EdgeContact::Side out{&outer.edges(), &outer_state.x_start,  &outer_state.x,
-                                nullptr,        &outer_state.inv_mass, &outer_push};
-    edges_.file(in, edge_thickness, 0.5 * inner.topology().max_edge_length);
-    edges_.collide(in, out, edge_thickness);
-  }
+}
+
+void LayerContact::collide_edges(const Cloth& inner, Cloth::State& inner_state, const Cloth& outer,
+                                 Cloth::State& outer_state, double edge_thickness,
+                                 const std::vector<std::array<int, 2>>& pairs, Vec3s& inner_push, Vec3s& outer_push) {
+  if (edge_thickness <= 0 || pairs.empty()) return;
+  const EdgeContact::Side in{&inner.edges(), &inner_state.x_start, &inner_state.x, nullptr, &inner_inv_mass_,
+                             &inner_push};
+  const EdgeContact::Side out{&outer.edges(), &outer_state.x_start, &outer_state.x, nullptr, &outer_state.inv_mass,
+                              &outer_push};
+  EdgeContact::collide(in, out, edge_thickness, pairs);
 }
 
 void LayerContact::settle_outer(int inner_index, const Cloth& inner, Cloth::State& inner_state, const Cloth& outer,

@@ -8,19 +8,11 @@
 
 namespace layers::sim::detail {
 
-void EdgeContact::file(const Side& inner, double thickness, double cell) {
-  cells_.build(*inner.edges, inner.now(), thickness, std::max(cell, 1e-6));
-  seen_.resize(static_cast<std::size_t>(inner.edges->rows()));  // reset by each collide()
-}
-
-double EdgeContact::collide(const Side& inner, const Side& outer, double thickness) {
+double EdgeContact::collide(const Side& inner, const Side& outer, double thickness,
+                            const std::vector<std::array<int, 2>>& pairs) {
   const geometry::Edges& ei = *inner.edges;
   const geometry::Edges& eo = *outer.edges;
   if (ei.rows() == 0 || eo.rows() == 0 || outer.x == nullptr) return 0.0;
-  // Broad phase: each inner edge's box (grown by the thickness) is filed
-  // under every grid cell it overlaps (file()); an outer edge meets the
-  // inner edges filed under the cells of its own box (each once: `seen_`).
-  std::fill(seen_.begin(), seen_.end(), -1);
   Vec3s& xo = *outer.x;
   const Vec3s& xi = inner.now();
   const Vec3s &so = *outer.start, &si = *inner.start;
@@ -28,83 +20,58 @@ double EdgeContact::collide(const Side& inner, const Side& outer, double thickne
   const bool inner_moves = inner.x != nullptr;
   const auto w_in = [&](int v) { return inner_moves ? (*inner.inv_mass)[v] : 0.0; };
   double largest = 0;
-  for (Eigen::Index k = 0; k < eo.rows(); ++k) {
+  for (const auto& [k, e] : pairs) {
     const int a = eo(k, 0), b = eo(k, 1);
     const Vec3 lo = xo[a].cwiseMin(xo[b]), hi = xo[a].cwiseMax(xo[b]);
-    cells_.visit(lo, hi, [&](int e) {
-      if (seen_[e] == k) return;
-      seen_[e] = static_cast<int>(k);
-      const int c = ei(e, 0), d = ei(e, 1);
-      // Boxes (the inner one grown by the thickness) must overlap.
-      const Vec3 ilo = xi[c].cwiseMin(xi[d]).array() - thickness;
-      const Vec3 ihi = xi[c].cwiseMax(xi[d]).array() + thickness;
-      if ((lo.array() > ihi.array()).any() || (hi.array() < ilo.array()).any()) return;
-      double s, t;
-      segment_segment_distance2(xo[a], xo[b], xi[c], xi[d], &s, &t);
-      const Vec3 p = xo[a] + s * (xo[b] - xo[a]), q = xi[c] + t * (xi[d] - xi[c]);
-      const Vec3 delta = p - q;
-      if (delta.squaredNorm() >= thickness * thickness) return;
-      // Which side the outer edge was on at the start of the substep, at
-      // the same pair of points: it must stay there.
-      const Vec3 p0 = so[a] + s * (so[b] - so[a]);
-      const Vec3 q0 = si[c] + t * (si[d] - si[c]);
-      Vec3 n = p0 - q0;
-      double len = n.norm();
-      if (!(len > 1e-9)) {
-        n = delta;
-        len = n.norm();
+    const int c = ei(e, 0), d = ei(e, 1);
+    // Boxes (the inner one grown by the thickness) must overlap.
+    const Vec3 ilo = xi[c].cwiseMin(xi[d]).array() - thickness;
+    const Vec3 ihi = xi[c].cwiseMax(xi[d]).array() + thickness;
+    if ((lo.array() > ihi.array()).any() || (hi.array() < ilo.array()).any()) continue;
+    double s, t;
+    segment_segment_distance2(xo[a], xo[b], xi[c], xi[d], &s, &t);
+    const Vec3 p = xo[a] + s * (xo[b] - xo[a]), q = xi[c] + t * (xi[d] - xi[c]);
+    const Vec3 delta = p - q;
+    if (delta.squaredNorm() >= thickness * thickness) continue;
+    // Which side the outer edge was on at the start of the substep, at
+    // the same pair of points: it must stay there.
+    const Vec3 p0 = so[a] + s * (so[b] - so[a]);
+    const Vec3 q0 = si[c] + t * (si[d] - si[c]);
+    Vec3 n = p0 - q0;
+    double len = n.norm();
+    if (!(len > 1e-9)) {
+      n = delta;
+      len = n.norm();
+    }
+    if (inner.outward != nullptr) {
+      // An edge already on the inner surface's inside goes out.
+      const Vec3& out = (*inner.outward)[e];
+      if (out.squaredNorm() > 0 && (!(len > 1e-9) || n.dot(out) < 0)) {
+        n = out;
+        len = 1;
       }
-      if (inner.outward != nullptr) {
-        // An edge already on the inner surface's inside goes out.
-        const Vec3& out = (*inner.outward)[e];
-        if (out.squaredNorm() > 0 && (!(len > 1e-9) || n.dot(out) < 0)) {
-          n = out;
-          len = 1;
-        }
-      }
-      if (!(len > 1e-9)) return;
-      n /= len;
-      const double depth = thickness - delta.dot(n);
-      if (depth <= 0) return;
-      const double weight =
-          w_out[a] * (1 - s) * (1 - s) + w_out[b] * s * s + w_in(c) * (1 - t) * (1 - t) + w_in(d) * t * t;
-      if (!(weight > 0)) return;
-      const double lambda = depth / weight;
-      const auto move = [&](Vec3s& x, Vec3s* push, int v, double amount) {
-        x[v] += amount * n;
-        if (push != nullptr) (*push)[v] += amount * n;
-      };
-      move(xo, outer.push, a, w_out[a] * (1 - s) * lambda);
-      move(xo, outer.push, b, w_out[b] * s * lambda);
-      largest = std::max(largest, std::max(w_out[a] * (1 - s), w_out[b] * s) * lambda);
-      if (inner_moves) {
-        move(*inner.x, inner.push, c, -w_in(c) * (1 - t) * lambda);
-        move(*inner.x, inner.push, d, -w_in(d) * t * lambda);
-      }
-    });
+    }
+    if (!(len > 1e-9)) continue;
+    n /= len;
+    const double depth = thickness - delta.dot(n);
+    if (depth <= 0) continue;
+    const double weight =
+        w_out[a] * (1 - s) * (1 - s) + w_out[b] * s * s + w_in(c) * (1 - t) * (1 - t) + w_in(d) * t * t;
+    if (!(weight > 0)) continue;
+    const double lambda = depth / weight;
+    const auto move = [&](Vec3s& x, Vec3s* push, int v, double amount) {
+      x[v] += amount * n;
+      if (push != nullptr) (*push)[v] += amount * n;
+    };
+    move(xo, outer.push, a, w_out[a] * (1 - s) * lambda);
+    move(xo, outer.push, b, w_out[b] * s * lambda);
+    largest = std::max(largest, std::max(w_out[a] * (1 - s), w_out[b] * s) * lambda);
+    if (inner_moves) {
+      move(*inner.x, inner.push, c, -w_in(c) * (1 - t) * lambda);
+      move(*inner.x, inner.push, d, -w_in(d) * t * lambda);
+    }
   }
   return largest;
-}
-
-void EdgeContact::Cells::build(const geometry::Edges& edges, const Vec3s& x, double grow, double cell) {
-  inv_cell = 1.0 / cell;
-  std::size_t slots = 1;
-  while (slots < 2 * static_cast<std::size_t>(edges.rows())) slots <<= 1;
-  mask = slots - 1;
-  start.assign(slots + 1, 0);
-  const auto each_cell = [&](Eigen::Index e, auto&& f) {
-    const Vec3& u = x[edges(e, 0)];
-    const Vec3& v = x[edges(e, 1)];
-    if (!u.allFinite() || !v.allFinite()) return;
-    const Vec3 lo = u.cwiseMin(v).array() - grow, hi = u.cwiseMax(v).array() + grow;
-    for_cells(lo, hi, f);
-  };
-  for (Eigen::Index e = 0; e < edges.rows(); ++e) each_cell(e, [&](std::uint32_t s) { ++start[s + 1]; });
-  for (std::size_t s = 0; s < slots; ++s) start[s + 1] += start[s];
-  entries.resize(static_cast<std::size_t>(start[slots]));
-  fill = start;
-  for (Eigen::Index e = 0; e < edges.rows(); ++e)
-    each_cell(e, [&](std::uint32_t s) { entries[fill[s]++] = static_cast<int>(e); });
 }
 
 }  // namespace layers::sim::detail

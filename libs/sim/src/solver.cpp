@@ -14,6 +14,7 @@
 #include "body_collider.h"
 #include "cloth_contact.h"
 #include "collision_pass.h"
+#include "contact_candidates.h"
 #include "fold_limit.h"
 #include "layers/core/error.h"
 #include "projective.h"
@@ -45,6 +46,38 @@ struct Solver::Impl {
   std::vector<std::vector<std::uint8_t>> reverted;  // per cloth: put back by the collision pass this substep
   std::vector<Vec3s> before_pass, before_cap;       // per cloth: positions before the pass and before its cap
   std::vector<std::vector<std::uint8_t>> moved;     // per cloth: moved by the cap after the pass
+  // The shared broad phase (contact_candidates.h): read by the layer and
+  // body edge contacts and the collision pass.
+  detail::ContactLayout layout;
+  detail::ContactCandidates candidates;
+  std::vector<std::array<int, 2>> edge_pairs;  // scratch: one contact's pairs, in local indices
+
+  Impl() { pass.share(&layout, &candidates); }
+
+  // Makes the candidates hold every pair for the cloths' positions now and
+  // at the start of the substep (and the body's frame sweep).
+  void ensure_candidates(const std::vector<Cloth>& cloths, const SolverConfig& c, bool with_body) {
+    layout.update(cloths, with_body ? &body.topology().faces : nullptr, with_body ? &body.edges() : nullptr,
+                  with_body ? &body.frame_start() : nullptr);
+    candidates.set_reach({c.collision_pass ? c.collision_gap : 0.0, c.layer_edge_thickness, c.body_edge_thickness,
+                          kContactMargin});
+    const auto at = [&](int g, bool start) -> const Vec3& {
+      const int ci = layout.owner[g];
+      const Cloth::State& s = cloths[ci].state();
+      return (start ? s.x_start : s.x)[g - layout.offset[ci]];
+    };
+    detail::ContactCandidates::BodySweep sweep;
+    if (with_body) sweep = {&body.frame_start(), &body.frame_end(), body.sweep_revision()};
+    candidates.ensure(
+        layout, [&](int g) -> const Vec3& { return at(g, true); }, [&](int g) -> const Vec3& { return at(g, false); },
+        sweep);
+  }
+
+  // Room each cloth vertex gets around its reference in the candidate list
+  // (m): more makes longer lists, less makes them again more often (1 mm:
+  // 35 lists a frame on bench_sim's 4k walk; 3 mm: 5.5; 6 mm: 3, with
+  // twice the pairs of 3 mm; docs/benchmarks.md).
+  static constexpr double kContactMargin = 0.003;
 
   void add(int n) {
     elastic.push_back(std::make_unique<detail::ProjectiveSystem>());
@@ -165,14 +198,14 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
 
   prepare_frame(h, body);
   timings_.elastic += seconds_since(t);
+  const long builds = m.candidates.builds(), body_builds = m.candidates.body_builds();
   for (int k = 0; k < n; ++k) {
     const double step2 = predict(h, unit_wind);
     timings_.predict += seconds_since(t);
     // The body's edge-edge pass on every body_edge_every-th substep.
     const double body_edges = k % c.body_edge_every == 0 ? c.body_edge_thickness : 0.0;
     if (body) {
-      m.body.begin_substep(static_cast<double>(k + 1) / n, 2 * std::sqrt(step2) + c.body_thickness, c.body_thickness,
-                           body_edges);
+      m.body.begin_substep(static_cast<double>(k + 1) / n, 2 * std::sqrt(step2) + c.body_thickness, c.body_thickness);
       for (std::size_t ci = 0; ci < cloths_.size(); ++ci) m.body.locate_supports(cloths_[ci].state_, m.body_memory[ci]);
     }
     timings_.body_contact += seconds_since(t);
@@ -198,7 +231,13 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
     timings_.collision_pass += seconds_since(t);
     update_velocities(h);
     timings_.predict += seconds_since(t);
+    const detail::ContactCandidates& cc = m.candidates;
+    timings_.candidate_pairs += static_cast<long>(cc.cloth_vertex_face().size() + cc.cloth_edge_edge().size() +
+                                                  cc.body_vertex_face().size() + cc.body_face_vertex().size() +
+                                                  cc.body_edge_edge().size());
   }
+  timings_.candidate_builds += m.candidates.builds() - builds;
+  timings_.candidate_body_builds += m.candidates.body_builds() - body_builds;
 
   if (body) {
     m.body.end_frame();
@@ -315,8 +354,22 @@ void Solver::project_layer_contacts() {
   for (Vec3s& p : m.push) std::fill(p.begin(), p.end(), Vec3::Zero());
   for_each_layer_pair([&](int a, int b, double mu) {
     m.layers.collide(a, cloths_[a], cloths_[a].state_, m.layer_memory[a], b, cloths_[b], cloths_[b].state_,
-                     m.layer_memory[b], m.body_memory[a].touching, c.layer_thickness, c.layer_edge_thickness, mu,
-                     m.push[a], m.push[b]);
+                     m.layer_memory[b], m.body_memory[a].touching, c.layer_thickness, mu, m.push[a], m.push[b]);
+    if (!(c.layer_edge_thickness > 0)) return;
+    // The pair's edges (outer, inner) from the shared candidates.
+    m.ensure_candidates(cloths_, c, has_body());
+    m.edge_pairs.clear();
+    const detail::ContactLayout& L = m.layout;
+    for (const auto& [e, o] : m.candidates.cloth_edge_edge()) {
+      const int ce = L.owner[L.edges[e][0]], co = L.owner[L.edges[o][0]];
+      if (ce == b && co == a) {
+        m.edge_pairs.push_back({e - L.edge_offset[b], o - L.edge_offset[a]});
+      } else if (ce == a && co == b) {
+        m.edge_pairs.push_back({o - L.edge_offset[b], e - L.edge_offset[a]});
+      }
+    }
+    m.layers.collide_edges(cloths_[a], cloths_[a].state_, cloths_[b], cloths_[b].state_, c.layer_edge_thickness,
+                           m.edge_pairs, m.push[a], m.push[b]);
   });
 }
 
@@ -343,7 +396,15 @@ void Solver::project_body_contacts(bool body, double body_edges, double h) {
   for (std::size_t ci = 0; ci < cloths_.size(); ++ci) {
     Cloth::State& s = cloths_[ci].state_;
     body_push[ci] = m.body.collide(s, m.body_memory[ci], c.body_thickness, cloths_[ci].material().friction, h);
-    body_push[ci] = std::max(body_push[ci], m.body.collide_edges(cloths_[ci], s, body_edges, m.push[ci]));
+    if (!(body_edges > 0)) continue;
+    // This garment's edges against the body's, from the shared candidates.
+    m.ensure_candidates(cloths_, c, true);
+    m.edge_pairs.clear();
+    const detail::ContactLayout& L = m.layout;
+    for (const auto& [e, i] : m.candidates.body_edge_edge()) {
+      if (L.owner[L.edges[e][0]] == static_cast<int>(ci)) m.edge_pairs.push_back({e - L.edge_offset[ci], i});
+    }
+    body_push[ci] = std::max(body_push[ci], m.body.collide_edges(cloths_[ci], s, body_edges, m.push[ci], m.edge_pairs));
   }
 }
 
@@ -421,7 +482,7 @@ void Solver::collision_pass(bool body) {
     swept.edges = &m.body.edges();
     swept.frame_start = &m.body.frame_start();
     swept.frame_end = &m.body.frame_end();
-    swept.frame = frame_;
+    swept.frame = m.body.sweep_revision();
     swept.apart = &m.body.pose_at_reset();
   }
   for (std::size_t ci = 0; ci < cloths_.size(); ++ci) m.before_pass[ci] = cloths_[ci].state_.x;

@@ -25,13 +25,16 @@ void move_edge(Cloth::State& state, const V3& by) {
   state.x[1] += by;
 }
 
-// Files the inner garment's edges and meets the outer one's.
-double collide(detail::EdgeContact& contact, const Cloth& inner, Cloth::State& in, const std::vector<double>& w_in,
-               const Cloth& outer, Cloth::State& out, double thickness, Vec3s& in_push, Vec3s& out_push) {
+// Meets every outer edge with every inner one (the solver lists the pairs
+// from its candidates).
+double collide(const Cloth& inner, Cloth::State& in, const std::vector<double>& w_in, const Cloth& outer,
+               Cloth::State& out, double thickness, Vec3s& in_push, Vec3s& out_push) {
   const detail::EdgeContact::Side i{&inner.edges(), &in.x_start, &in.x, nullptr, &w_in, &in_push};
   const detail::EdgeContact::Side o{&outer.edges(), &out.x_start, &out.x, nullptr, &out.inv_mass, &out_push};
-  contact.file(i, thickness, 0.5 * inner.topology().max_edge_length);
-  return contact.collide(i, o, thickness);
+  std::vector<std::array<int, 2>> pairs;
+  for (int k = 0; k < outer.edges().rows(); ++k)
+    for (int e = 0; e < inner.edges().rows(); ++e) pairs.push_back({k, e});
+  return detail::EdgeContact::collide(i, o, thickness, pairs);
 }
 
 TEST(LayerEdges, AnEdgeThatPassedThroughIsPutBack) {
@@ -43,8 +46,7 @@ TEST(LayerEdges, AnEdgeThatPassedThroughIsPutBack) {
   Cloth::State in = inner.state(), out = outer.state();
   move_edge(out, V3(0, -0.005, 0));
   Vec3s in_push(3, Vec3::Zero()), out_push(3, Vec3::Zero());
-  detail::EdgeContact contact;
-  collide(contact, inner, in, in.inv_mass, outer, out, 0.004, in_push, out_push);
+  collide(inner, in, in.inv_mass, outer, out, 0.004, in_push, out_push);
   // The closest points (the middle of the outer edge, 60% along the inner
   // one) are back 4 mm apart, the outer one above: both sides moved along y.
   const double above = 0.5 * (out.x[0].y() + out.x[1].y());
@@ -64,8 +66,7 @@ TEST(LayerEdges, HeldInnerVerticesStayAndEdgesApartAreLeftAlone) {
   move_edge(out, V3(0, -0.005, 0));
   std::vector<double> held(3, 0.0);  // all inner vertices held by the body
   Vec3s in_push(3, Vec3::Zero()), out_push(3, Vec3::Zero());
-  detail::EdgeContact contact;
-  collide(contact, inner, in, held, outer, out, 0.004, in_push, out_push);
+  collide(inner, in, held, outer, out, 0.004, in_push, out_push);
   EXPECT_EQ(in.x[0], inner.state().x[0]);
   EXPECT_EQ(in.x[1], inner.state().x[1]);
   EXPECT_NEAR(out.x[0].y(), 0.004, 1e-9);
@@ -75,7 +76,7 @@ TEST(LayerEdges, HeldInnerVerticesStayAndEdgesApartAreLeftAlone) {
   move_edge(far_out, V3(0, 0.004, 0));
   far_out.x_start = far_out.x;
   const Vec3s before = far_out.x;
-  collide(contact, inner, far_in, far_in.inv_mass, outer, far_out, 0.004, in_push, out_push);
+  collide(inner, far_in, far_in.inv_mass, outer, far_out, 0.004, in_push, out_push);
   EXPECT_EQ(far_out.x, before);
   EXPECT_EQ(far_in.x, inner.state().x);
 }

@@ -1,0 +1,172 @@
+// contact_candidates.h (internal) -- the one broad phase of the solver's
+// feature contacts (docs/sim.md "Contact candidates"), kept across
+// substeps: the collision pass, the layer edge-edge and the body edge-edge
+// contacts all read their pairs from it.
+//
+// ContactLayout indexes every feature globally: cloth vertices first
+// (cloth by cloth), then the body's; cloth edges and faces first, then the
+// body's.
+//
+// ContactCandidates holds every pair of features that can come within the
+// pair's reach while each cloth vertex v stays inside its bound, the box of
+// half-side radius[v] around the reference position ref[v] it had when the
+// list was made, and the body moves along the sweep of the frame the list
+// was made for:
+//  - cloth vertex - cloth face and cloth edge - cloth edge of two cloths,
+//    or of one cloth with self-contact (features sharing a vertex left
+//    out), within the pass's gap; edges of cloths on different layers
+//    within the layer edge reach;
+//  - cloth vertex - body face and cloth face - body vertex within the gap,
+//    cloth edge - body edge within the body edge reach.
+// Proof of the rule: a feature's positions lie in the union of its
+// vertices' bounds (a box), and the body's anywhere in the frame lie in
+// its frame-swept box; two features whose boxes are farther apart than
+// the reach along some axis cannot come within it. Bounds are grown by
+// kSlack (far above the rounding of the comparisons).
+//
+// ensure() checks every cloth position a phase reads against its bound
+// (O(vertices)); when one is outside, the list is made again around the
+// positions given (each vertex's radius: the margin plus how far it moves
+// between the two positions given); when only the body's frame changed,
+// only the body pairs are made again. Lists come from traversals of
+// bounding-box hierarchies (box_tree.h: per cloth and kind of feature over
+// the bounds, and over the body's frame-swept features), built once per
+// layout and refitted after, so the same positions give the same pairs in
+// the same order.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "box_grid.h"
+#include "box_tree.h"
+#include "layers/geometry/mesh.h"
+#include "layers/sim/cloth.h"
+
+namespace layers::sim::detail {
+
+struct ContactLayout {
+  int cloth_vertices = 0, cloth_edges = 0, cloth_faces = 0;
+  int body_vertices = 0;
+  std::vector<int> offset, edge_offset, face_offset;  // per cloth, its first global index (and one past the last cloth's)
+  std::vector<int> owner;                             // per global vertex: its cloth, or -1 for the body
+  std::vector<char> self;                             // per cloth: self-contact on
+  std::vector<int> layer;                             // per cloth: its layer
+  std::vector<std::array<int, 2>> edges;              // cloths' first, then the body's
+  std::vector<std::array<int, 3>> faces;
+  long revision = 0;        // counts the times it was laid out
+
+  // Lays out the cloths and the body (faces, edges and a pose, for its
+  // vertex count; null: no body) again when either changed; true if it did.
+  bool update(const std::vector<Cloth>& cloths, const std::vector<std::array<int, 3>>* body_faces,
+              const geometry::Edges* body_edges, const Vec3s* body_pose);
+
+ private:
+  std::vector<long> revisions_;
+  const void* body_faces_ = nullptr;
+  const void* body_edges_ = nullptr;
+  int body_count_ = -1;
+};
+
+class ContactCandidates {
+ public:
+  static constexpr double kSlack = 1e-9;
+
+  // What the lists must hold: pairs within `gap` (every kind), edges of
+  // two layers within `layer_edges`, cloth and body edges within
+  // `body_edges` (a reach of 0 lists no pair of its kind); `margin` is the
+  // room each cloth vertex gets around its reference. A change makes the
+  // lists again at the next ensure().
+  struct Reach {
+    double gap = 0, layer_edges = 0, body_edges = 0, margin = 0;
+    bool operator==(const Reach& o) const {
+      return gap == o.gap && layer_edges == o.layer_edges && body_edges == o.body_edges && margin == o.margin;
+    }
+  };
+  // The body over the frame: every body position a phase reads lies on
+  // the straight line from `from` to `to`; `revision` names that sweep
+  // (-1: unknown, made again at every ensure()). Null: no body.
+  struct BodySweep {
+    const Vec3s* from = nullptr;
+    const Vec3s* to = nullptr;
+    long revision = -1;
+  };
+
+  void set_reach(const Reach& reach);
+  const Reach& reach() const { return reach_; }
+
+  // Makes sure the lists hold every pair for cloth positions a(g) and b(g)
+  // (g a global cloth vertex; two positions: a sweep's ends, or the same
+  // twice). Returns true when the lists were made again.
+  template <class A, class B>
+  bool ensure(const ContactLayout& layout, A&& a, B&& b, const BodySweep& body) {
+    bool inside = layout_stamp_ == &layout && revision_ == layout.revision &&
+                  static_cast<int>(ref_.size()) == layout.cloth_vertices;
+    for (int g = 0; inside && g < layout.cloth_vertices; ++g) inside = within(g, a(g)) && within(g, b(g));
+    if (!inside) {
+      from_.resize(static_cast<std::size_t>(layout.cloth_vertices));
+      to_.resize(from_.size());
+      for (int g = 0; g < layout.cloth_vertices; ++g) {
+        from_[g] = a(g);
+        to_[g] = b(g);
+      }
+      make(layout, body);
+      return true;
+    }
+    if (body.from != body_.from || body.to != body_.to || body.revision != body_.revision || body.revision < 0) {
+      make_body(layout, body);
+      return true;
+    }
+    return false;
+  }
+
+  // Pairs: (cloth vertex, cloth face) and (cloth edge, cloth edge, the
+  // first the lower index), by global index; (cloth vertex, body face),
+  // (cloth face, body vertex), (cloth edge, body edge), the body's features
+  // counted from 0.
+  const std::vector<std::array<int, 2>>& cloth_vertex_face() const { return vf_; }
+  const std::vector<std::array<int, 2>>& cloth_edge_edge() const { return ee_; }
+  const std::vector<std::array<int, 2>>& body_vertex_face() const { return body_vf_; }
+  const std::vector<std::array<int, 2>>& body_face_vertex() const { return body_fv_; }
+  const std::vector<std::array<int, 2>>& body_edge_edge() const { return body_ee_; }
+  // The body's features' boxes over the frame's sweep (not grown).
+  const std::vector<Box>& body_vertex_boxes() const { return body_vertex_boxes_; }
+  const std::vector<Box>& body_edge_boxes() const { return body_edge_boxes_; }
+  const std::vector<Box>& body_face_boxes() const { return body_face_boxes_; }
+
+  long builds() const { return builds_; }            // times the whole lists were made
+  long body_builds() const { return body_builds_; }  // times the body pairs alone were made
+
+ private:
+  bool within(int g, const Vec3& p) const {
+    const Vec3 d = (p - ref_[g]).cwiseAbs();
+    const double r = radius_[g];
+    return d.x() <= r && d.y() <= r && d.z() <= r;  // false for NaN
+  }
+  void make(const ContactLayout& layout, const BodySweep& body);
+  void make_body(const ContactLayout& layout, const BodySweep& body);
+  // The body's boxes over the sweep and its hierarchies fitted to them.
+  void fit_body(const ContactLayout& layout, const BodySweep& body, bool any);
+  // The body pairs of the cloths' bounds.
+  void traverse_body(const ContactLayout& layout);
+
+  Reach reach_;
+  const ContactLayout* layout_stamp_ = nullptr;
+  long revision_ = -1;
+  Vec3s from_, to_;              // scratch: the positions given to the last make()
+  Vec3s ref_;                    // per cloth vertex: its reference
+  std::vector<double> radius_;   // and the half-side of its bound
+  std::vector<Box> vertex_boxes_, edge_boxes_, face_boxes_;  // bounds of the cloth features (not grown)
+  std::vector<BoxTree> vertex_trees_, edge_trees_, face_trees_;  // per cloth, over the bounds
+  long tree_revision_ = -1;                                        // the layout they were built for
+  std::vector<std::array<int, 2>> vf_, ee_, body_vf_, body_fv_, body_ee_;
+  BodySweep body_;
+  std::vector<Box> body_vertex_boxes_, body_edge_boxes_, body_face_boxes_;
+  BoxTree body_vertex_tree_, body_edge_tree_, body_face_tree_;  // over the frame-swept boxes
+  bool body_trees_built_ = false;
+  long body_layout_ = -1;  // the layout revision the body's boxes were fitted for
+  long builds_ = 0, body_builds_ = 0;
+};
+
+}  // namespace layers::sim::detail
