@@ -151,6 +151,15 @@ BENCHMARK(BM_GeneratorFrame)
     ->Threads(1)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+// Fewer substeps with tiny.yaml's recipe (the pass on, body edges every
+// 4th substep): what each costs and what it does to stretch and crossings.
+BENCHMARK(BM_GeneratorFrame)
+    ->Args({250, 12, 15})
+    ->Args({250, 8, 15})
+    ->Iterations(20)
+    ->Threads(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 // The cost of edge-edge contact: the 25 mm scene with the pass and without
 // body edges, and without the pass: without body edges, and without any.
 BENCHMARK(BM_GeneratorFrame)

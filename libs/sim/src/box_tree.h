@@ -1,4 +1,4 @@
-// box_tree.h (internal) -- a bounding-box hierarchy over a set of boxes
+// box_tree.h (internal) -- axis-aligned boxes, and a bounding-box hierarchy over a set of them
 // (features' bounds or sweeps), built once from their centres (median
 // splits along the widest axis, four boxes a leaf) and refitted bottom-up
 // when the boxes move; and the traversal of two hierarchies (or one with
@@ -10,9 +10,14 @@
 
 #include <vector>
 
-#include "box_grid.h"
+#include "layers/sim/cloth.h"
 
 namespace layers::sim::detail {
+
+struct Box {
+  Vec3 lo, hi;
+  bool overlaps(const Box& o) const { return (lo.array() <= o.hi.array()).all() && (o.lo.array() <= hi.array()).all(); }
+};
 
 // Boxes no farther apart than `reach` along every axis (false with NaN).
 inline bool near(const Box& a, const Box& b, double reach) {

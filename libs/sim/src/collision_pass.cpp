@@ -85,44 +85,60 @@ void CollisionPass::detect(double gap, std::vector<Hit>& hits, bool incremental)
   candidates_->ensure(
       L, [&](int g) -> const Vec3& { return x0_[g]; }, [&](int g) -> const Vec3& { return x1_[g]; }, sweep_);
   const double grow = 0.5 * gap;
+  // The swept boxes of the features to test (all of them, or, when
+  // incremental, those with a moved vertex), and which features moved.
   vertex_boxes_.resize(static_cast<std::size_t>(L.cloth_vertices));
   edge_boxes_.resize(static_cast<std::size_t>(L.cloth_edges));
   face_boxes_.resize(static_cast<std::size_t>(L.cloth_faces));
-  for (int v = 0; v < L.cloth_vertices; ++v) vertex_boxes_[v] = swept_box(x0_, x1_, &v, 1, grow);
-  for (int e = 0; e < L.cloth_edges; ++e) edge_boxes_[e] = swept_box(x0_, x1_, L.edges[e].data(), 2, grow);
-  for (int f = 0; f < L.cloth_faces; ++f) face_boxes_[f] = swept_box(x0_, x1_, L.faces[f].data(), 3, grow);
-  // Which pairs to test: everything, or (when incremental) those with a
-  // feature that has a moved vertex.
-  const auto moved = [&](const int* v, int n) { return !incremental || touched(v, n); };
+  edge_moved_.assign(static_cast<std::size_t>(L.cloth_edges), incremental ? 0 : 1);
+  face_moved_.assign(static_cast<std::size_t>(L.cloth_faces), incremental ? 0 : 1);
+  for (int v = 0; v < L.cloth_vertices; ++v)
+    if (!incremental || dirty_[v]) vertex_boxes_[v] = swept_box(x0_, x1_, &v, 1, grow);
+  for (int e = 0; e < L.cloth_edges; ++e) {
+    if (incremental && !touched(L.edges[e].data(), 2)) continue;
+    edge_moved_[e] = 1;
+    edge_boxes_[e] = swept_box(x0_, x1_, L.edges[e].data(), 2, grow);
+  }
+  for (int f = 0; f < L.cloth_faces; ++f) {
+    if (incremental && !touched(L.faces[f].data(), 3)) continue;
+    face_moved_[f] = 1;
+    face_boxes_[f] = swept_box(x0_, x1_, L.faces[f].data(), 3, grow);
+  }
+  // A feature that did not move keeps the box it had (the positions it
+  // was made from are unchanged).
+  const auto moved = [&](int v) { return !incremental || dirty_[v] != 0; };
   // A cloth feature's sweep against a body feature's over the frame.
   const auto meets_body = [&](const Box& cloth, const Box& body) {
     return (cloth.lo.array() <= body.hi.array() + grow).all() && (body.lo.array() - grow <= cloth.hi.array()).all();
   };
   const int off = L.cloth_vertices;
   for (const auto& [v, f] : candidates_->cloth_vertex_face()) {
+    if (!moved(v) && !face_moved_[f]) continue;
     const auto& t = L.faces[f];
-    if (!moved(&v, 1) && !moved(t.data(), 3)) continue;
     if (vertex_boxes_[v].overlaps(face_boxes_[f])) test({v, t[0], t[1], t[2]}, false, gap, hits);
   }
-  for (const auto& [v, i] : candidates_->body_vertex_face()) {
-    if (!moved(&v, 1) || !meets_body(vertex_boxes_[v], candidates_->body_face_boxes()[i])) continue;
+  for (const auto& p : candidates_->body_vertex_face()) {
+    const auto [v, i] = p.ids;
+    if (!moved(v) || !meets_body(vertex_boxes_[v], p.body)) continue;
     const auto& t = L.faces[L.cloth_faces + i];
     test({v, t[0], t[1], t[2]}, false, gap, hits);
   }
-  for (const auto& [f, i] : candidates_->body_face_vertex()) {
+  for (const auto& p : candidates_->body_face_vertex()) {
+    const auto [f, i] = p.ids;
+    if (!face_moved_[f] || !meets_body(face_boxes_[f], p.body)) continue;
     const auto& t = L.faces[f];
-    if (!moved(t.data(), 3) || !meets_body(face_boxes_[f], candidates_->body_vertex_boxes()[i])) continue;
     test({off + i, t[0], t[1], t[2]}, false, gap, hits);
   }
-  for (const auto& [e, o] : candidates_->cloth_edge_edge()) {
+  for (const auto& [e, o] : candidates_->cloth_edge_edge_gap()) {
+    if (!edge_moved_[e] && !edge_moved_[o]) continue;
     const auto& a = L.edges[e];
     const auto& b = L.edges[o];
-    if (!moved(a.data(), 2) && !moved(b.data(), 2)) continue;
     if (edge_boxes_[e].overlaps(edge_boxes_[o])) test({a[0], a[1], b[0], b[1]}, true, gap, hits);
   }
-  for (const auto& [e, i] : candidates_->body_edge_edge()) {
+  for (const auto& p : candidates_->body_edge_edge_gap()) {
+    const auto [e, i] = p.ids;
+    if (!edge_moved_[e] || !meets_body(edge_boxes_[e], p.body)) continue;
     const auto& a = L.edges[e];
-    if (!moved(a.data(), 2) || !meets_body(edge_boxes_[e], candidates_->body_edge_boxes()[i])) continue;
     const auto& c = L.edges[L.cloth_edges + i];
     test({a[0], a[1], c[0], c[1]}, true, gap, hits);
   }

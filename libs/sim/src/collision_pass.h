@@ -48,7 +48,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "box_grid.h"
+#include "box_tree.h"
 #include "ccd.h"
 #include "contact_candidates.h"
 #include "layers/sim/cloth.h"
@@ -172,7 +172,8 @@ class CollisionPass {
   std::vector<std::uint8_t> dirty_;    // moved since the last detection
   std::vector<Hit> hits_;              // the pairs of the last detection
   Vec3s body_normals_;                 // the body's vertex normals at the start of the substep (area-weighted)
-  std::vector<Box> vertex_boxes_, edge_boxes_, face_boxes_;  // this detection's swept boxes, grown by half the gap
+  std::vector<Box> vertex_boxes_, edge_boxes_, face_boxes_;  // the features' swept boxes, grown by half the gap
+  std::vector<std::uint8_t> edge_moved_, face_moved_;         // this detection's features with a moved vertex
   SweptBody body_;                                            // this run's body
 };
 

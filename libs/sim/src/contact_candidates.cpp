@@ -87,10 +87,12 @@ void ContactCandidates::make(const ContactLayout& L, const BodySweep& body) {
   radius_.resize(static_cast<std::size_t>(nv));
   vertex_boxes_.resize(static_cast<std::size_t>(nv));
   for (int g = 0; g < nv; ++g) {
-    // Around the later position (where the next phase starts), with room
-    // for the margin and back to the earlier one.
-    ref_[g] = to_[g];
-    radius_[g] = reach_.margin + (to_[g] - from_[g]).cwiseAbs().maxCoeff() + kSlack;
+    // Ahead of the later position along the motion from the earlier one
+    // (which the next substeps are likely to continue), with room for the
+    // margin and back to the earlier position.
+    const Vec3 d = to_[g] - from_[g];
+    ref_[g] = to_[g] + kAhead * d;
+    radius_[g] = reach_.margin + (1 + kAhead) * d.cwiseAbs().maxCoeff() + kSlack;
     if (!std::isfinite(radius_[g])) radius_[g] = std::nan("");  // never within: made again
     vertex_boxes_[g] = Box{ref_[g].array() - radius_[g], ref_[g].array() + radius_[g]};
   }
@@ -129,6 +131,10 @@ void ContactCandidates::make(const ContactLayout& L, const BodySweep& body) {
   }
   vf_.clear();
   ee_.clear();
+  ee_gap_.clear();
+  cloths_ = nc;
+  layer_ee_.resize(static_cast<std::size_t>(nc * nc));
+  for (auto& pairs : layer_ee_) pairs.clear();
   const double layer_reach = std::max(reach_.gap, reach_.layer_edges);
   for (int c = 0; c < nc; ++c) {
     for (int d = 0; d < nc; ++d) {
@@ -146,7 +152,15 @@ void ContactCandidates::make(const ContactLayout& L, const BodySweep& body) {
         if (o <= e) return;
         const auto& a = L.edges[e];
         const auto& b = L.edges[o];
-        if (!shares_vertex(a.data(), 2, b.data(), 2)) ee_.push_back({e, o});
+        if (shares_vertex(a.data(), 2, b.data(), 2)) return;
+        ee_.push_back({e, o});
+        // Edges of two layers, also by (inner, outer) cloth in local indices.
+        if (L.layer[c] < L.layer[d]) {
+          layer_ee_[c * nc + d].push_back({o - L.edge_offset[d], e - L.edge_offset[c]});
+        } else if (L.layer[c] > L.layer[d]) {
+          layer_ee_[d * nc + c].push_back({e - L.edge_offset[c], o - L.edge_offset[d]});
+        }
+        if (reach_.gap > 0 && near(edge_boxes_[e], edge_boxes_[o], reach_.gap)) ee_gap_.push_back({e, o});
       });
     }
   }
@@ -159,6 +173,9 @@ void ContactCandidates::make_body(const ContactLayout& L, const BodySweep& body)
   body_vf_.clear();
   body_fv_.clear();
   body_ee_.clear();
+  body_ee_gap_.clear();
+  body_ee_by_cloth_.resize(L.self.size());
+  for (auto& pairs : body_ee_by_cloth_) pairs.clear();
   const int nb = L.body_vertices;
   const bool any = nb > 0 && body.from != nullptr && body.to != nullptr &&
                    static_cast<int>(body.from->size()) == nb && static_cast<int>(body.to->size()) == nb;
@@ -215,11 +232,17 @@ void ContactCandidates::traverse_body(const ContactLayout& L) {
   const int nc = static_cast<int>(L.self.size());
   for (int c = 0; c < nc; ++c) {
     if (reach_.gap > 0) {
-      BoxTree::pairs(vertex_trees_[c], body_face_tree_, reach_.gap, [&](int v, int i) { body_vf_.push_back({v, i}); });
-      BoxTree::pairs(face_trees_[c], body_vertex_tree_, reach_.gap, [&](int f, int i) { body_fv_.push_back({f, i}); });
+      BoxTree::pairs(vertex_trees_[c], body_face_tree_, reach_.gap,
+                     [&](int v, int i) { body_vf_.push_back({{v, i}, body_face_boxes_[i]}); });
+      BoxTree::pairs(face_trees_[c], body_vertex_tree_, reach_.gap,
+                     [&](int f, int i) { body_fv_.push_back({{f, i}, body_vertex_boxes_[i]}); });
     }
     if (edge_reach > 0) {
-      BoxTree::pairs(edge_trees_[c], body_edge_tree_, edge_reach, [&](int e, int i) { body_ee_.push_back({e, i}); });
+      BoxTree::pairs(edge_trees_[c], body_edge_tree_, edge_reach, [&](int e, int i) {
+        body_ee_.push_back({e, i});
+        body_ee_by_cloth_[c].push_back({e - L.edge_offset[c], i});
+        if (reach_.gap > 0 && near(edge_boxes_[e], body_edge_boxes_[i], reach_.gap)) body_ee_gap_.push_back({{e, i}, body_edge_boxes_[i]});
+      });
     }
   }
 }

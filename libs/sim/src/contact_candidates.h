@@ -9,7 +9,7 @@
 //
 // ContactCandidates holds every pair of features that can come within the
 // pair's reach while each cloth vertex v stays inside its bound, the box of
-// half-side radius[v] around the reference position ref[v] it had when the
+// half-side radius[v] around a reference position ref[v] set when the
 // list was made, and the body moves along the sweep of the frame the list
 // was made for:
 //  - cloth vertex - cloth face and cloth edge - cloth edge of two cloths,
@@ -26,8 +26,10 @@
 //
 // ensure() checks every cloth position a phase reads against its bound
 // (O(vertices)); when one is outside, the list is made again around the
-// positions given (each vertex's radius: the margin plus how far it moves
-// between the two positions given); when only the body's frame changed,
+// positions given (each vertex's reference: the later position moved
+// kAhead times its motion between the two further along it; its radius:
+// the margin plus that distance plus the motion, so that both positions
+// given lie in the bound); when only the body's frame changed,
 // only the body pairs are made again. Lists come from traversals of
 // bounding-box hierarchies (box_tree.h: per cloth and kind of feature over
 // the bounds, and over the body's frame-swept features), built once per
@@ -39,7 +41,6 @@
 #include <cstdint>
 #include <vector>
 
-#include "box_grid.h"
 #include "box_tree.h"
 #include "layers/geometry/mesh.h"
 #include "layers/sim/cloth.h"
@@ -72,6 +73,10 @@ struct ContactLayout {
 class ContactCandidates {
  public:
   static constexpr double kSlack = 1e-9;
+  // How far ahead along its last motion a vertex's reference is put, in
+  // multiples of that motion (bench_sim's 4k walk: 5.5 lists a frame at 0,
+  // 2.6 at 4).
+  static constexpr double kAhead = 4;
 
   // What the lists must hold: pairs within `gap` (every kind), edges of
   // two layers within `layer_edges`, cloth and body edges within
@@ -127,9 +132,26 @@ class ContactCandidates {
   // counted from 0.
   const std::vector<std::array<int, 2>>& cloth_vertex_face() const { return vf_; }
   const std::vector<std::array<int, 2>>& cloth_edge_edge() const { return ee_; }
-  const std::vector<std::array<int, 2>>& body_vertex_face() const { return body_vf_; }
-  const std::vector<std::array<int, 2>>& body_face_vertex() const { return body_fv_; }
+  // A body pair with the body feature's box over the frame (not grown),
+  // kept beside it for the collision pass's box test.
+  struct BodyPair {
+    std::array<int, 2> ids;
+    Box body;
+  };
+  const std::vector<BodyPair>& body_vertex_face() const { return body_vf_; }
+  const std::vector<BodyPair>& body_face_vertex() const { return body_fv_; }
   const std::vector<std::array<int, 2>>& body_edge_edge() const { return body_ee_; }
+  // The same edge pairs per contact, in the cloths' own edge indices:
+  // (outer edge, inner edge) of cloths `inner` and `outer` on two layers
+  // (inner below), and (cloth edge, body edge) of one cloth.
+  const std::vector<std::array<int, 2>>& layer_edge_pairs(int inner, int outer) const {
+    return layer_ee_[static_cast<std::size_t>(inner) * cloths_ + outer];
+  }
+  const std::vector<std::array<int, 2>>& body_edge_pairs(int cloth) const { return body_ee_by_cloth_[cloth]; }
+  // The edge pairs above that are within the gap alone (what the
+  // collision pass reads), in the same order.
+  const std::vector<std::array<int, 2>>& cloth_edge_edge_gap() const { return ee_gap_; }
+  const std::vector<BodyPair>& body_edge_edge_gap() const { return body_ee_gap_; }
   // The body's features' boxes over the frame's sweep (not grown).
   const std::vector<Box>& body_vertex_boxes() const { return body_vertex_boxes_; }
   const std::vector<Box>& body_edge_boxes() const { return body_edge_boxes_; }
@@ -160,7 +182,11 @@ class ContactCandidates {
   std::vector<Box> vertex_boxes_, edge_boxes_, face_boxes_;  // bounds of the cloth features (not grown)
   std::vector<BoxTree> vertex_trees_, edge_trees_, face_trees_;  // per cloth, over the bounds
   long tree_revision_ = -1;                                        // the layout they were built for
-  std::vector<std::array<int, 2>> vf_, ee_, body_vf_, body_fv_, body_ee_;
+  std::vector<std::array<int, 2>> vf_, ee_, body_ee_, ee_gap_;
+  std::vector<BodyPair> body_vf_, body_fv_, body_ee_gap_;
+  std::vector<std::vector<std::array<int, 2>>> layer_ee_;         // per inner x cloths_ + outer
+  std::size_t cloths_ = 0;
+  std::vector<std::vector<std::array<int, 2>>> body_ee_by_cloth_;  // per cloth
   BodySweep body_;
   std::vector<Box> body_vertex_boxes_, body_edge_boxes_, body_face_boxes_;
   BoxTree body_vertex_tree_, body_edge_tree_, body_face_tree_;  // over the frame-swept boxes

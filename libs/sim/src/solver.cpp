@@ -50,7 +50,6 @@ struct Solver::Impl {
   // body edge contacts and the collision pass.
   detail::ContactLayout layout;
   detail::ContactCandidates candidates;
-  std::vector<std::array<int, 2>> edge_pairs;  // scratch: one contact's pairs, in local indices
 
   Impl() { pass.share(&layout, &candidates); }
 
@@ -74,9 +73,9 @@ struct Solver::Impl {
   }
 
   // Room each cloth vertex gets around its reference in the candidate list
-  // (m): more makes longer lists, less makes them again more often (1 mm:
-  // 35 lists a frame on bench_sim's 4k walk; 3 mm: 5.5; 6 mm: 3, with
-  // twice the pairs of 3 mm; docs/benchmarks.md).
+  // (m): more makes longer lists, less makes them again more often (on
+  // bench_sim's 4k walk, before references were put ahead: 1 mm, 35 lists
+  // a frame; 3 mm, 5.5; 6 mm, 3 with twice the pairs of 3 mm).
   static constexpr double kContactMargin = 0.003;
 
   void add(int n) {
@@ -358,18 +357,8 @@ void Solver::project_layer_contacts() {
     if (!(c.layer_edge_thickness > 0)) return;
     // The pair's edges (outer, inner) from the shared candidates.
     m.ensure_candidates(cloths_, c, has_body());
-    m.edge_pairs.clear();
-    const detail::ContactLayout& L = m.layout;
-    for (const auto& [e, o] : m.candidates.cloth_edge_edge()) {
-      const int ce = L.owner[L.edges[e][0]], co = L.owner[L.edges[o][0]];
-      if (ce == b && co == a) {
-        m.edge_pairs.push_back({e - L.edge_offset[b], o - L.edge_offset[a]});
-      } else if (ce == a && co == b) {
-        m.edge_pairs.push_back({o - L.edge_offset[b], e - L.edge_offset[a]});
-      }
-    }
     m.layers.collide_edges(cloths_[a], cloths_[a].state_, cloths_[b], cloths_[b].state_, c.layer_edge_thickness,
-                           m.edge_pairs, m.push[a], m.push[b]);
+                           m.candidates.layer_edge_pairs(a, b), m.push[a], m.push[b]);
   });
 }
 
@@ -399,12 +388,8 @@ void Solver::project_body_contacts(bool body, double body_edges, double h) {
     if (!(body_edges > 0)) continue;
     // This garment's edges against the body's, from the shared candidates.
     m.ensure_candidates(cloths_, c, true);
-    m.edge_pairs.clear();
-    const detail::ContactLayout& L = m.layout;
-    for (const auto& [e, i] : m.candidates.body_edge_edge()) {
-      if (L.owner[L.edges[e][0]] == static_cast<int>(ci)) m.edge_pairs.push_back({e - L.edge_offset[ci], i});
-    }
-    body_push[ci] = std::max(body_push[ci], m.body.collide_edges(cloths_[ci], s, body_edges, m.push[ci], m.edge_pairs));
+    body_push[ci] = std::max(body_push[ci], m.body.collide_edges(cloths_[ci], s, body_edges, m.push[ci],
+                                                                 m.candidates.body_edge_pairs(static_cast<int>(ci))));
   }
 }
 

@@ -85,6 +85,12 @@ Needed brute_force(const detail::ContactLayout& L, const Vec3s& x0, const Vec3s&
   return n;
 }
 
+std::vector<std::array<int, 2>> ids(const std::vector<detail::ContactCandidates::BodyPair>& pairs) {
+  std::vector<std::array<int, 2>> out;
+  for (const auto& p : pairs) out.push_back(p.ids);
+  return out;
+}
+
 // Every needed pair is listed (the lists may hold more).
 void expect_listed(const Pairs& needed, const std::vector<std::array<int, 2>>& listed, const char* what) {
   const Pairs have(listed.begin(), listed.end());
@@ -148,8 +154,8 @@ TEST(ContactCandidates, ListEveryPairWithinReachAndAreMadeAgainOnlyWhenAVertexLe
     const Needed n = brute_force(L, all0, all1, reach);
     expect_listed(n.vf, candidates.cloth_vertex_face(), "cloth vertex-face");
     expect_listed(n.ee, candidates.cloth_edge_edge(), "cloth edge-edge");
-    expect_listed(n.body_vf, candidates.body_vertex_face(), "body vertex-face");
-    expect_listed(n.body_fv, candidates.body_face_vertex(), "body face-vertex");
+    expect_listed(n.body_vf, ids(candidates.body_vertex_face()), "body vertex-face");
+    expect_listed(n.body_fv, ids(candidates.body_face_vertex()), "body face-vertex");
     expect_listed(n.body_ee, candidates.body_edge_edge(), "body edge-edge");
     EXPECT_FALSE(n.vf.empty());
     EXPECT_FALSE(n.ee.empty());
