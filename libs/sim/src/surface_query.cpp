@@ -47,18 +47,18 @@ bool closest_around(const ContactTopology& t, const Vec3s& x, int center, const 
     const int f = t.vertex_faces[i];
     const auto& v = t.faces[f];
     const Vec3 n = (x[v[1]] - x[v[0]]).cross(x[v[2]] - x[v[0]]);
-    const double len = n.norm();
-    if (!(len > 0)) continue;
+    if (!(n.squaredNorm() > 0)) continue;
     const TrianglePoint q = closest_on_triangle(p, x[v[0]], x[v[1]], x[v[2]]);
     const double d2 = (p - q.point).squaredNorm();
     if (d2 < best) {
       best = d2;
       best_point = q;
-      best_normal = n / len;
+      best_normal = n;  // normalised once, for the face kept
       best_face = f;
     }
   }
   if (best_face < 0) return false;
+  best_normal /= best_normal.norm();
   hit.face = best_face;
   hit.bary = best_point.bary;
   hit.point = best_point.point;
