@@ -104,6 +104,8 @@ void BM_GeneratorFrame(benchmark::State& state) {
       static_cast<double>(t.candidate_builds) / static_cast<double>(t.frames), benchmark::Counter::kAvgThreads);
   state.counters["cand_body"] = benchmark::Counter(
       static_cast<double>(t.candidate_body_builds) / static_cast<double>(t.frames), benchmark::Counter::kAvgThreads);
+  state.counters["cand_local"] = benchmark::Counter(
+      static_cast<double>(t.candidate_refreshes) / static_cast<double>(t.frames), benchmark::Counter::kAvgThreads);
   state.counters["cand_pairs"] = benchmark::Counter(
       static_cast<double>(t.candidate_pairs) / static_cast<double>(t.frames), benchmark::Counter::kAvgThreads);
   state.counters["cap_sweeps"] = benchmark::Counter(static_cast<double>(t.cap_sweeps) / static_cast<double>(t.frames),

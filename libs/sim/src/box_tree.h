@@ -33,6 +33,9 @@ class BoxTree {
   void refit(const std::vector<Box>& boxes);
   int size() const { return static_cast<int>(items_.size()); }
 
+  // Calls f(i) for every box i within `reach` of `query`.
+  template <class F>
+  void query(const Box& query, double reach, F&& f) const;
   // Calls f(i, j) for every box i of `a` and j of `b` within `reach`.
   template <class F>
   static void pairs(const BoxTree& a, const BoxTree& b, double reach, F&& f);
@@ -76,6 +79,25 @@ void BoxTree::pairs(const BoxTree& a, const BoxTree& b, double reach, F&& f) {
       stack.push_back({i, q.right});
       stack.push_back({i, q.left});
     }
+  }
+}
+
+template <class F>
+void BoxTree::query(const Box& query, double reach, F&& f) const {
+  if (nodes_.empty()) return;
+  int stack[64];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& node = nodes_[stack[--top]];
+    if (!near(node.box, query, reach)) continue;
+    if (node.left < 0) {
+      for (int s = node.first; s < node.first + node.count; ++s)
+        if (near(boxes_[s], query, reach)) f(items_[s]);
+      continue;
+    }
+    stack[top++] = node.right;  // depth below 64: median splits halve the count
+    stack[top++] = node.left;
   }
 }
 

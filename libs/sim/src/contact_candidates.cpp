@@ -78,6 +78,60 @@ void ContactCandidates::set_reach(const Reach& reach) {
   layout_stamp_ = nullptr;  // made again at the next ensure()
 }
 
+void ContactCandidates::set_bound(int g) {
+  // Ahead of the later position along the motion from the earlier one
+  // (which the next substeps are likely to continue), with room for the
+  // margin and back to the earlier position.
+  const Vec3 d = to_[g] - from_[g];
+  ref_[g] = to_[g] + kAhead * d;
+  radius_[g] = reach_.margin + (1 + kAhead) * d.cwiseAbs().maxCoeff() + kSlack;
+  if (!std::isfinite(radius_[g])) radius_[g] = std::nan("");  // never within: made again
+  vertex_boxes_[g] = Box{ref_[g].array() - radius_[g], ref_[g].array() + radius_[g]};
+}
+
+Box ContactCandidates::feature_bound(const int* v, int n) const {
+  Box b = vertex_boxes_[v[0]];
+  for (int k = 1; k < n; ++k) {
+    b.lo = b.lo.cwiseMin(vertex_boxes_[v[k]].lo);
+    b.hi = b.hi.cwiseMax(vertex_boxes_[v[k]].hi);
+  }
+  return b;
+}
+
+void ContactCandidates::add_vertex_face(const ContactLayout& L, int v, int f) {
+  const auto& t = L.faces[f];
+  if (t[0] != v && t[1] != v && t[2] != v) vf_.push_back({v, f});
+}
+
+void ContactCandidates::add_edge_edge(const ContactLayout& L, int e, int o) {
+  // e < o, both cloth edges.
+  const auto& a = L.edges[e];
+  const auto& b = L.edges[o];
+  if (shares_vertex(a.data(), 2, b.data(), 2)) return;
+  ee_.push_back({e, o});
+  // Edges of two layers, also by (inner, outer) cloth in local indices.
+  const int c = L.owner[a[0]], d = L.owner[b[0]];
+  if (L.layer[c] < L.layer[d]) {
+    layer_ee_[c * cloths_ + d].push_back({o - L.edge_offset[d], e - L.edge_offset[c]});
+  } else if (L.layer[c] > L.layer[d]) {
+    layer_ee_[d * cloths_ + c].push_back({e - L.edge_offset[c], o - L.edge_offset[d]});
+  }
+  if (reach_.gap > 0 && near(edge_boxes_[e], edge_boxes_[o], reach_.gap)) ee_gap_.push_back({e, o});
+}
+
+void ContactCandidates::add_body_edge(const ContactLayout& L, int e, int i) {
+  body_ee_.push_back({e, i});
+  const int c = L.owner[L.edges[e][0]];
+  body_ee_by_cloth_[c].push_back({e - L.edge_offset[c], i});
+  if (reach_.gap > 0 && near(edge_boxes_[e], body_edge_boxes_[i], reach_.gap)) {
+    body_ee_gap_.push_back({{e, i}, body_edge_boxes_[i]});
+  }
+}
+
+double ContactCandidates::edge_reach(const ContactLayout& L, int c, int d) const {
+  return L.layer[c] != L.layer[d] ? std::max(reach_.gap, reach_.layer_edges) : reach_.gap;
+}
+
 void ContactCandidates::make(const ContactLayout& L, const BodySweep& body) {
   ++builds_;
   layout_stamp_ = &L;
@@ -86,30 +140,14 @@ void ContactCandidates::make(const ContactLayout& L, const BodySweep& body) {
   ref_.resize(static_cast<std::size_t>(nv));
   radius_.resize(static_cast<std::size_t>(nv));
   vertex_boxes_.resize(static_cast<std::size_t>(nv));
-  for (int g = 0; g < nv; ++g) {
-    // Ahead of the later position along the motion from the earlier one
-    // (which the next substeps are likely to continue), with room for the
-    // margin and back to the earlier position.
-    const Vec3 d = to_[g] - from_[g];
-    ref_[g] = to_[g] + kAhead * d;
-    radius_[g] = reach_.margin + (1 + kAhead) * d.cwiseAbs().maxCoeff() + kSlack;
-    if (!std::isfinite(radius_[g])) radius_[g] = std::nan("");  // never within: made again
-    vertex_boxes_[g] = Box{ref_[g].array() - radius_[g], ref_[g].array() + radius_[g]};
-  }
-  const auto feature_box = [&](const int* v, int n) {
-    Box b = vertex_boxes_[v[0]];
-    for (int k = 1; k < n; ++k) {
-      b.lo = b.lo.cwiseMin(vertex_boxes_[v[k]].lo);
-      b.hi = b.hi.cwiseMax(vertex_boxes_[v[k]].hi);
-    }
-    return b;
-  };
+  for (int g = 0; g < nv; ++g) set_bound(g);
   edge_boxes_.resize(static_cast<std::size_t>(L.cloth_edges));
   face_boxes_.resize(static_cast<std::size_t>(L.cloth_faces));
-  for (int e = 0; e < L.cloth_edges; ++e) edge_boxes_[e] = feature_box(L.edges[e].data(), 2);
-  for (int f = 0; f < L.cloth_faces; ++f) face_boxes_[f] = feature_box(L.faces[f].data(), 3);
+  for (int e = 0; e < L.cloth_edges; ++e) edge_boxes_[e] = feature_bound(L.edges[e].data(), 2);
+  for (int f = 0; f < L.cloth_faces; ++f) face_boxes_[f] = feature_bound(L.faces[f].data(), 3);
   // One hierarchy per cloth and kind of feature, built when the layout
-  // changed and refitted to the new bounds otherwise.
+  // changed and refitted to the new bounds otherwise; the features around
+  // each vertex (for local refreshes).
   const int nc = static_cast<int>(L.self.size());
   if (tree_revision_ != L.revision) {
     tree_revision_ = L.revision;
@@ -121,6 +159,18 @@ void ContactCandidates::make(const ContactLayout& L, const BodySweep& body) {
       edge_trees_[c].build(edge_boxes_, L.edge_offset[c], L.edge_offset[c + 1] - L.edge_offset[c]);
       face_trees_[c].build(face_boxes_, L.face_offset[c], L.face_offset[c + 1] - L.face_offset[c]);
     }
+    const auto around = [&](const auto& features, int count, int per, std::vector<int>& start, std::vector<int>& list) {
+      start.assign(static_cast<std::size_t>(nv) + 1, 0);
+      for (int i = 0; i < count; ++i)
+        for (int k = 0; k < per; ++k) ++start[features[i][k] + 1];
+      for (int g = 0; g < nv; ++g) start[g + 1] += start[g];
+      list.resize(static_cast<std::size_t>(start[nv]));
+      std::vector<int> fill(start.begin(), start.end() - 1);
+      for (int i = 0; i < count; ++i)
+        for (int k = 0; k < per; ++k) list[fill[features[i][k]]++] = i;
+    };
+    around(L.edges, L.cloth_edges, 2, vertex_edge_start_, vertex_edges_);
+    around(L.faces, L.cloth_faces, 3, vertex_face_start_, vertex_faces_);
     body_trees_built_ = false;
   } else {
     for (int c = 0; c < nc; ++c) {
@@ -132,40 +182,124 @@ void ContactCandidates::make(const ContactLayout& L, const BodySweep& body) {
   vf_.clear();
   ee_.clear();
   ee_gap_.clear();
-  cloths_ = nc;
+  cloths_ = static_cast<std::size_t>(nc);
   layer_ee_.resize(static_cast<std::size_t>(nc * nc));
   for (auto& pairs : layer_ee_) pairs.clear();
-  const double layer_reach = std::max(reach_.gap, reach_.layer_edges);
   for (int c = 0; c < nc; ++c) {
     for (int d = 0; d < nc; ++d) {
       // A cloth without self-contact never meets its own features.
       if (d == c && !L.self[c]) continue;
       if (reach_.gap > 0) {
-        BoxTree::pairs(vertex_trees_[c], face_trees_[d], reach_.gap, [&](int v, int f) {
-          const auto& t = L.faces[f];
-          if (t[0] != v && t[1] != v && t[2] != v) vf_.push_back({v, f});
-        });
+        BoxTree::pairs(vertex_trees_[c], face_trees_[d], reach_.gap,
+                       [&](int v, int f) { add_vertex_face(L, v, f); });
       }
-      const double reach = L.layer[c] != L.layer[d] ? layer_reach : reach_.gap;
+      const double reach = edge_reach(L, c, d);
       if (d < c || !(reach > 0)) continue;
       BoxTree::pairs(edge_trees_[c], edge_trees_[d], reach, [&](int e, int o) {
-        if (o <= e) return;
-        const auto& a = L.edges[e];
-        const auto& b = L.edges[o];
-        if (shares_vertex(a.data(), 2, b.data(), 2)) return;
-        ee_.push_back({e, o});
-        // Edges of two layers, also by (inner, outer) cloth in local indices.
-        if (L.layer[c] < L.layer[d]) {
-          layer_ee_[c * nc + d].push_back({o - L.edge_offset[d], e - L.edge_offset[c]});
-        } else if (L.layer[c] > L.layer[d]) {
-          layer_ee_[d * nc + c].push_back({e - L.edge_offset[c], o - L.edge_offset[d]});
-        }
-        if (reach_.gap > 0 && near(edge_boxes_[e], edge_boxes_[o], reach_.gap)) ee_gap_.push_back({e, o});
+        if (o > e) add_edge_edge(L, e, o);
       });
     }
   }
   make_body(L, body);
   --body_builds_;  // counted with the whole lists
+}
+
+void ContactCandidates::refresh(const ContactLayout& L) {
+  ++refreshes_;
+  const int nc = static_cast<int>(cloths_);
+  // New bounds for the vertices that left theirs, and the features around
+  // them (marked) with their bounds again.
+  vertex_mark_.assign(static_cast<std::size_t>(L.cloth_vertices), 0);
+  edge_mark_.assign(static_cast<std::size_t>(L.cloth_edges), 0);
+  face_mark_.assign(static_cast<std::size_t>(L.cloth_faces), 0);
+  marked_edges_.clear();
+  marked_faces_.clear();
+  for (int g : escaped_) {
+    set_bound(g);
+    vertex_mark_[g] = 1;
+    for (int k = vertex_edge_start_[g]; k < vertex_edge_start_[g + 1]; ++k) {
+      const int e = vertex_edges_[k];
+      if (!edge_mark_[e]) marked_edges_.push_back(e);
+      edge_mark_[e] = 1;
+    }
+    for (int k = vertex_face_start_[g]; k < vertex_face_start_[g + 1]; ++k) {
+      const int f = vertex_faces_[k];
+      if (!face_mark_[f]) marked_faces_.push_back(f);
+      face_mark_[f] = 1;
+    }
+  }
+  for (int e : marked_edges_) edge_boxes_[e] = feature_bound(L.edges[e].data(), 2);
+  for (int f : marked_faces_) face_boxes_[f] = feature_bound(L.faces[f].data(), 3);
+  for (int c = 0; c < nc; ++c) {
+    vertex_trees_[c].refit(vertex_boxes_);
+    edge_trees_[c].refit(edge_boxes_);
+    face_trees_[c].refit(face_boxes_);
+  }
+  // Every pair with a marked feature goes ...
+  const auto drop = [](auto& pairs, auto&& marked) {
+    pairs.erase(std::remove_if(pairs.begin(), pairs.end(), marked), pairs.end());
+  };
+  drop(vf_, [&](const std::array<int, 2>& p) { return vertex_mark_[p[0]] || face_mark_[p[1]]; });
+  drop(ee_, [&](const std::array<int, 2>& p) { return edge_mark_[p[0]] || edge_mark_[p[1]]; });
+  drop(ee_gap_, [&](const std::array<int, 2>& p) { return edge_mark_[p[0]] || edge_mark_[p[1]]; });
+  for (int inner = 0; inner < nc; ++inner) {
+    for (int outer = 0; outer < nc; ++outer) {
+      drop(layer_ee_[inner * cloths_ + outer], [&](const std::array<int, 2>& p) {
+        return edge_mark_[p[0] + L.edge_offset[outer]] || edge_mark_[p[1] + L.edge_offset[inner]];
+      });
+    }
+  }
+  drop(body_vf_, [&](const BodyPair& p) { return vertex_mark_[p.ids[0]] != 0; });
+  drop(body_fv_, [&](const BodyPair& p) { return face_mark_[p.ids[0]] != 0; });
+  drop(body_ee_, [&](const std::array<int, 2>& p) { return edge_mark_[p[0]] != 0; });
+  drop(body_ee_gap_, [&](const BodyPair& p) { return edge_mark_[p.ids[0]] != 0; });
+  for (int c = 0; c < nc; ++c) {
+    drop(body_ee_by_cloth_[c], [&](const std::array<int, 2>& p) { return edge_mark_[p[0] + L.edge_offset[c]] != 0; });
+  }
+  // ... and the marked features meet the hierarchies again (a pair of two
+  // marked features once).
+  const bool body = body_listed_;
+  const double body_edge_reach = std::max(reach_.gap, reach_.body_edges);
+  const auto partners = [&](int c, auto&& f) {
+    for (int d = 0; d < nc; ++d)
+      if (d != c || L.self[c]) f(d);
+  };
+  if (reach_.gap > 0) {
+    for (int v : escaped_) {
+      partners(L.owner[v], [&](int d) {
+        face_trees_[d].query(vertex_boxes_[v], reach_.gap, [&](int f) { add_vertex_face(L, v, f); });
+      });
+      if (body) {
+        body_face_tree_.query(vertex_boxes_[v], reach_.gap,
+                              [&](int i) { body_vf_.push_back({{v, i}, body_face_boxes_[i]}); });
+      }
+    }
+    for (int f : marked_faces_) {
+      partners(L.owner[L.faces[f][0]], [&](int d) {
+        vertex_trees_[d].query(face_boxes_[f], reach_.gap, [&](int v) {
+          if (!vertex_mark_[v]) add_vertex_face(L, v, f);
+        });
+      });
+      if (body) {
+        body_vertex_tree_.query(face_boxes_[f], reach_.gap,
+                                [&](int i) { body_fv_.push_back({{f, i}, body_vertex_boxes_[i]}); });
+      }
+    }
+  }
+  for (int e : marked_edges_) {
+    const int c = L.owner[L.edges[e][0]];
+    partners(c, [&](int d) {
+      const double reach = edge_reach(L, c, d);
+      if (!(reach > 0)) return;
+      edge_trees_[d].query(edge_boxes_[e], reach, [&](int o) {
+        if (o == e || (edge_mark_[o] && o < e)) return;
+        add_edge_edge(L, std::min(e, o), std::max(e, o));
+      });
+    });
+    if (body && body_edge_reach > 0) {
+      body_edge_tree_.query(edge_boxes_[e], body_edge_reach, [&](int i) { add_body_edge(L, e, i); });
+    }
+  }
 }
 
 void ContactCandidates::make_body(const ContactLayout& L, const BodySweep& body) {
@@ -186,6 +320,7 @@ void ContactCandidates::make_body(const ContactLayout& L, const BodySweep& body)
   body_ = body;
   body_layout_ = L.revision;
   if (!same) fit_body(L, body, any);
+  body_listed_ = any;
   if (any) traverse_body(L);
 }
 
@@ -238,11 +373,7 @@ void ContactCandidates::traverse_body(const ContactLayout& L) {
                      [&](int f, int i) { body_fv_.push_back({{f, i}, body_vertex_boxes_[i]}); });
     }
     if (edge_reach > 0) {
-      BoxTree::pairs(edge_trees_[c], body_edge_tree_, edge_reach, [&](int e, int i) {
-        body_ee_.push_back({e, i});
-        body_ee_by_cloth_[c].push_back({e - L.edge_offset[c], i});
-        if (reach_.gap > 0 && near(edge_boxes_[e], body_edge_boxes_[i], reach_.gap)) body_ee_gap_.push_back({{e, i}, body_edge_boxes_[i]});
-      });
+      BoxTree::pairs(edge_trees_[c], body_edge_tree_, edge_reach, [&](int e, int i) { add_body_edge(L, e, i); });
     }
   }
 }

@@ -25,8 +25,11 @@
 // kSlack (far above the rounding of the comparisons).
 //
 // ensure() checks every cloth position a phase reads against its bound
-// (O(vertices)); when one is outside, the list is made again around the
-// positions given (each vertex's reference: the later position moved
+// (O(vertices)); when some are outside, the pairs of their features are
+// listed again with new bounds for them (a local refresh: a query of each
+// feature in the hierarchies), and when many are (kLocalShare), the whole
+// list is made again around the positions given (each vertex's reference:
+// the later position moved
 // kAhead times its motion between the two further along it; its radius:
 // the margin plus that distance plus the motion, so that both positions
 // given lie in the bound); when only the body's frame changed,
@@ -74,9 +77,13 @@ class ContactCandidates {
  public:
   static constexpr double kSlack = 1e-9;
   // How far ahead along its last motion a vertex's reference is put, in
-  // multiples of that motion (bench_sim's 4k walk: 5.5 lists a frame at 0,
-  // 2.6 at 4).
-  static constexpr double kAhead = 4;
+  // multiples of that motion (0, 1, 2 and 4 within 5% of each other on
+  // bench_sim's 1k and 4k walks with local refreshes).
+  static constexpr double kAhead = 1;
+  // While the vertices out of their bounds since the whole lists were made
+  // are at most this share of the cloth vertices, only the pairs of their
+  // features are listed again (a local refresh); beyond, the whole lists.
+  static constexpr double kLocalShare = 0.1;
 
   // What the lists must hold: pairs within `gap` (every kind), edges of
   // two layers within `layer_edges`, cloth and body edges within
@@ -106,24 +113,38 @@ class ContactCandidates {
   // twice). Returns true when the lists were made again.
   template <class A, class B>
   bool ensure(const ContactLayout& layout, A&& a, B&& b, const BodySweep& body) {
-    bool inside = layout_stamp_ == &layout && revision_ == layout.revision &&
-                  static_cast<int>(ref_.size()) == layout.cloth_vertices;
-    for (int g = 0; inside && g < layout.cloth_vertices; ++g) inside = within(g, a(g)) && within(g, b(g));
-    if (!inside) {
-      from_.resize(static_cast<std::size_t>(layout.cloth_vertices));
+    const int n = layout.cloth_vertices;
+    const bool laid = layout_stamp_ == &layout && revision_ == layout.revision && static_cast<int>(ref_.size()) == n;
+    escaped_.clear();
+    if (laid) {
+      for (int g = 0; g < n; ++g)
+        if (!within(g, a(g)) || !within(g, b(g))) escaped_.push_back(g);
+    }
+    const bool body_changed =
+        body.from != body_.from || body.to != body_.to || body.revision != body_.revision || body.revision < 0;
+    // Local refreshes leave the other bounds as they were: past a budget of
+    // vertices refreshed since the whole lists were made, make them anew.
+    if (!laid || static_cast<double>(refreshed_ + escaped_.size()) > kLocalShare * n) {
+      refreshed_ = 0;
+      from_.resize(static_cast<std::size_t>(n));
       to_.resize(from_.size());
-      for (int g = 0; g < layout.cloth_vertices; ++g) {
+      for (int g = 0; g < n; ++g) {
         from_[g] = a(g);
         to_[g] = b(g);
       }
       make(layout, body);
       return true;
     }
-    if (body.from != body_.from || body.to != body_.to || body.revision != body_.revision || body.revision < 0) {
-      make_body(layout, body);
-      return true;
+    if (!escaped_.empty()) {
+      refreshed_ += static_cast<long>(escaped_.size());
+      for (int g : escaped_) {
+        from_[g] = a(g);
+        to_[g] = b(g);
+      }
+      refresh(layout);
     }
-    return false;
+    if (body_changed) make_body(layout, body);
+    return !escaped_.empty() || body_changed;
   }
 
   // Pairs: (cloth vertex, cloth face) and (cloth edge, cloth edge, the
@@ -158,6 +179,7 @@ class ContactCandidates {
   const std::vector<Box>& body_face_boxes() const { return body_face_boxes_; }
 
   long builds() const { return builds_; }            // times the whole lists were made
+  long refreshes() const { return refreshes_; }      // times they were refreshed locally
   long body_builds() const { return body_builds_; }  // times the body pairs alone were made
 
  private:
@@ -167,6 +189,16 @@ class ContactCandidates {
     return d.x() <= r && d.y() <= r && d.z() <= r;  // false for NaN
   }
   void make(const ContactLayout& layout, const BodySweep& body);
+  // The local refresh: escaped_ (from_ and to_ set for them) get new
+  // bounds, and the pairs of their features are listed again.
+  void refresh(const ContactLayout& layout);
+  void set_bound(int g);                          // ref_, radius_ and vertex box of vertex g from from_ and to_
+  Box feature_bound(const int* v, int n) const;  // the union of its vertices' bounds
+  double edge_reach(const ContactLayout& layout, int c, int d) const;  // edges of cloths c and d
+  // Each adds a pair to every list it belongs to.
+  void add_vertex_face(const ContactLayout& layout, int v, int f);
+  void add_edge_edge(const ContactLayout& layout, int e, int o);
+  void add_body_edge(const ContactLayout& layout, int e, int i);
   void make_body(const ContactLayout& layout, const BodySweep& body);
   // The body's boxes over the sweep and its hierarchies fitted to them.
   void fit_body(const ContactLayout& layout, const BodySweep& body, bool any);
@@ -182,6 +214,12 @@ class ContactCandidates {
   std::vector<Box> vertex_boxes_, edge_boxes_, face_boxes_;  // bounds of the cloth features (not grown)
   std::vector<BoxTree> vertex_trees_, edge_trees_, face_trees_;  // per cloth, over the bounds
   long tree_revision_ = -1;                                        // the layout they were built for
+  std::vector<int> vertex_edge_start_, vertex_edges_;              // per cloth vertex: its edges ...
+  std::vector<int> vertex_face_start_, vertex_faces_;              // ... and faces
+  std::vector<int> escaped_;                                       // scratch: vertices out of their bounds
+  long refreshed_ = 0;                                             // vertices refreshed since the last make()
+  std::vector<std::uint8_t> vertex_mark_, edge_mark_, face_mark_;  // scratch: features to list again
+  std::vector<int> marked_edges_, marked_faces_;
   std::vector<std::array<int, 2>> vf_, ee_, body_ee_, ee_gap_;
   std::vector<BodyPair> body_vf_, body_fv_, body_ee_gap_;
   std::vector<std::vector<std::array<int, 2>>> layer_ee_;         // per inner x cloths_ + outer
@@ -191,8 +229,9 @@ class ContactCandidates {
   std::vector<Box> body_vertex_boxes_, body_edge_boxes_, body_face_boxes_;
   BoxTree body_vertex_tree_, body_edge_tree_, body_face_tree_;  // over the frame-swept boxes
   bool body_trees_built_ = false;
+  bool body_listed_ = false;  // the body pairs are listed (a body and its sweep were given)
   long body_layout_ = -1;  // the layout revision the body's boxes were fitted for
-  long builds_ = 0, body_builds_ = 0;
+  long builds_ = 0, body_builds_ = 0, refreshes_ = 0;
 };
 
 }  // namespace layers::sim::detail

@@ -197,7 +197,8 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
 
   prepare_frame(h, body);
   timings_.elastic += seconds_since(t);
-  const long builds = m.candidates.builds(), body_builds = m.candidates.body_builds();
+  const long builds = m.candidates.builds(), body_builds = m.candidates.body_builds(),
+             refreshes = m.candidates.refreshes();
   for (int k = 0; k < n; ++k) {
     const double step2 = predict(h, unit_wind);
     timings_.predict += seconds_since(t);
@@ -237,6 +238,7 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
   }
   timings_.candidate_builds += m.candidates.builds() - builds;
   timings_.candidate_body_builds += m.candidates.body_builds() - body_builds;
+  timings_.candidate_refreshes += m.candidates.refreshes() - refreshes;
 
   if (body) {
     m.body.end_frame();

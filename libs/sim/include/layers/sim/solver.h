@@ -52,7 +52,8 @@ struct StepTimings {
   long pass_reverted = 0;     // cloth vertices its fail-safe put back at the substep's start
   long pass_yielded = 0;      // body pairs the body swept through cloth that could not move
   long candidate_builds = 0;  // times the shared contact candidates were made (contact_candidates.h) ...
-  long candidate_body_builds = 0;  // ... and times only their body pairs were
+  long candidate_body_builds = 0;  // ... times only their body pairs were ...
+  long candidate_refreshes = 0;    // ... and times they were refreshed locally
   long candidate_pairs = 0;        // pairs they held, summed over substeps
   double total = 0;
   long frames = 0;
