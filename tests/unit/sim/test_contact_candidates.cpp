@@ -1,7 +1,8 @@
 // The shared broad phase (contact_candidates.h, box_tree.h): every pair of
 // features that the brute force finds within its reach is listed, while
-// the cloths stay in their bounds and after they leave them (the lists are
-// then made again: the fall-back); the body's pairs follow its sweep; the
+// the cloths stay in their bounds and after some vertices leave them (a
+// local refresh) or many do (the whole lists again: the fall-back), in the
+// global and the per-contact lists; the body's pairs follow its sweep; the
 // same inputs give the same lists.
 #include <gtest/gtest.h>
 
@@ -100,7 +101,7 @@ void expect_listed(const Pairs& needed, const std::vector<std::array<int, 2>>& l
   EXPECT_EQ(missing, 0) << what << ": " << missing << " of " << needed.size() << " needed pairs not listed";
 }
 
-TEST(ContactCandidates, ListEveryPairWithinReachAndAreMadeAgainOnlyWhenAVertexLeavesItsBound) {
+TEST(ContactCandidates, ListEveryPairWithinReachThroughRefreshesAndRemakes) {
   // Two stacked sheets 5 mm apart (layers 0 and 1), a third with
   // self-contact, and a "body" (a sheet below, moving over the frame).
   std::vector<Cloth> cloths;
@@ -131,22 +132,33 @@ TEST(ContactCandidates, ListEveryPairWithinReachAndAreMadeAgainOnlyWhenAVertexLe
   for (const Cloth& c : cloths)
     for (const Vec3& p : c.state().x) x0.push_back(p);
   std::mt19937 rng(3);
-  std::uniform_real_distribution<double> small(-0.0015, 0.0015), large(-0.02, 0.02);
+  std::uniform_real_distribution<double> small(-0.0015, 0.0015), large(-0.02, 0.02), away(0.1, 0.2);
+  std::uniform_int_distribution<int> pick(0, static_cast<int>(x0.size()) - 1);
   long sweep = 0;
-  long builds_before = 0;
-  for (int step = 0; step < 12; ++step) {
-    // Small moves mostly (within the margin of the last lists), a large
-    // one every fourth step (out of bounds: the fall-back).
+  for (int step = 0; step < 16; ++step) {
+    // Small moves mostly (within the margin of the last lists); every
+    // fourth step a few vertices thrown 10-20 cm (a local refresh) or, every
+    // eighth, all of them (the whole lists again).
     Vec3s x1 = x0;
-    for (Vec3& p : x1) {
-      const bool far = step % 4 == 3;
-      p += far ? Vec3(large(rng), large(rng), large(rng)) : Vec3(small(rng), small(rng), small(rng));
+    for (Vec3& p : x1) p += Vec3(small(rng), small(rng), small(rng));
+    const long builds = candidates.builds(), refreshes = candidates.refreshes();
+    if (step % 8 == 7) {
+      for (Vec3& p : x1) p += Vec3(large(rng), large(rng), large(rng));
+    } else if (step % 4 == 3) {
+      for (int k = 0; k < 3; ++k) x1[pick(rng)] += Vec3(away(rng), -away(rng), away(rng));
     }
     if (step % 3 == 0) ++sweep;  // the body's frame changes every third step
     const detail::ContactCandidates::BodySweep body{&body_from, &body_to, sweep};
     const bool made = candidates.ensure(
         L, [&](int g) -> const Vec3& { return x0[g]; }, [&](int g) -> const Vec3& { return x1[g]; }, body);
-    if (step % 4 == 3) EXPECT_TRUE(made) << "step " << step;
+    if (step % 8 == 7) {
+      EXPECT_TRUE(made);
+      EXPECT_EQ(candidates.builds(), builds + 1) << "step " << step;
+    } else if (step % 4 == 3) {
+      EXPECT_TRUE(made);
+      EXPECT_EQ(candidates.builds(), builds) << "step " << step;
+      EXPECT_GT(candidates.refreshes(), refreshes) << "step " << step;
+    }
     // The brute force on the substep's sweep, the body anywhere on its frame's.
     Vec3s all0 = x0, all1 = x1;
     all0.insert(all0.end(), body_from.begin(), body_from.end());
@@ -160,12 +172,25 @@ TEST(ContactCandidates, ListEveryPairWithinReachAndAreMadeAgainOnlyWhenAVertexLe
     EXPECT_FALSE(n.vf.empty());
     EXPECT_FALSE(n.ee.empty());
     EXPECT_FALSE(n.body_ee.empty());
+    // The per-contact lists hold the same pairs in local indices: cloth 0
+    // (layer 0) is inner to cloths 1 and 2 (layer 1).
+    for (int outer : {1, 2}) {
+      Pairs local;
+      for (const auto& [e, o] : n.ee) {
+        if (L.owner[L.edges[e][0]] == 0 && L.owner[L.edges[o][0]] == outer)
+          local.insert({o - L.edge_offset[outer], e - L.edge_offset[0]});
+      }
+      expect_listed(local, candidates.layer_edge_pairs(0, outer), "layer edge pairs");
+    }
+    Pairs body_local;
+    for (const auto& [e, i] : n.body_ee)
+      if (L.owner[L.edges[e][0]] == 1) body_local.insert({e - L.edge_offset[1], i});
+    expect_listed(body_local, candidates.body_edge_pairs(1), "body edge pairs of cloth 1");
     x0 = x1;
-    builds_before = candidates.builds();
   }
   // Small moves kept most lists: far fewer whole makes than steps.
-  EXPECT_LT(builds_before, 12);
-  EXPECT_GE(builds_before, 4);  // the first and the three large moves
+  EXPECT_LT(candidates.builds(), 12);
+  EXPECT_GE(candidates.refreshes(), 2);
   EXPECT_GE(candidates.body_builds(), 1);
 }
 
