@@ -122,7 +122,7 @@ class BodyCollider {
   Vec3s current_, previous_;  // this substep's pose and the one before
   double radius_ = 0;         // this substep's search radius (= grid cell)
   SpatialHash grid_;
-  geometry::Edges edges_;                       // unique edges
+  geometry::Edges edges_;                          // unique edges
   std::vector<int> edge_face_start_, edge_faces_;  // per edge: its faces
   Vec3s edge_normals_;                             // outward direction per edge, at this substep's pose ...
   std::vector<long> edge_normal_stamp_;            // ... for the edges whose stamp is substep_

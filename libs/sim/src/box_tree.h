@@ -43,7 +43,7 @@ class BoxTree {
  private:
   struct Node {
     Box box;
-    int first = 0, count = 0;  // leaf: items_[first, first + count)
+    int first = 0, count = 0;   // leaf: items_[first, first + count)
     int left = -1, right = -1;  // inner node: children (left = this + 1)
   };
   int make(int first, int count, std::vector<Vec3>& centres);

@@ -173,8 +173,8 @@ class CollisionPass {
   std::vector<Hit> hits_;              // the pairs of the last detection
   Vec3s body_normals_;                 // the body's vertex normals at the start of the substep (area-weighted)
   std::vector<Box> vertex_boxes_, edge_boxes_, face_boxes_;  // the features' swept boxes, grown by half the gap
-  std::vector<std::uint8_t> edge_moved_, face_moved_;         // this detection's features with a moved vertex
-  SweptBody body_;                                            // this run's body
+  std::vector<std::uint8_t> edge_moved_, face_moved_;        // this detection's features with a moved vertex
+  SweptBody body_;                                           // this run's body
 };
 
 }  // namespace layers::sim::detail

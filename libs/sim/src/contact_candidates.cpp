@@ -23,9 +23,8 @@ bool ContactLayout::update(const std::vector<Cloth>& cloths, const std::vector<s
                            const geometry::Edges* body_edges, const Vec3s* body_pose) {
   std::vector<long> revisions;
   for (const Cloth& c : cloths) revisions.push_back(c.revision());
-  const int nb = body_pose != nullptr && body_faces != nullptr && body_edges != nullptr
-                     ? static_cast<int>(body_pose->size())
-                     : 0;
+  const int nb =
+      body_pose != nullptr && body_faces != nullptr && body_edges != nullptr ? static_cast<int>(body_pose->size()) : 0;
   if (revision > 0 && revisions == revisions_ && body_faces == body_faces_ && body_edges == body_edges_ &&
       nb == body_count_) {
     return false;
@@ -67,7 +66,8 @@ bool ContactLayout::update(const std::vector<Cloth>& cloths, const std::vector<s
   if (nb > 0) {
     for (Eigen::Index k = 0; k < body_edges->rows(); ++k)
       edges.push_back({cloth_vertices + (*body_edges)(k, 0), cloth_vertices + (*body_edges)(k, 1)});
-    for (const auto& f : *body_faces) faces.push_back({cloth_vertices + f[0], cloth_vertices + f[1], cloth_vertices + f[2]});
+    for (const auto& f : *body_faces)
+      faces.push_back({cloth_vertices + f[0], cloth_vertices + f[1], cloth_vertices + f[2]});
   }
   return true;
 }
@@ -190,8 +190,7 @@ void ContactCandidates::make(const ContactLayout& L, const BodySweep& body) {
       // A cloth without self-contact never meets its own features.
       if (d == c && !L.self[c]) continue;
       if (reach_.gap > 0) {
-        BoxTree::pairs(vertex_trees_[c], face_trees_[d], reach_.gap,
-                       [&](int v, int f) { add_vertex_face(L, v, f); });
+        BoxTree::pairs(vertex_trees_[c], face_trees_[d], reach_.gap, [&](int v, int f) { add_vertex_face(L, v, f); });
       }
       const double reach = edge_reach(L, c, d);
       if (d < c || !(reach > 0)) continue;
@@ -270,8 +269,9 @@ void ContactCandidates::refresh(const ContactLayout& L) {
         face_trees_[d].query(vertex_boxes_[v], reach_.gap, [&](int f) { add_vertex_face(L, v, f); });
       });
       if (body) {
-        body_face_tree_.query(vertex_boxes_[v], reach_.gap,
-                              [&](int i) { body_vf_.push_back({{v, i}, body_face_boxes_[i]}); });
+        body_face_tree_.query(vertex_boxes_[v], reach_.gap, [&](int i) {
+          body_vf_.push_back({{v, i}, body_face_boxes_[i]});
+        });
       }
     }
     for (int f : marked_faces_) {
@@ -281,8 +281,9 @@ void ContactCandidates::refresh(const ContactLayout& L) {
         });
       });
       if (body) {
-        body_vertex_tree_.query(face_boxes_[f], reach_.gap,
-                                [&](int i) { body_fv_.push_back({{f, i}, body_vertex_boxes_[i]}); });
+        body_vertex_tree_.query(face_boxes_[f], reach_.gap, [&](int i) {
+          body_fv_.push_back({{f, i}, body_vertex_boxes_[i]});
+        });
       }
     }
   }
@@ -311,8 +312,8 @@ void ContactCandidates::make_body(const ContactLayout& L, const BodySweep& body)
   body_ee_by_cloth_.resize(L.self.size());
   for (auto& pairs : body_ee_by_cloth_) pairs.clear();
   const int nb = L.body_vertices;
-  const bool any = nb > 0 && body.from != nullptr && body.to != nullptr &&
-                   static_cast<int>(body.from->size()) == nb && static_cast<int>(body.to->size()) == nb;
+  const bool any = nb > 0 && body.from != nullptr && body.to != nullptr && static_cast<int>(body.from->size()) == nb &&
+                   static_cast<int>(body.to->size()) == nb;
   // The same sweep as the last lists (only the cloths' bounds changed):
   // the body's boxes and hierarchies stand.
   const bool same = any && body_trees_built_ && body.revision >= 0 && body.revision == body_.revision &&
@@ -367,10 +368,12 @@ void ContactCandidates::traverse_body(const ContactLayout& L) {
   const int nc = static_cast<int>(L.self.size());
   for (int c = 0; c < nc; ++c) {
     if (reach_.gap > 0) {
-      BoxTree::pairs(vertex_trees_[c], body_face_tree_, reach_.gap,
-                     [&](int v, int i) { body_vf_.push_back({{v, i}, body_face_boxes_[i]}); });
-      BoxTree::pairs(face_trees_[c], body_vertex_tree_, reach_.gap,
-                     [&](int f, int i) { body_fv_.push_back({{f, i}, body_vertex_boxes_[i]}); });
+      BoxTree::pairs(vertex_trees_[c], body_face_tree_, reach_.gap, [&](int v, int i) {
+        body_vf_.push_back({{v, i}, body_face_boxes_[i]});
+      });
+      BoxTree::pairs(face_trees_[c], body_vertex_tree_, reach_.gap, [&](int f, int i) {
+        body_fv_.push_back({{f, i}, body_vertex_boxes_[i]});
+      });
     }
     if (edge_reach > 0) {
       BoxTree::pairs(edge_trees_[c], body_edge_tree_, edge_reach, [&](int e, int i) { add_body_edge(L, e, i); });

@@ -53,13 +53,14 @@ namespace layers::sim::detail {
 struct ContactLayout {
   int cloth_vertices = 0, cloth_edges = 0, cloth_faces = 0;
   int body_vertices = 0;
-  std::vector<int> offset, edge_offset, face_offset;  // per cloth, its first global index (and one past the last cloth's)
-  std::vector<int> owner;                             // per global vertex: its cloth, or -1 for the body
-  std::vector<char> self;                             // per cloth: self-contact on
-  std::vector<int> layer;                             // per cloth: its layer
-  std::vector<std::array<int, 2>> edges;              // cloths' first, then the body's
+  std::vector<int> offset, edge_offset,
+      face_offset;                        // per cloth, its first global index (and one past the last cloth's)
+  std::vector<int> owner;                 // per global vertex: its cloth, or -1 for the body
+  std::vector<char> self;                 // per cloth: self-contact on
+  std::vector<int> layer;                 // per cloth: its layer
+  std::vector<std::array<int, 2>> edges;  // cloths' first, then the body's
   std::vector<std::array<int, 3>> faces;
-  long revision = 0;        // counts the times it was laid out
+  long revision = 0;  // counts the times it was laid out
 
   // Lays out the cloths and the body (faces, edges and a pose, for its
   // vertex count; null: no body) again when either changed; true if it did.
@@ -192,7 +193,7 @@ class ContactCandidates {
   // The local refresh: escaped_ (from_ and to_ set for them) get new
   // bounds, and the pairs of their features are listed again.
   void refresh(const ContactLayout& layout);
-  void set_bound(int g);                          // ref_, radius_ and vertex box of vertex g from from_ and to_
+  void set_bound(int g);                         // ref_, radius_ and vertex box of vertex g from from_ and to_
   Box feature_bound(const int* v, int n) const;  // the union of its vertices' bounds
   double edge_reach(const ContactLayout& layout, int c, int d) const;  // edges of cloths c and d
   // Each adds a pair to every list it belongs to.
@@ -208,11 +209,11 @@ class ContactCandidates {
   Reach reach_;
   const ContactLayout* layout_stamp_ = nullptr;
   long revision_ = -1;
-  Vec3s from_, to_;              // scratch: the positions given to the last make()
-  Vec3s ref_;                    // per cloth vertex: its reference
-  std::vector<double> radius_;   // and the half-side of its bound
-  std::vector<Box> vertex_boxes_, edge_boxes_, face_boxes_;  // bounds of the cloth features (not grown)
-  std::vector<BoxTree> vertex_trees_, edge_trees_, face_trees_;  // per cloth, over the bounds
+  Vec3s from_, to_;                                                // scratch: the positions given to the last make()
+  Vec3s ref_;                                                      // per cloth vertex: its reference
+  std::vector<double> radius_;                                     // and the half-side of its bound
+  std::vector<Box> vertex_boxes_, edge_boxes_, face_boxes_;        // bounds of the cloth features (not grown)
+  std::vector<BoxTree> vertex_trees_, edge_trees_, face_trees_;    // per cloth, over the bounds
   long tree_revision_ = -1;                                        // the layout they were built for
   std::vector<int> vertex_edge_start_, vertex_edges_;              // per cloth vertex: its edges ...
   std::vector<int> vertex_face_start_, vertex_faces_;              // ... and faces
@@ -222,7 +223,7 @@ class ContactCandidates {
   std::vector<int> marked_edges_, marked_faces_;
   std::vector<std::array<int, 2>> vf_, ee_, body_ee_, ee_gap_;
   std::vector<BodyPair> body_vf_, body_fv_, body_ee_gap_;
-  std::vector<std::vector<std::array<int, 2>>> layer_ee_;         // per inner x cloths_ + outer
+  std::vector<std::vector<std::array<int, 2>>> layer_ee_;  // per inner x cloths_ + outer
   std::size_t cloths_ = 0;
   std::vector<std::vector<std::array<int, 2>>> body_ee_by_cloth_;  // per cloth
   BodySweep body_;
@@ -230,7 +231,7 @@ class ContactCandidates {
   BoxTree body_vertex_tree_, body_edge_tree_, body_face_tree_;  // over the frame-swept boxes
   bool body_trees_built_ = false;
   bool body_listed_ = false;  // the body pairs are listed (a body and its sweep were given)
-  long body_layout_ = -1;  // the layout revision the body's boxes were fitted for
+  long body_layout_ = -1;     // the layout revision the body's boxes were fitted for
   long builds_ = 0, body_builds_ = 0, refreshes_ = 0;
 };
 

@@ -107,10 +107,10 @@ void LayerContact::collide_edges(const Cloth& inner, Cloth::State& inner_state, 
                                  Cloth::State& outer_state, double edge_thickness,
                                  const std::vector<std::array<int, 2>>& pairs, Vec3s& inner_push, Vec3s& outer_push) {
   if (edge_thickness <= 0 || pairs.empty()) return;
-  const EdgeContact::Side in{&inner.edges(), &inner_state.x_start, &inner_state.x, nullptr, &inner_inv_mass_,
-                             &inner_push};
-  const EdgeContact::Side out{&outer.edges(), &outer_state.x_start, &outer_state.x, nullptr, &outer_state.inv_mass,
-                              &outer_push};
+  const EdgeContact::Side in{&inner.edges(), &inner_state.x_start, &inner_state.x,
+                             nullptr,        &inner_inv_mass_,     &inner_push};
+  const EdgeContact::Side out{&outer.edges(), &outer_state.x_start,  &outer_state.x,
+                              nullptr,        &outer_state.inv_mass, &outer_push};
   EdgeContact::collide(in, out, edge_thickness, pairs);
 }
 

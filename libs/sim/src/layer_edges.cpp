@@ -30,8 +30,8 @@ double EdgeContact::collide(const Side& inner, const Side& outer, double thickne
     if ((lo.array() > ihi.array()).any() || (hi.array() < ilo.array()).any()) continue;
     // Bounding spheres: edges whose spheres stand farther apart than the
     // thickness (with room for rounding) cannot come within it.
-    const double apart = (0.5 * (xo[a] + xo[b] - xi[c] - xi[d])).norm() - 0.5 * (xo[b] - xo[a]).norm() -
-                         0.5 * (xi[d] - xi[c]).norm();
+    const double apart =
+        (0.5 * (xo[a] + xo[b] - xi[c] - xi[d])).norm() - 0.5 * (xo[b] - xo[a]).norm() - 0.5 * (xi[d] - xi[c]).norm();
     if (apart > thickness * (1 + 1e-9) + 1e-12) continue;
     double s, t;
     segment_segment_distance2(xo[a], xo[b], xi[c], xi[d], &s, &t);

@@ -58,8 +58,8 @@ struct Solver::Impl {
   void ensure_candidates(const std::vector<Cloth>& cloths, const SolverConfig& c, bool with_body) {
     layout.update(cloths, with_body ? &body.topology().faces : nullptr, with_body ? &body.edges() : nullptr,
                   with_body ? &body.frame_start() : nullptr);
-    candidates.set_reach({c.collision_pass ? c.collision_gap : 0.0, c.layer_edge_thickness, c.body_edge_thickness,
-                          kContactMargin});
+    candidates.set_reach(
+        {c.collision_pass ? c.collision_gap : 0.0, c.layer_edge_thickness, c.body_edge_thickness, kContactMargin});
     const auto at = [&](int g, bool start) -> const Vec3& {
       const int ci = layout.owner[g];
       const Cloth::State& s = cloths[ci].state();
@@ -232,9 +232,9 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
     update_velocities(h);
     timings_.predict += seconds_since(t);
     const detail::ContactCandidates& cc = m.candidates;
-    timings_.candidate_pairs += static_cast<long>(cc.cloth_vertex_face().size() + cc.cloth_edge_edge().size() +
-                                                  cc.body_vertex_face().size() + cc.body_face_vertex().size() +
-                                                  cc.body_edge_edge().size());
+    timings_.candidate_pairs +=
+        static_cast<long>(cc.cloth_vertex_face().size() + cc.cloth_edge_edge().size() + cc.body_vertex_face().size() +
+                          cc.body_face_vertex().size() + cc.body_edge_edge().size());
   }
   timings_.candidate_builds += m.candidates.builds() - builds;
   timings_.candidate_body_builds += m.candidates.body_builds() - body_builds;

@@ -106,8 +106,7 @@ TEST(ContactCandidates, ListEveryPairWithinReachThroughRefreshesAndRemakes) {
   // self-contact, and a "body" (a sheet below, moving over the frame).
   std::vector<Cloth> cloths;
   cloths.emplace_back(grid(V3(0, 0, 0), V3(0.2, 0, 0), V3(0, 0, 0.2), 8, 8), Material{}, ClothOptions("inner", 0));
-  cloths.emplace_back(grid(V3(0, 0.005, 0), V3(0.2, 0, 0), V3(0, 0, 0.2), 8, 8), Material{},
-                      ClothOptions("outer", 1));
+  cloths.emplace_back(grid(V3(0, 0.005, 0), V3(0.2, 0, 0), V3(0, 0, 0.2), 8, 8), Material{}, ClothOptions("outer", 1));
   cloths.emplace_back(grid(V3(0, 0.012, 0), V3(0.2, 0, 0), V3(0, 0, 0.2), 7, 7), Material{},
                       ClothOptions("folded", 1, true));
   const geometry::TriMesh body_mesh = grid(V3(0, -0.004, 0), V3(0.2, 0, 0), V3(0, 0, 0.2), 12, 12);
