@@ -46,11 +46,13 @@ bool closest_around(const ContactTopology& t, const Vec3s& x, int center, const 
   for (int i = t.face_offsets[center]; i < t.face_offsets[center + 1]; ++i) {
     const int f = t.vertex_faces[i];
     const auto& v = t.faces[f];
-    const Vec3 n = (x[v[1]] - x[v[0]]).cross(x[v[2]] - x[v[0]]);
-    if (!(n.squaredNorm() > 0)) continue;
     const TrianglePoint q = closest_on_triangle(p, x[v[0]], x[v[1]], x[v[2]]);
     const double d2 = (p - q.point).squaredNorm();
     if (d2 < best) {
+      // Degenerate faces are left out; the normal is needed only for a
+      // face that would be kept.
+      const Vec3 n = (x[v[1]] - x[v[0]]).cross(x[v[2]] - x[v[0]]);
+      if (!(n.squaredNorm() > 0)) continue;
       best = d2;
       best_point = q;
       best_normal = n;  // normalised once, for the face kept
