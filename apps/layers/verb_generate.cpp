@@ -76,8 +76,10 @@ VerbRun register_generate(CLI::App& app, const Global&) {
     std::printf("resolved config: %s/generator.yaml\n", options.out.c_str());
     std::fflush(stdout);
     auto report = generate::generate_dataset(config, resolved, options);
-    std::printf("%s: %d scenes in shard %s: %d simulated now (%d written, %d skipped), %d finished before\n",
-                options.out.c_str(), report.scenes, shard_text.c_str(), report.simulated, report.written,
+    const std::string cut =
+        config.window_min_frames > 0 ? " (" + std::to_string(report.cut) + " cut to a clean window)" : "";
+    std::printf("%s: %d scenes in shard %s: %d simulated now (%d written%s, %d skipped), %d finished before\n",
+                options.out.c_str(), report.scenes, shard_text.c_str(), report.simulated, report.written, cut.c_str(),
                 report.skipped, report.reused);
     if (report.simulated_frames > 0)
       std::printf("simulation: %d frames, %.3f s per frame (per thread; %.3f s CPU), wall %.1f s\n",

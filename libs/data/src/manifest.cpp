@@ -39,6 +39,18 @@ std::string manifest_to_yaml(const DatasetManifest& m) {
       out << YAML::Key << "sequences" << YAML::Value << c.sequences;
       out << YAML::Key << "distinct" << YAML::Value << c.distinct;
       out << YAML::Key << "skipped" << YAML::Value << c.skipped;
+      const std::pair<const char*, std::int64_t> outcome[] = {{"scenes", c.scenes},
+                                                              {"cut", c.cut},
+                                                              {"frames_asked", c.frames_asked},
+                                                              {"frames_simulated", c.frames_simulated},
+                                                              {"frames_stored", c.frames_stored}};
+      for (const auto& [key, value] : outcome)
+        if (value >= 0) out << YAML::Key << key << YAML::Value << value;
+      if (!c.dropped.empty()) {
+        out << YAML::Key << "dropped" << YAML::Value << YAML::BeginMap;
+        for (const auto& [rule, frames] : c.dropped) out << YAML::Key << rule << YAML::Value << frames;
+        out << YAML::EndMap;
+      }
       out << YAML::EndMap;
     }
     out << YAML::EndMap << YAML::EndMap;
@@ -105,10 +117,24 @@ DatasetManifest read_manifest(const std::string& path) {
         const std::string family = kv.first.as<std::string>(), at = "motions.families." + family;
         MotionFamilyCount& c = m.motion_families[family];
         if (!kv.second.IsMap()) throw InputError(yaml_where(path, kv.second), at, "a mapping", "something else");
-        const std::pair<const char*, std::int64_t*> fields[] = {
-            {"sequences", &c.sequences}, {"distinct", &c.distinct}, {"skipped", &c.skipped}};
+        const std::pair<const char*, std::int64_t*> fields[] = {{"sequences", &c.sequences},
+                                                                {"distinct", &c.distinct},
+                                                                {"skipped", &c.skipped},
+                                                                {"scenes", &c.scenes},
+                                                                {"cut", &c.cut},
+                                                                {"frames_asked", &c.frames_asked},
+                                                                {"frames_simulated", &c.frames_simulated},
+                                                                {"frames_stored", &c.frames_stored}};
         for (const auto& [key, target] : fields)
           if (kv.second[key]) *target = yaml_scalar<std::int64_t>(kv.second[key], path, at + "." + key, "an integer");
+        if (const YAML::Node dropped = kv.second["dropped"]) {
+          if (!dropped.IsMap())
+            throw InputError(yaml_where(path, dropped), at + ".dropped", "a mapping rule: frames", "something else");
+          for (const auto& d : dropped) {
+            const std::string rule = d.first.as<std::string>();
+            c.dropped[rule] = yaml_scalar<std::int64_t>(d.second, path, at + ".dropped." + rule, "an integer");
+          }
+        }
       }
     }
   }

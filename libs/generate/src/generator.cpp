@@ -9,6 +9,7 @@
 #include <map>
 #include <mutex>
 #include <set>
+#include <sstream>
 
 #include "layers/core/atomic_file.h"
 #include "layers/core/error.h"
@@ -38,6 +39,8 @@ struct Layout {
   fs::path shard(int j) const { return out / data::shard_file_name(j); }
   fs::path part(const std::string& id) const { return out / "parts" / (id + ".h5"); }
   fs::path skipped(const std::string& id) const { return out / "parts" / (id + ".skipped"); }
+  // With clean windows: what became of the scene's recorded frames.
+  fs::path outcome(const std::string& id) const { return out / "parts" / (id + ".outcome"); }
   int first(int j) const { return j * config.sequences_per_shard; }
   int end(int j) const { return std::min(config.sequences, (j + 1) * config.sequences_per_shard); }
   bool scene_done(int i) const {
@@ -102,8 +105,45 @@ void merge_shard(const Layout& layout, int j) {
   for (int i = layout.first(j); i < layout.end(j); ++i) fs::remove(layout.part(scene_id(i)));
 }
 
+// A scene's outcome marker (clean windows): recorded frames simulated,
+// stored, the cut frame (-1: none) and the rule that cost frames.
+struct Outcome {
+  std::int64_t recorded = 0, stored = 0, cut = -1;
+  std::string rule;
+};
+
+void write_outcome(const Layout& layout, const std::string& id, const SceneResult& r) {
+  write_text_atomic(layout.outcome(id).string(), "recorded " + std::to_string(r.recorded_frames) + "\nstored " +
+                                                     std::to_string(r.ok ? r.stored_frames : 0) + "\ncut " +
+                                                     std::to_string(r.cut_frame) + "\nrule " +
+                                                     (r.rule.empty() ? "-" : r.rule) + "\n");
+}
+
+Outcome read_outcome(const Layout& layout, const std::string& id) {
+  const std::string path = layout.outcome(id).string();
+  std::istringstream in(read_text_file(path));
+  Outcome o;
+  std::string key;
+  bool seen[4] = {false, false, false, false};
+  while (in >> key) {
+    if (key == "recorded" && (in >> o.recorded)) seen[0] = true;
+    if (key == "stored" && (in >> o.stored)) seen[1] = true;
+    if (key == "cut" && (in >> o.cut)) seen[2] = true;
+    if (key == "rule" && (in >> o.rule)) seen[3] = true;
+  }
+  for (bool b : seen)
+    if (!b)
+      throw InputError::message(path, "",
+                                "a scene outcome of the generator (recorded, stored, cut, rule), damaged; "
+                                "delete it and the scene's part to simulate the scene again");
+  if (o.rule == "-") o.rule.clear();
+  return o;
+}
+
 // The motions block of dataset.yaml: distinct motions per family among the
-// written sequences, and the scenes of each family that were skipped.
+// written sequences, and the scenes of each family that were skipped; with
+// clean windows, each family's scenes, cut sequences, recorded frames asked
+// for, simulated and stored, and the frames lost by rule.
 void count_motions(const Layout& layout, const std::vector<std::string>& motions, data::DatasetManifest& manifest) {
   std::map<std::string, std::set<std::string>> by_family;
   for (const std::string& m : motions) {
@@ -114,9 +154,21 @@ void count_motions(const Layout& layout, const std::vector<std::string>& motions
   manifest.n_distinct_motions = static_cast<std::int64_t>(all.size());
   for (const auto& [family, distinct] : by_family)
     manifest.motion_families[family].distinct = static_cast<std::int64_t>(distinct.size());
-  for (int i = 0; i < layout.config.sequences; ++i)
-    if (fs::exists(layout.skipped(scene_id(i))))
-      ++manifest.motion_families[motion_family(sample_scene(layout.config, i).motion)].skipped;
+  const bool windows = layout.config.window_min_frames > 0;
+  for (int i = 0; i < layout.config.sequences; ++i) {
+    data::MotionFamilyCount& c = manifest.motion_families[motion_family(sample_scene(layout.config, i).motion)];
+    if (fs::exists(layout.skipped(scene_id(i)))) ++c.skipped;
+    if (!windows) continue;
+    const Outcome o = read_outcome(layout, scene_id(i));
+    if (c.scenes < 0) c.scenes = c.cut = c.frames_asked = c.frames_simulated = c.frames_stored = 0;
+    ++c.scenes;
+    c.frames_asked += layout.config.frames;
+    c.frames_simulated += o.recorded;
+    c.frames_stored += o.stored;
+    if (o.stored > 0 && o.cut >= 0) ++c.cut;
+    if (o.stored < layout.config.frames)
+      c.dropped[o.rule.empty() ? "unknown" : o.rule] += layout.config.frames - o.stored;
+  }
 }
 
 // dataset.yaml, splits.yaml and stats.h5, once every shard exists.
@@ -161,7 +213,7 @@ FinalizeReport finalize(const Layout& layout, const std::string& config_yaml) {
   manifest.generator_yaml = config_yaml;
   manifest.generator_revision = source_revision();  // claim_folder checked it against the folder's
   // Only with parametric motions, so datasets made without them keep their bytes.
-  if (layout.config.body.variation) count_motions(layout, motions, manifest);
+  if (layout.config.body.variation || layout.config.window_min_frames > 0) count_motions(layout, motions, manifest);
   // Hashes recorded by an earlier finalize are kept, so that they are
   // verified against the shards rather than replaced.
   const fs::path manifest_path = layout.out / "dataset.yaml";
@@ -211,6 +263,8 @@ GenerateReport generate_dataset(const GeneratorConfig& config, const std::string
     SceneResult result = simulate_scene(config, spec);
     std::string reasons;
     for (const auto& v : result.violations) reasons += (reasons.empty() ? "" : "; ") + v;
+    // The outcome first: a scene counts as done once its part or marker exists.
+    if (config.window_min_frames > 0) write_outcome(layout, spec.id, result);
     if (result.ok)
       data::write_shard(layout.part(spec.id).string(), {result.sequence});
     else
@@ -222,6 +276,7 @@ GenerateReport generate_dataset(const GeneratorConfig& config, const std::string
     report.simulate_cpu_seconds += result.cpu_seconds;
     if (result.ok) {
       ++report.written;
+      if (result.cut_frame >= 0) ++report.cut;
     } else {
       ++report.skipped;
       report.skip_reasons.push_back(spec.id + " (" + motion_family(spec.motion) + "): " + reasons);

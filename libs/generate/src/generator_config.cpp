@@ -84,6 +84,10 @@ void check(const GeneratorConfig& c, const std::string& file) {
   check_pair(c.wind.span_frames, file, "wind.span_frames");
   if (c.wind.calm_weight + c.wind.strong_weight + c.wind.mixed_weight <= 0)
     throw InputError(file, "wind", "at least one positive regime weight", "all zero");
+  if (c.window_min_frames != 0 && (c.window_min_frames < 3 || c.window_min_frames > c.frames))
+    throw InputError(file, "window_min_frames",
+                     "0 (off) or 3 to frames (" + std::to_string(c.frames) + "; a sequence needs 3 frames)",
+                     std::to_string(c.window_min_frames));
   if (c.splits.val + c.splits.test >= 1.0)
     throw InputError(file, "splits", "val + test < 1 (the rest is train)",
                      std::to_string(c.splits.val + c.splits.test));

@@ -275,6 +275,7 @@ SceneResult simulate_scene(const GeneratorConfig& config, const SceneSpec& spec,
   SceneSimulation scene(config, spec);
   if (!scene.usable()) {
     result.violations.push_back(scene.problem());
+    result.rule = "unusable";
     result.seconds = timer.seconds();
     result.cpu_seconds = thread_cpu_seconds() - cpu_start;
     return result;
@@ -299,9 +300,22 @@ SceneResult simulate_scene(const GeneratorConfig& config, const SceneSpec& spec,
   data::SequenceData& seq = result.sequence;
   seq.wind.rotation.resize(static_cast<std::size_t>(record) * 4);
   seq.wind.strength.resize(static_cast<std::size_t>(record));
+  const sim::ValidationConfig& limits = config.sim.validation;
+  std::vector<sim::Violation> broken;  // clean windows: the rules the cut frame broke
+  int recorded = 0;
   for (int r = 0; r < record; ++r) {
     scene.record(r);
+    recorded = r + 1;
     const sim::FrameMeasures m = sim::measure_frame(solver);
+    if (config.window_min_frames > 0) {
+      broken = sim::frame_violations(m, limits);
+      if (!broken.empty()) {
+        // The rest of the scene is discarded: frames 0..r-1 are the window.
+        result.cut_frame = r;
+        if (observer) observer("record", r, solver);
+        break;
+      }
+    }
     measures.add(m);
     if (trace)
       spdlog::trace("{} record {}: H-crossing {:.3f}%, L-crossing {:.3f}%, stretch {:.3f}", spec.id, r,
@@ -317,13 +331,34 @@ SceneResult simulate_scene(const GeneratorConfig& config, const SceneSpec& spec,
     for (int c = 0; c < 4; ++c) seq.wind.rotation[static_cast<std::size_t>(r) * 4 + c] = static_cast<float>(q[c]);
     seq.wind.strength[r] = static_cast<float>(wind.strength);
   }
-  result.simulated_frames = scene.warm_up_frames() + record;
+  result.simulated_frames = scene.warm_up_frames() + recorded;
+  result.recorded_frames = recorded;
+  const int kept = result.cut_frame >= 0 ? result.cut_frame : record;
   result.mean_h_penetration = measures.mean_h_penetration();
   result.mean_l_penetration = measures.mean_l_penetration();
   result.max_stretch = measures.max_stretch();
   result.max_h_crossing = measures.max_h_crossing();
   result.max_l_crossing = measures.max_l_crossing();
-  result.violations = measures.violations(config.sim.validation);
+  // The window's rules (the whole scene's without a cut).
+  const std::vector<sim::Violation> window = measures.broken(limits);
+  for (const sim::Violation& v : window) result.violations.push_back(v.sentence);
+  if (!window.empty()) result.rule = window.front().rule;
+  if (result.cut_frame >= 0) {
+    std::string why;
+    for (const sim::Violation& v : broken) why += (why.empty() ? "" : "; ") + v.sentence;
+    if (kept < config.window_min_frames) {
+      result.rule = broken.front().rule;
+      result.violations.insert(result.violations.begin(),
+                               "frame " + std::to_string(result.cut_frame) + " breaks a rule (" + why +
+                                   "): the clean window before it has " + std::to_string(kept) +
+                                   " frames, fewer than " + std::to_string(config.window_min_frames) +
+                                   " (window_min_frames)");
+    } else if (window.empty()) {
+      result.rule = broken.front().rule;
+      spdlog::info("{} cut at recorded frame {} of {} ({}): {} frames kept", spec.id, result.cut_frame, record, why,
+                   kept);
+    }
+  }
   result.ok = result.violations.empty();
   result.seconds = timer.seconds();
   result.cpu_seconds = thread_cpu_seconds() - cpu_start;
@@ -339,10 +374,16 @@ SceneResult simulate_scene(const GeneratorConfig& config, const SceneSpec& spec,
       solver.timings().pass_yielded);
   if (!result.ok) return result;
 
+  if (kept < record) {
+    for (auto& g : garments) g.positions.resize(static_cast<std::size_t>(kept) * g.rest.size());
+    seq.wind.rotation.resize(static_cast<std::size_t>(kept) * 4);
+    seq.wind.strength.resize(static_cast<std::size_t>(kept));
+  }
+  result.stored_frames = kept;
   seq.id = spec.id;
   seq.seed = spec.seed;
   seq.tags = spec.tags;
-  fill_body(seq, scene.body(), config.body.transition_frames, record, scene.placement());
+  fill_body(seq, scene.body(), config.body.transition_frames, kept, scene.placement());
   seq.motion = scene.body().sequence.motion;
   seq.garments = std::move(garments);
   return result;

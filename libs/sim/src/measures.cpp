@@ -332,34 +332,68 @@ double SequenceMeasures::mean_h_crossing_pinch() const {
   return measured_self_ ? sum_hx_pinch_ / measured_self_ : kNaN;
 }
 
+std::vector<Violation> frame_violations(const FrameMeasures& f, const ValidationConfig& limits) {
+  std::vector<Violation> out;
+  if (f.nonfinite > 0) out.push_back({"non_finite", std::to_string(f.nonfinite) + " non-finite coordinates"});
+  // NaN measures compare false: a frame not measurable breaks only the
+  // non-finite rule, and a frame whose pinch zones were not measured not
+  // the rule outside them.
+  if (f.h_crossing > limits.max_h_crossing) {
+    out.push_back({"h_crossing",
+                   "H-crossing " + percent(f.h_crossing) + " in a frame exceeds " + percent(limits.max_h_crossing)});
+  }
+  if (f.h_crossing_clear > limits.max_h_crossing_clear) {
+    out.push_back({"h_crossing_clear", "H-crossing outside pinch zones " + percent(f.h_crossing_clear) +
+                                           " in a frame exceeds " + percent(limits.max_h_crossing_clear)});
+  }
+  if (f.l_crossing > limits.max_l_crossing) {
+    out.push_back({"l_crossing",
+                   "L-crossing " + percent(f.l_crossing) + " in a frame exceeds " + percent(limits.max_l_crossing)});
+  }
+  if (f.cloth_crossing_pairs > limits.max_cloth_crossings) {
+    out.push_back({"cloth_crossings", std::to_string(f.cloth_crossing_pairs) +
+                                          " crossing face pairs between garments in a frame exceed " +
+                                          std::to_string(limits.max_cloth_crossings)});
+  }
+  if (f.max_stretch > limits.max_stretch) {
+    out.push_back(
+        {"stretch", "maximum edge stretch " + percent(f.max_stretch) + " exceeds " + percent(limits.max_stretch)});
+  }
+  return out;
+}
+
 std::vector<std::string> SequenceMeasures::violations(const ValidationConfig& limits) const {
   std::vector<std::string> out;
-  if (nonfinite_ > 0) out.push_back(std::to_string(nonfinite_) + " non-finite coordinates");
+  for (const Violation& v : broken(limits)) out.push_back(v.sentence);
+  return out;
+}
+
+std::vector<Violation> SequenceMeasures::broken(const ValidationConfig& limits) const {
+  // The means over frames, then the per-frame rules on the worst frame.
+  std::vector<Violation> all;
   if (mean_h_penetration() > limits.max_h_penetration) {
-    out.push_back("mean H-penetration " + percent(mean_h_penetration()) + " exceeds " +
-                  percent(limits.max_h_penetration));
+    all.push_back({"h_penetration", "mean H-penetration " + percent(mean_h_penetration()) + " exceeds " +
+                                        percent(limits.max_h_penetration)});
   }
   if (mean_l_penetration() > limits.max_l_penetration) {
-    out.push_back("mean L-penetration " + percent(mean_l_penetration()) + " exceeds " +
-                  percent(limits.max_l_penetration));
+    all.push_back({"l_penetration", "mean L-penetration " + percent(mean_l_penetration()) + " exceeds " +
+                                        percent(limits.max_l_penetration)});
   }
-  if (max_h_crossing_ > limits.max_h_crossing) {
-    out.push_back("H-crossing " + percent(max_h_crossing_) + " in a frame exceeds " + percent(limits.max_h_crossing));
-  }
-  if (measured_self_ > 0 && max_h_crossing_clear_ > limits.max_h_crossing_clear) {
-    out.push_back("H-crossing outside pinch zones " + percent(max_h_crossing_clear_) + " in a frame exceeds " +
-                  percent(limits.max_h_crossing_clear));
-  }
-  if (max_l_crossing_ > limits.max_l_crossing) {
-    out.push_back("L-crossing " + percent(max_l_crossing_) + " in a frame exceeds " + percent(limits.max_l_crossing));
-  }
-  if (max_cloth_crossings_ > limits.max_cloth_crossings) {
-    out.push_back(std::to_string(max_cloth_crossings_) + " crossing face pairs between garments in a frame exceed " +
-                  std::to_string(limits.max_cloth_crossings));
-  }
-  if (max_stretch_ > limits.max_stretch) {
-    out.push_back("maximum edge stretch " + percent(max_stretch_) + " exceeds " + percent(limits.max_stretch));
-  }
+  FrameMeasures worst;
+  worst.nonfinite = nonfinite_;
+  worst.h_crossing = max_h_crossing_;
+  worst.h_crossing_clear = measured_self_ > 0 ? max_h_crossing_clear_ : kNaN;
+  worst.l_crossing = max_l_crossing_;
+  worst.cloth_crossing_pairs = max_cloth_crossings_;
+  worst.max_stretch = max_stretch_;
+  const std::vector<Violation> framed = frame_violations(worst, limits);
+  std::vector<Violation> out;
+  // The non-finite count first, as it always came.
+  for (const Violation& v : framed)
+    if (v.rule == std::string("non_finite")) out.push_back(v);
+  out.insert(out.end(), all.begin(), all.end());
+  for (const Violation& v : framed)
+    if (v.rule != std::string("non_finite")) out.push_back(v);
   return out;
 }
 

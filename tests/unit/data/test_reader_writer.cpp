@@ -5,10 +5,12 @@
 
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <thread>
 
 #include "error_of.h"
 #include "layers/core/error.h"
+#include "layers/core/text_file.h"
 #include "layers/data/dataset.h"
 #include "layers/data/dataset_writer.h"
 #include "layers/data/manifest.h"
@@ -137,6 +139,40 @@ TEST(DataRoundTrip, ManifestMotionCountsOnlyWhenRecorded) {
   EXPECT_EQ(back.motion_families.at("procedural:walk").sequences, 2);
   EXPECT_EQ(back.motion_families.at("procedural:walk").skipped, 1);
   EXPECT_EQ(back.motion_families.at("bvh:cmu/131_01_start_walk_stop.bvh").distinct, 1);
+  // Without clean windows the frame counts are not written.
+  EXPECT_EQ(manifest_to_yaml(m).find("frames_stored"), std::string::npos);
+  EXPECT_EQ(back.motion_families.at("procedural:walk").frames_stored, -1);
+}
+
+TEST(DataRoundTrip, ManifestCleanWindowCountsRoundTrip) {
+  TempDir dir;
+  DatasetManifest m;
+  m.name = "x";
+  m.n_distinct_motions = 1;
+  MotionFamilyCount& c = m.motion_families["procedural:squat"];
+  c = {3, 1, 1};
+  c.scenes = 4;
+  c.cut = 2;
+  c.frames_asked = 240;
+  c.frames_simulated = 201;
+  c.frames_stored = 150;
+  c.dropped = {{"stretch", 60}, {"h_crossing_clear", 30}};
+  write_manifest(dir.file("w.yaml"), m);
+  const MotionFamilyCount back = read_manifest(dir.file("w.yaml")).motion_families.at("procedural:squat");
+  EXPECT_EQ(back.scenes, 4);
+  EXPECT_EQ(back.cut, 2);
+  EXPECT_EQ(back.frames_asked, 240);
+  EXPECT_EQ(back.frames_simulated, 201);
+  EXPECT_EQ(back.frames_stored, 150);
+  EXPECT_EQ(back.dropped, c.dropped);
+  // A damaged count gets one line naming the key.
+  std::string text = read_text_file(dir.file("w.yaml"));
+  const auto at = text.find("stretch: 60");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 11, "stretch: lots");
+  std::ofstream(dir.file("bad.yaml")) << text;
+  const std::string said = test::error_of([&] { read_manifest(dir.file("bad.yaml")); });
+  EXPECT_NE(said.find("motions.families.procedural:squat.dropped.stretch"), std::string::npos) << said;
 }
 
 TEST(DataRoundTrip, SingleShardFileOpensDirectly) {

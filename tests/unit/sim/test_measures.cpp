@@ -294,3 +294,51 @@ TEST(Measures, FrameOfASolverUsesTheTopLayerAsOuter) {
 
 }  // namespace
 }  // namespace layers::sim
+
+namespace layers::sim {
+namespace {
+
+std::vector<std::string> rules(const std::vector<Violation>& v) {
+  std::vector<std::string> out;
+  for (const Violation& x : v) out.push_back(x.rule);
+  return out;
+}
+
+// One frame's rules (clean windows): each limit by name, NaN measures
+// breaking nothing but the non-finite rule, and a sequence's violations
+// the same rules on its worst frame after the two means.
+TEST(Measures, FrameViolationsNameEachBrokenRule) {
+  ValidationConfig limits;
+  limits.max_h_crossing = 0.01;
+  limits.max_h_crossing_clear = 0.0;
+  FrameMeasures f;
+  EXPECT_TRUE(frame_violations(f, limits).empty());
+  f.max_stretch = 0.11;
+  f.cloth_crossing_pairs = 1;
+  f.h_crossing = 0.02;
+  f.h_crossing_clear = 0.001;
+  EXPECT_EQ(rules(frame_violations(f, limits)),
+            (std::vector<std::string>{"h_crossing", "h_crossing_clear", "cloth_crossings", "stretch"}));
+  FrameMeasures lost;
+  lost.nonfinite = 3;
+  lost.h_penetration = lost.l_penetration = lost.max_stretch = std::nan("");
+  lost.h_crossing = lost.l_crossing = lost.h_crossing_clear = std::nan("");
+  EXPECT_EQ(rules(frame_violations(lost, limits)), std::vector<std::string>{"non_finite"});
+  FrameMeasures unmeasured;  // pinch zones not measured in this frame
+  unmeasured.h_crossing_clear = std::nan("");
+  EXPECT_TRUE(frame_violations(unmeasured, limits).empty());
+
+  SequenceMeasures seq;
+  FrameMeasures good;
+  good.body_self_crossing = 0;
+  seq.add(good);
+  f.body_self_crossing = 0;
+  f.h_penetration = 0.9;  // breaks the mean too
+  seq.add(f);
+  EXPECT_EQ(rules(seq.broken(limits)), (std::vector<std::string>{"h_penetration", "h_crossing", "h_crossing_clear",
+                                                                 "cloth_crossings", "stretch"}));
+  EXPECT_EQ(seq.violations(limits).size(), 5u);
+}
+
+}  // namespace
+}  // namespace layers::sim

@@ -28,8 +28,15 @@ namespace layers::data {
 // How many different motions the sequences play, per family (the first
 // word of the `motion` attribute, e.g. procedural:walk); skipped counts the
 // scenes of the family the generator rejected.
+// Per motion family: sequences written, distinct motions among them,
+// scenes skipped; and, where the generator recorded each scene's outcome
+// (-1 / empty when not recorded): scenes started, sequences cut to a clean
+// window, recorded frames asked for (scenes x frames), simulated and
+// stored, and the frames not stored by the rule that cost them.
 struct MotionFamilyCount {
   std::int64_t sequences = 0, distinct = 0, skipped = 0;
+  std::int64_t scenes = -1, cut = -1, frames_asked = -1, frames_simulated = -1, frames_stored = -1;
+  std::map<std::string, std::int64_t> dropped;  // rule -> recorded frames not stored
 };
 
 struct DatasetManifest {

@@ -39,6 +39,7 @@ struct GenerateReport {
   int simulated = 0;                      // simulated by this run
   int reused = 0;                         // found finished (resume)
   int written = 0, skipped = 0;           // of those simulated now
+  int cut = 0;                            // of those written: cut to a clean window (window_min_frames)
   std::vector<std::string> skip_reasons;  // "<id> (<motion family>): <reason>"
   int simulated_frames = 0;
   double simulate_seconds = 0;      // summed over scenes (all threads), wall clock

@@ -213,6 +213,11 @@ struct GeneratorConfig {
   int sequences = 6;
   int frames = 30;        // recorded frames per sequence
   int drape_frames = 30;  // T-pose frames simulated before the transition (not recorded)
+  // Clean windows (docs/sim.md): a scene whose recorded frame k breaks a
+  // per-frame rule of sim.validation (sim::frame_violations) stops there
+  // and keeps frames 0..k-1 as a shorter sequence when k is at least
+  // this. 0: off, the whole scene or nothing (as before the setting).
+  int window_min_frames = 0;
   int sequences_per_shard = 16;
   BodySampling body;
   GarmentSampling garments;
@@ -227,6 +232,10 @@ struct GeneratorConfig {
     v("sequences", sequences, cfg::opt().range(1, 10000000));
     v("frames", frames, cfg::opt().range(3, 100000).help("recorded frames per sequence (30 fps)"));
     v("drape_frames", drape_frames, cfg::opt().range(1, 10000).help("T-pose settling frames before recording"));
+    v("window_min_frames", window_min_frames,
+      cfg::opt().range(0, 100000).help(
+          "clean windows: a scene whose recorded frame k breaks a per-frame rule of sim.validation keeps its frames "
+          "before k when k is at least this (3 to frames); 0: the whole scene or nothing"));
     v("sequences_per_shard", sequences_per_shard, cfg::opt().range(1, 100000));
     v("body", body);
     v("garments", garments);

@@ -36,8 +36,12 @@ struct SceneResult {
   double mean_h_penetration = 0, mean_l_penetration = 0, max_stretch = 0;
   double max_h_crossing = 0, max_l_crossing = 0;  // worst frame
   int simulated_frames = 0;                       // warm-up included
-  double seconds = 0;                             // wall clock
-  double cpu_seconds = 0;                         // CPU time of the simulating thread
+  int recorded_frames = 0;  // recorded frames simulated: config.frames, or up to a clean window's cut
+  int stored_frames = 0;    // frames of `sequence` (when ok)
+  int cut_frame = -1;       // clean windows: the first recorded frame that broke a per-frame rule; -1: none
+  std::string rule;         // the rule that cost frames (sim::Violation::rule, or "unusable"); "" when none did
+  double seconds = 0;       // wall clock
+  double cpu_seconds = 0;   // CPU time of the simulating thread
 };
 
 // Called after every simulated frame when given (diagnostics, pictures):

@@ -117,6 +117,21 @@ FrameMeasures measure_frame(const geometry::TriMesh& body, const std::vector<Mea
 // --physics` reports them from the stored frames.
 FrameMeasures measure_frame(const Solver& solver);
 
+// A broken validation rule: its name (the ValidationConfig setting without
+// `max_`: non_finite, h_crossing, h_crossing_clear, l_crossing,
+// cloth_crossings, stretch; for a sequence also h_penetration,
+// l_penetration) and one sentence saying by how much.
+struct Violation {
+  const char* rule;
+  std::string sentence;
+};
+
+// The rules every single frame must keep (all but the two means over
+// frames): no non-finite coordinate, crossings and stretch within their
+// limits. Empty when the frame keeps them. The generator's clean windows
+// (docs/sim.md) end before the first frame that breaks one.
+std::vector<Violation> frame_violations(const FrameMeasures& frame, const ValidationConfig& limits);
+
 // Running totals over the frames of a sequence.
 class SequenceMeasures {
  public:
@@ -142,6 +157,8 @@ class SequenceMeasures {
   // Empty when the sequence passes; else one sentence per violated threshold
   // (e.g. "mean H-penetration 0.81% exceeds 0.50%").
   std::vector<std::string> violations(const ValidationConfig& thresholds) const;
+  // The same with each rule's name (Violation), in the same order.
+  std::vector<Violation> broken(const ValidationConfig& thresholds) const;
 
  private:
   int frames_ = 0, measured_ = 0;
