@@ -22,16 +22,29 @@ constexpr double kContactSpeed = 0.25;    // m/s: a foot whose heel or ball move
 constexpr double kContactHeight = 0.10;   // m above the lowest sole of the clip
 
 // The world point of the BVH rest pose that corresponds to the tail of rig
-// bone r: the BVH joint of the rig child whose head is r's tail (walking
-// down the BVH chain past zero-length segments), else an End Site or a
-// child of r's BVH joint. False when there is none.
+// bone r: the BVH joint of the rig child whose head is r's tail (or, when
+// the clip lacks that joint, of the first joint down the rig chain from it
+// that it has; walking down the BVH chain past zero-length segments), else
+// an End Site or a child of r's BVH joint. False when there is none.
 bool bvh_tail_point(const BvhClip& clip, const BvhWorld& rest, const body::Skeleton& sk, const std::vector<int>& to_bvh,
                     int r, body::Vec3& out) {
   const int b = to_bvh[r];
   const body::Vec3& head = rest.position[b];
   for (int c : sk.children(r)) {
-    if ((sk.rest_head[c] - sk.rest_tail[r]).norm() > 1e-4 || to_bvh[c] < 0) continue;
-    int j = to_bvh[c];
+    if ((sk.rest_head[c] - sk.rest_tail[r]).norm() > 1e-4) continue;
+    // A rig joint the clip lacks there (a lower back): the chain on from it.
+    int m = c;
+    while (m >= 0 && to_bvh[m] < 0) {
+      int next = -1;
+      for (int g : sk.children(m))
+        if ((sk.rest_head[g] - sk.rest_tail[m]).norm() <= 1e-4) {
+          next = g;
+          break;
+        }
+      m = next;
+    }
+    if (m < 0) continue;
+    int j = to_bvh[m];
     while (j >= 0) {
       if ((rest.position[j] - head).norm() > kMinBone) {
         out = rest.position[j];
@@ -220,16 +233,31 @@ const std::map<std::string, std::string>& cmu_3dsmax_names() {
   return names;
 }
 
+std::string bare_joint_name(const std::string& name) {
+  const auto colon = name.rfind(':');
+  return colon == std::string::npos ? name : name.substr(colon + 1);
+}
+
+std::map<std::string, std::string> joint_name_map(const BvhClip& clip) {
+  for (const BvhJoint& j : clip.joints) {
+    const std::string name = bare_joint_name(j.name);
+    if (name == "LeftUpLeg" || name == "RightUpLeg" || name == "LeftForeArm" || name == "RightForeArm") return {};
+  }
+  return cmu_3dsmax_names();
+}
+
 std::unique_ptr<PoseTrack> retarget(const BvhClip& clip, const body::Body& body, const RetargetOptions& options) {
   const body::Skeleton& sk = body.skeleton;
   const int nr = sk.num_joints();
   if (clip.num_frames() == 0) throw InputError::message(clip.source, "MOTION", "the clip has no frames");
 
   // Rig joint -> BVH joint: through the name map, else the same name.
+  const std::map<std::string, std::string> names = options.names.empty() ? joint_name_map(clip) : options.names;
   std::vector<int> to_bvh(nr, -1);
   for (int b = 0; b < clip.num_joints(); ++b) {
-    auto it = options.names.find(clip.joints[b].name);
-    const std::string& rig_name = it != options.names.end() ? it->second : clip.joints[b].name;
+    const std::string bare = bare_joint_name(clip.joints[b].name);
+    auto it = names.find(bare);
+    const std::string& rig_name = it != names.end() ? it->second : bare;
     int r = sk.index(rig_name);
     if (r >= 0 && to_bvh[r] < 0) to_bvh[r] = b;
   }

@@ -3,7 +3,11 @@
 // ground in stance.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <functional>
+#include <map>
 #include <set>
+#include <sstream>
 
 #include "body_fixture.h"
 #include "layers/core/error.h"
@@ -106,6 +110,105 @@ TEST(Retarget, FeetStayOnTheGroundInStance) {
     }
     EXPECT_GT(stance, n / 2) << name;
     EXPECT_LT(worst, 0.03) << name;
+  }
+}
+
+// A clip named as MotionBuilder, Mixamo or the SFU set name joints (Hips,
+// LeftUpLeg, LeftShoulder for the clavicle, LeftArm for the upper arm; no
+// hip or lower-back joints, a spine joint 1 mm above the hips, a leaf
+// joint with no End Site), in centimetres: a T-pose, then legs, arms and
+// spine turned.
+struct MbJoint {
+  const char* name;
+  int parent;
+  double x, y, z;
+};
+const MbJoint kMbJoints[] = {
+    {"Hips", -1, 0, 0, 0},          {"LeftUpLeg", 0, 9, 0, 0},       {"LeftLeg", 1, 0, -40, 0},
+    {"LeftFoot", 2, 0, -39, 0},     {"LeftToeBase", 3, 0, -4, 14},   {"RightUpLeg", 0, -9, 0, 0},
+    {"RightLeg", 5, 0, -40, 0},     {"RightFoot", 6, 0, -39, 0},     {"RightToeBase", 7, 0, -4, 14},
+    {"Spine", 0, 0, 0.1, 0},        {"Spine1", 9, 0, 26, 0},         {"Neck", 10, 0, 20, 0},
+    {"Head", 11, 0, 17, 0},         {"LeftShoulder", 10, 0, 20, 0},  {"LeftArm", 13, 17, 0, 0},
+    {"LeftForeArm", 14, 28, 0, 0},  {"LeftHand", 15, 22, 0, 0},      {"L_Wrist_End", 16, 10, 0, 0},
+    {"RightShoulder", 10, 0, 20, 0}, {"RightArm", 18, -17, 0, 0},    {"RightForeArm", 19, -28, 0, 0},
+    {"RightHand", 20, -22, 0, 0},
+};
+
+std::string mb_style_bvh(const std::vector<std::map<std::string, std::array<double, 3>>>& frames) {
+  const int n = static_cast<int>(std::size(kMbJoints));
+  std::ostringstream out;
+  out << "HIERARCHY\n";
+  // Depth-first, children in table order.
+  std::function<void(int, int)> write = [&](int j, int depth) {
+    const std::string pad(static_cast<std::size_t>(depth), '\t');
+    out << pad << (j == 0 ? "ROOT " : "JOINT ") << kMbJoints[j].name << "\n" << pad << "{\n";
+    out << pad << "\tOFFSET " << kMbJoints[j].x << " " << kMbJoints[j].y << " " << kMbJoints[j].z << "\n";
+    out << pad << "\tCHANNELS " << (j == 0 ? "6 Xposition Yposition Zposition " : "3 ")
+        << "Zrotation Xrotation Yrotation\n";
+    bool leaf = true;
+    for (int c = 0; c < n; ++c)
+      if (kMbJoints[c].parent == j) {
+        write(c, depth + 1);
+        leaf = false;
+      }
+    const std::string name = kMbJoints[j].name;
+    if (leaf && name != "L_Wrist_End")  // the SFU files' leaf joint without an End Site
+      out << pad << "\tEnd Site\n" << pad << "\t{\n" << pad << "\t\tOFFSET 0 5 0\n" << pad << "\t}\n";
+    out << pad << "}\n";
+  };
+  write(0, 0);
+  std::vector<int> order;
+  std::function<void(int)> visit = [&](int j) {
+    order.push_back(j);
+    for (int c = 0; c < n; ++c)
+      if (kMbJoints[c].parent == j) visit(c);
+  };
+  visit(0);
+  out << "MOTION\nFrames: " << frames.size() << "\nFrame Time: 0.0333333\n";
+  for (const auto& f : frames) {
+    for (int j : order) {
+      if (j == 0) out << "0 92 0 ";
+      const auto it = f.find(kMbJoints[j].name);
+      const std::array<double, 3> zxy = it == f.end() ? std::array<double, 3>{0, 0, 0} : it->second;
+      out << zxy[0] << " " << zxy[1] << " " << zxy[2] << " ";
+    }
+    out << "\n";
+  }
+  return out.str();
+}
+
+TEST(Retarget, MotionBuilderStyleNamesFollowTheClip) {
+  const body::Body& b = body::test::body();
+  std::vector<std::map<std::string, std::array<double, 3>>> frames(6);
+  frames[3] = {{"LeftUpLeg", {0, -40, 0}},  {"RightLeg", {0, 50, 0}},    {"LeftArm", {-50, 0, 20}},
+               {"RightArm", {45, 0, -10}},  {"LeftForeArm", {0, 0, 60}}, {"Spine1", {0, 10, 25}},
+               {"Hips", {0, 0, 30}}};
+  for (int f = 4; f < 6; ++f) frames[f] = frames[3];
+  std::istringstream in(mb_style_bvh(frames));
+  const BvhClip clip = parse_bvh(in, "mb_style.bvh");
+  RetargetOptions options;
+  options.ground = false;
+  const std::unique_ptr<PoseTrack> motion = retarget(clip, b, options);
+  // Rig bone and the clip's segment (same names here: the rig's are
+  // MotionBuilder's), in the T-pose and turned. Before the names were read
+  // by the clip's style, LeftShoulder (the clavicle) drove the upper arm;
+  // before the root's direction was taken through the lower back the clip
+  // lacks, the pelvis turned by 90 degrees and the legs crossed.
+  const std::array<const char*, 2> bones[] = {
+      {"LeftArm", "LeftForeArm"}, {"LeftForeArm", "LeftHand"}, {"RightArm", "RightForeArm"},
+      {"LeftUpLeg", "LeftLeg"},   {"RightLeg", "RightFoot"},   {"LeftLeg", "LeftFoot"},
+      {"Spine1", "Neck"},
+      // The hip and shoulder lines: the pelvis and chest face the clip's way.
+      {"RightUpLeg", "LeftUpLeg"}, {"RightArm", "LeftArm"},
+  };
+  for (int f : {0, 3}) {
+    const body::JointTransforms t = body::forward_kinematics(b.skeleton, motion->pose(f));
+    const BvhWorld w = bvh_world(clip, f);
+    for (const auto& bone : bones) {
+      const body::Vec3 a = t.position[b.skeleton.require(bone[1])] - t.position[b.skeleton.require(bone[0])];
+      const body::Vec3 c = w.position[clip.index(bone[1])] - w.position[clip.index(bone[0])];
+      EXPECT_GT(a.normalized().dot(c.normalized()), std::cos(0.05)) << bone[0] << " frame " << f;
+    }
   }
 }
 

@@ -26,8 +26,18 @@ namespace layers::motion {
 // CMU 3dsMax-friendly BVH joint names -> cmu_mb rig joint names.
 const std::map<std::string, std::string>& cmu_3dsmax_names();
 
+// The name map a clip's joints need (BVH -> rig), by the clip's naming:
+// MotionBuilder style (what Mixamo, the SFU set and our rig use: a joint
+// LeftUpLeg, RightUpLeg, LeftForeArm or RightForeArm) maps names as they
+// are, where LeftShoulder is the clavicle; otherwise the CMU 3dsMax names,
+// where LeftShoulder is the upper arm. Names are read without a namespace
+// prefix ("mixamorig:Hips" is Hips).
+std::map<std::string, std::string> joint_name_map(const BvhClip& clip);
+// A joint's name without its namespace prefix (up to the last ':').
+std::string bare_joint_name(const std::string& name);
+
 struct RetargetOptions {
-  std::map<std::string, std::string> names = cmu_3dsmax_names();  // BVH -> rig
+  std::map<std::string, std::string> names;  // BVH (bare names) -> rig; empty: joint_name_map(clip)
   bool start_at_origin = true;                                    // move the first frame's root above (0, 0)
   bool ground = true;                                             // lift the clip so the soles touch y = 0 in stance
 };
