@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "layers/body/body_model.h"
@@ -16,6 +17,13 @@ namespace layers::motion {
 namespace {
 
 constexpr double kMinBone = 0.01;  // BVH segments shorter than this (m, scaled) carry no direction
+
+// The limb bones whose lengths must be in the rig's proportion, and the
+// allowed ratio (clip over rig, the clip scaled by leg length).
+constexpr const char* kRetargetLimbs[] = {"LeftArm",   "LeftForeArm", "RightArm",   "RightForeArm",
+                                          "LeftUpLeg", "LeftLeg",     "RightUpLeg", "RightLeg"};
+constexpr double kLimbRatio[2] = {0.6, 1.6};
+constexpr double kMaxHipLineDegrees = 20;
 
 constexpr double kGroundSmoothing = 1.5;  // frames (Gaussian sigma) for the ground correction
 constexpr double kContactSpeed = 0.25;    // m/s: a foot whose heel or ball moves slower is planted
@@ -300,6 +308,28 @@ std::unique_ptr<PoseTrack> retarget(const BvhClip& clip, const body::Body& body,
     if (bvh_leg > 1e-6) scale = leg_length(sk.rest_head, lh, lk, la) / bvh_leg;
   }
 
+  // Faithfulness, 1: each limb bone of the clip, scaled by the leg ratio,
+  // in the rig's proportion (a name map that puts the clavicle on the
+  // upper arm makes it about twice as long; real actors stay within 0.8-1.3).
+  for (const char* limb : kRetargetLimbs) {
+    const int r = sk.index(limb);
+    if (r < 0 || to_bvh[r] < 0) continue;
+    for (int c : sk.children(r)) {
+      if (to_bvh[c] < 0 || (sk.rest_head[c] - sk.rest_tail[r]).norm() > 1e-4) continue;
+      const double rig = (sk.rest_tail[r] - sk.rest_head[r]).norm();
+      const double bvh = scale * (rest.position[to_bvh[c]] - rest.position[to_bvh[r]]).norm();
+      if (rig > 1e-6 && (bvh < kLimbRatio[0] * rig || bvh > kLimbRatio[1] * rig)) {
+        char ratio[32];
+        std::snprintf(ratio, sizeof ratio, "%.2f", bvh / rig);
+        throw InputError(clip.source, "HIERARCHY",
+                         "limbs in the rig's proportions (upper arm, forearm, thigh and shin 0.6-1.6 times the rig's "
+                         "when scaled by leg length; otherwise the joint names were not understood)",
+                         "rig bone " + sk.names[r] + " -> " + sk.names[c] + " " + ratio + " times, from the clip's " +
+                             clip.joints[to_bvh[r]].name + " -> " + clip.joints[to_bvh[c]].name);
+      }
+    }
+  }
+
   // The root follows the BVH hip midpoint (scaled), so the legs hang from
   // the same place whatever the root-to-hip offsets of the two skeletons.
   const int bl = to_bvh[lh], br = to_bvh[rh];
@@ -332,6 +362,25 @@ std::unique_ptr<PoseTrack> retarget(const BvhClip& clip, const body::Body& body,
     if (!poses.empty())
       for (int r = 0; r < nr; ++r) pose.local[r] = body::same_hemisphere(pose.local[r], poses.back().local[r]);
     poses.push_back(std::move(pose));
+  }
+
+  // Faithfulness, 2: the pelvis faces the clip's way (the hip line within
+  // kMaxHipLineDegrees of the clip's) in the first, middle and last frames.
+  if (bl >= 0 && br >= 0) {
+    const int n = static_cast<int>(poses.size());
+    for (int f : {0, n / 2, n - 1}) {
+      const body::JointTransforms t = body::forward_kinematics(sk, poses[f]);
+      const BvhWorld w = bvh_world(clip, f);
+      const body::Vec3 rig = t.position[lh] - t.position[rh], bvh = w.position[bl] - w.position[br];
+      const double cosine = rig.normalized().dot(bvh.normalized());
+      if (rig.norm() > 1e-6 && bvh.norm() > 1e-9 && !(cosine >= std::cos(kMaxHipLineDegrees * M_PI / 180))) {
+        char angle[32];
+        std::snprintf(angle, sizeof angle, "%.0f", std::acos(std::clamp(cosine, -1.0, 1.0)) * 180 / M_PI);
+        throw InputError(clip.source, "HIERARCHY",
+                         "a skeleton the rig can follow (its hip line within 20 degrees of the clip's)",
+                         std::string("the hip line ") + angle + " degrees off in frame " + std::to_string(f));
+      }
+    }
   }
 
   if (options.ground) {

@@ -124,12 +124,12 @@ struct MbJoint {
   double x, y, z;
 };
 const MbJoint kMbJoints[] = {
-    {"Hips", -1, 0, 0, 0},          {"LeftUpLeg", 0, 9, 0, 0},       {"LeftLeg", 1, 0, -40, 0},
-    {"LeftFoot", 2, 0, -39, 0},     {"LeftToeBase", 3, 0, -4, 14},   {"RightUpLeg", 0, -9, 0, 0},
-    {"RightLeg", 5, 0, -40, 0},     {"RightFoot", 6, 0, -39, 0},     {"RightToeBase", 7, 0, -4, 14},
-    {"Spine", 0, 0, 0.1, 0},        {"Spine1", 9, 0, 26, 0},         {"Neck", 10, 0, 20, 0},
-    {"Head", 11, 0, 17, 0},         {"LeftShoulder", 10, 0, 20, 0},  {"LeftArm", 13, 17, 0, 0},
-    {"LeftForeArm", 14, 28, 0, 0},  {"LeftHand", 15, 22, 0, 0},      {"L_Wrist_End", 16, 10, 0, 0},
+    {"Hips", -1, 0, 0, 0},           {"LeftUpLeg", 0, 9, 0, 0},      {"LeftLeg", 1, 0, -40, 0},
+    {"LeftFoot", 2, 0, -39, 0},      {"LeftToeBase", 3, 0, -4, 14},  {"RightUpLeg", 0, -9, 0, 0},
+    {"RightLeg", 5, 0, -40, 0},      {"RightFoot", 6, 0, -39, 0},    {"RightToeBase", 7, 0, -4, 14},
+    {"Spine", 0, 0, 0.1, 0},         {"Spine1", 9, 0, 26, 0},        {"Neck", 10, 0, 20, 0},
+    {"Head", 11, 0, 17, 0},          {"LeftShoulder", 10, 0, 20, 0}, {"LeftArm", 13, 17, 0, 0},
+    {"LeftForeArm", 14, 28, 0, 0},   {"LeftHand", 15, 22, 0, 0},     {"L_Wrist_End", 16, 10, 0, 0},
     {"RightShoulder", 10, 0, 20, 0}, {"RightArm", 18, -17, 0, 0},    {"RightForeArm", 19, -28, 0, 0},
     {"RightHand", 20, -22, 0, 0},
 };
@@ -180,8 +180,8 @@ std::string mb_style_bvh(const std::vector<std::map<std::string, std::array<doub
 TEST(Retarget, MotionBuilderStyleNamesFollowTheClip) {
   const body::Body& b = body::test::body();
   std::vector<std::map<std::string, std::array<double, 3>>> frames(6);
-  frames[3] = {{"LeftUpLeg", {0, -40, 0}},  {"RightLeg", {0, 50, 0}},    {"LeftArm", {-50, 0, 20}},
-               {"RightArm", {45, 0, -10}},  {"LeftForeArm", {0, 0, 60}}, {"Spine1", {0, 10, 25}},
+  frames[3] = {{"LeftUpLeg", {0, -40, 0}}, {"RightLeg", {0, 50, 0}},    {"LeftArm", {-50, 0, 20}},
+               {"RightArm", {45, 0, -10}}, {"LeftForeArm", {0, 0, 60}}, {"Spine1", {0, 10, 25}},
                {"Hips", {0, 0, 30}}};
   for (int f = 4; f < 6; ++f) frames[f] = frames[3];
   std::istringstream in(mb_style_bvh(frames));
@@ -195,11 +195,16 @@ TEST(Retarget, MotionBuilderStyleNamesFollowTheClip) {
   // before the root's direction was taken through the lower back the clip
   // lacks, the pelvis turned by 90 degrees and the legs crossed.
   const std::array<const char*, 2> bones[] = {
-      {"LeftArm", "LeftForeArm"}, {"LeftForeArm", "LeftHand"}, {"RightArm", "RightForeArm"},
-      {"LeftUpLeg", "LeftLeg"},   {"RightLeg", "RightFoot"},   {"LeftLeg", "LeftFoot"},
+      {"LeftArm", "LeftForeArm"},
+      {"LeftForeArm", "LeftHand"},
+      {"RightArm", "RightForeArm"},
+      {"LeftUpLeg", "LeftLeg"},
+      {"RightLeg", "RightFoot"},
+      {"LeftLeg", "LeftFoot"},
       {"Spine1", "Neck"},
       // The hip and shoulder lines: the pelvis and chest face the clip's way.
-      {"RightUpLeg", "LeftUpLeg"}, {"RightArm", "LeftArm"},
+      {"RightUpLeg", "LeftUpLeg"},
+      {"RightArm", "LeftArm"},
   };
   for (int f : {0, 3}) {
     const body::JointTransforms t = body::forward_kinematics(b.skeleton, motion->pose(f));
@@ -209,6 +214,27 @@ TEST(Retarget, MotionBuilderStyleNamesFollowTheClip) {
       const body::Vec3 c = w.position[clip.index(bone[1])] - w.position[clip.index(bone[0])];
       EXPECT_GT(a.normalized().dot(c.normalized()), std::cos(0.05)) << bone[0] << " frame " << f;
     }
+  }
+}
+
+// A clip read through the wrong name map (here: MotionBuilder names forced
+// through the CMU 3dsMax map, the clavicle driving the upper arm) is
+// refused with one line naming the bone, not retargeted crooked.
+TEST(Retarget, AClipTheRigCannotFollowIsRefused) {
+  const body::Body& b = body::test::body();
+  std::istringstream in(mb_style_bvh(std::vector<std::map<std::string, std::array<double, 3>>>(3)));
+  const BvhClip clip = parse_bvh(in, "mb_style.bvh");
+  RetargetOptions options;
+  options.names = cmu_3dsmax_names();
+  try {
+    retarget(clip, b, options);
+    ADD_FAILURE() << "retargeted";
+  } catch (const InputError& e) {
+    const std::string said = e.what();
+    EXPECT_NE(said.find("mb_style.bvh"), std::string::npos) << said;
+    EXPECT_NE(said.find("rig bone LeftArm -> LeftForeArm"), std::string::npos) << said;
+    EXPECT_NE(said.find("from the clip's LeftShoulder -> LeftForeArm"), std::string::npos) << said;
+    EXPECT_EQ(said.find('\n'), std::string::npos) << said;
   }
 }
 

@@ -38,8 +38,8 @@ std::string bare_joint_name(const std::string& name);
 
 struct RetargetOptions {
   std::map<std::string, std::string> names;  // BVH (bare names) -> rig; empty: joint_name_map(clip)
-  bool start_at_origin = true;                                    // move the first frame's root above (0, 0)
-  bool ground = true;                                             // lift the clip so the soles touch y = 0 in stance
+  bool start_at_origin = true;               // move the first frame's root above (0, 0)
+  bool ground = true;                        // lift the clip so the soles touch y = 0 in stance
 };
 
 // Which feet touch the ground, per frame: a foot is planted when its heel
