@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <cstdlib>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "layers/core/error.h"
@@ -63,6 +64,12 @@ long resolve(long index, std::size_t count, const std::string& path, int line, c
   const long resolved = index > 0 ? index - 1 : static_cast<long>(count) + index;
   if (resolved < 0)
     fail(path, line, "index " + std::to_string(index) + " in '" + token + "' points before the first element");
+  // Indices are kept as int: larger ones cannot name an element of any
+  // file this reads (and would wrap onto another vertex).
+  if (resolved >= std::numeric_limits<int>::max())
+    fail(path, line,
+         "expected an index of at most " + std::to_string(std::numeric_limits<int>::max() - 1) + " in '" + token +
+             "', got " + std::to_string(index));
   return resolved;
 }
 

@@ -15,6 +15,7 @@
 #include <map>
 #include <set>
 
+#include "assimp_read.h"
 #include "body_checks.h"
 #include "layers/core/error.h"
 #include "layers/data/format.h"
@@ -142,9 +143,8 @@ ImportedBody import_rigged_body(const std::string& path, double scale, const std
   if (!(scale > 0) || !std::isfinite(scale))
     throw InputError(path, "scale", "a positive factor to metres", std::to_string(scale));
   Assimp::Importer importer;
-  const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_SortByPType);
-  if (!scene || !scene->mRootNode)
-    throw InputError(path, "", "a body file assimp reads", std::string("'") + importer.GetErrorString() + "'");
+  const aiScene* scene = detail::read_with_assimp(importer, path, aiProcess_Triangulate | aiProcess_SortByPType,
+                                                  "a body file assimp reads");
 
   // The meshes bound to joints, and the nodes holding them.
   std::set<std::string> bound;

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <map>
 
+#include "assimp_read.h"
 #include "file_names.h"
 #include "layers/core/error.h"
 #include "layers/data/obj.h"
@@ -80,9 +81,8 @@ Collected read_with_assimp(const std::string& path, double scale) {
   Assimp::Importer importer;
   // Triangulate polygons; no vertex joining by assimp (we weld by position
   // below, which also joins vertices split at UV seams).
-  const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_SortByPType);
-  if (!scene || !scene->mRootNode)
-    throw InputError(path, "", "a mesh file assimp reads", std::string("'") + importer.GetErrorString() + "'");
+  const aiScene* scene = detail::read_with_assimp(importer, path, aiProcess_Triangulate | aiProcess_SortByPType,
+                                                  "a mesh file assimp reads");
   Collected c;
   collect(scene, scene->mRootNode, aiMatrix4x4(), scale, c);
   if (c.all_uv)

@@ -84,6 +84,14 @@ TEST(DataObj, MalformedInputsNameTheLine) {
   EXPECT_NE(e.find("bad.obj:5"), std::string::npos) << e;
   e = error_for("v 0 0\n");
   EXPECT_NE(e.find("expected 3 numbers after 'v', got 2"), std::string::npos) << e;
+  // Issue 62 C1/S1: indices past int's range crashed (2^31 + 1) or wrapped
+  // onto another vertex (2^32 + 2 read as 2).
+  for (const char* index : {"2147483649", "4294967298", "2147483648/1"}) {
+    e = error_for(std::string("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1 2 ") + index + "\n");
+    EXPECT_NE(e.find("bad.obj:5: expected an index of at most 2147483646"), std::string::npos) << e;
+  }
+  e = error_for("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/4294967298\n");
+  EXPECT_NE(e.find("got 4294967298"), std::string::npos) << e;
   EXPECT_NE(test::error_of<InputError>([&] { read_obj(dir.file("missing.obj")); }).find("missing.obj"),
             std::string::npos);
   EXPECT_NE(test::error_of<InputError>([&] {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <fstream>
 
 #include "error_of.h"
@@ -92,6 +93,38 @@ TEST(MeshImport, GlbSplitAtASeamIsWeldedBack) {
   EXPECT_EQ(m.mesh.faces(1, 0), m.mesh.faces(0, 0));
   EXPECT_EQ(m.mesh.faces(1, 1), m.mesh.faces(0, 2));
   EXPECT_TRUE(m.uv.empty());
+}
+
+// A glTF of two triangles with its own buffer file; `third` is the second
+// triangle's last vertex index (4 vertices).
+std::string two_triangle_gltf(const test::TempDir& dir, std::uint32_t third) {
+  const float pos[12] = {0, 0, 0, 0.5f, 0, 0, 0.5f, 0.5f, 0, 0, 0.5f, 0.1f};
+  const std::uint32_t idx[6] = {0, 1, 2, 0, 2, third};
+  std::ofstream bin(dir.file("two.bin"), std::ios::binary);
+  bin.write(reinterpret_cast<const char*>(pos), sizeof pos);
+  bin.write(reinterpret_cast<const char*>(idx), sizeof idx);
+  bin.close();
+  const std::string json =
+      R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+      R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],)"
+      R"("buffers":[{"byteLength":72,"uri":"two.bin"}],)"
+      R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":24}],)"
+      R"("accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[0,0,0],"max":[0.5,0.5,0.1]},)"
+      R"({"bufferView":1,"componentType":5125,"count":6,"type":"SCALAR"}]})";
+  std::ofstream(dir.file("two.gltf")) << json;
+  return dir.file("two.gltf");
+}
+
+// Issue 62 S2: assimp drops faces whose indices are out of range and only
+// warns; a garment that lost faces so is refused, not simulated.
+TEST(MeshImport, AFaceIndexOutOfRangeIsRefusedNotDropped) {
+  test::TempDir dir("import");
+  EXPECT_EQ(import_mesh(two_triangle_gltf(dir, 3)).mesh.faces.rows(), 2);
+  const std::string said = message_of([&] { import_mesh(two_triangle_gltf(dir, 1000000)); });
+  EXPECT_NE(said.find("two.gltf: faces: expected vertex indices within each mesh's vertices, got faces with indices "
+                      "out of range"),
+            std::string::npos)
+      << said;
 }
 
 TEST(MeshImport, CentimetresAreRefusedUntilScaled) {
