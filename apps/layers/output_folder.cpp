@@ -38,4 +38,21 @@ fs::path move_aside(const fs::path& dir, const std::string& field) {
   return aside;
 }
 
+void claim_new_output(const fs::path& out, const std::string& flag, const std::vector<fs::path>& inputs) {
+  std::error_code ec;
+  const fs::path target = fs::weakly_canonical(out, ec);
+  for (const fs::path& input : inputs) {
+    const fs::path in = fs::weakly_canonical(input, ec);
+    if (in.empty() || target.empty()) continue;
+    const std::string t = target.string(), i = in.string();
+    if (t == i || (t.size() > i.size() && t.compare(0, i.size(), i) == 0 && t[i.size()] == '/'))
+      throw InputError(out.string(), flag, "a path outside the command's inputs (an input is never an output)",
+                       t == i ? "the input " + input.string() : "a path inside the input " + input.string());
+  }
+  if (fs::is_directory(fs::symlink_status(out)) && fs::is_empty(out, ec)) return;  // an empty folder made for it
+  if (fs::exists(fs::symlink_status(out)))
+    throw InputError(out.string(), flag, "a new path (nothing is overwritten; move or delete it first)",
+                     "an existing " + std::string(fs::is_directory(out) ? "folder" : "file"));
+}
+
 }  // namespace layers::app

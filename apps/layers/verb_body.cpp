@@ -12,6 +12,7 @@
 #include "layers/data/shard_writer.h"
 #include "layers/generate/body_data.h"
 #include "layers/motion/body_config.h"
+#include "output_folder.h"
 #include "verbs.h"
 
 namespace fs = std::filesystem;
@@ -89,6 +90,7 @@ VerbRun register_body(CLI::App& app, const Global&) {
     if (a->frames > 0 && a->transition >= a->frames)
       throw UsageError("--transition: expected fewer frames than --frames (" + std::to_string(a->frames) + "), got " +
                        std::to_string(a->transition));
+    claim_new_output(a->out, "--out");
     cfg::Node section;
     section.kind = cfg::Node::Kind::Map;
     section.file = "layers body";

@@ -10,6 +10,7 @@
 #include "layers/generate/generator_config.h"
 #include "layers/study/config.h"
 #include "layers/zoo/model_config.h"
+#include "output_folder.h"
 #include "plugins.h"
 #include "verbs.h"
 
@@ -42,6 +43,7 @@ VerbRun register_config(CLI::App& app, const Global&) {
   add_config_options(*cmd, args->config, /*required=*/true);
   cmd->add_option("--out", args->out, "also write the resolved config to this file");
   return [args]() {
+    if (!args->out.empty()) claim_new_output(args->out, "--out", {args->config.file});
     cfg::Node tree = cfg::load_file(args->config.file);
     for (const auto& s : args->config.sets) cfg::apply_set(tree, s);
     std::string text;

@@ -226,6 +226,15 @@ int run(const Args& a) {
       std::fprintf(stderr, "crosscheck: %s (%zu of %zu) read back from %s\n", id.c_str(), i + 1, sequences.size(),
                    tsv.c_str());
       scene.columns = generate::parse_crosscheck_columns(read_text_file(tsv.string()), tsv.string());
+      // A scene run with other --frames is not this run's: refused, not averaged in.
+      const std::int64_t measured = frames_of(a, dataset.info(id)) - 1;
+      for (const generate::CrosscheckColumn& c : scene.columns)
+        if (c.frames != measured)
+          throw InputError(tsv.string(), c.label + " frames",
+                           std::to_string(measured) + " measured frames, as --frames " + std::to_string(measured + 1) +
+                               " gives (resume with the --frames the folder was made "
+                               "with, or use another --work)",
+                           std::to_string(c.frames));
     } else {
       if (fs::exists(dir)) move_aside(dir, "--work");
       fs::create_directories(dir);

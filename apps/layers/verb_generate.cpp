@@ -73,6 +73,7 @@ VerbRun register_generate(CLI::App& app, const Global&) {
     options.finalize = !a->no_finalize;
     const std::string shard_text = std::to_string(choice.index) + "/" + std::to_string(choice.count);
     if (choice.source != "--shard") spdlog::info("--shard {}: shard {} from {}", a->shard, shard_text, choice.source);
+    generate::check_output_folder(options.out);
     std::printf("resolved config: %s/generator.yaml\n", options.out.c_str());
     std::fflush(stdout);
     auto report = generate::generate_dataset(config, resolved, options);

@@ -6,6 +6,7 @@
 #include "dataset_access.h"
 #include "layers/data/dataset.h"
 #include "layers/data/stats.h"
+#include "output_folder.h"
 #include "verbs.h"
 
 namespace layers::app {
@@ -30,6 +31,7 @@ VerbRun register_stats(CLI::App& app, const Global&) {
   cmd->add_option("--out", args->out, "output file (default <dataset>/stats.h5)");
   cmd->add_flag("--print-only", args->dry_run, "print the statistics without writing them");
   return [args]() {
+    if (!args->dry_run && !args->out.empty()) claim_new_output(args->out, "--out", {args->path});
     data::Dataset ds = open_dataset(args->path, args->allow_unhashed);
     data::StatsOptions options;
     options.split = args->split;

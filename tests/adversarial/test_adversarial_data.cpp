@@ -15,10 +15,10 @@
 #include <map>
 #include <regex>
 
+#include "adversarial_fixture.h"
 #include "file_bytes.h"
 #include "probe.h"
 #include "run_command.h"
-#include "synthetic_fixture.h"
 #include "temp_dir.h"
 
 namespace fs = std::filesystem;
@@ -26,31 +26,6 @@ using namespace layers;
 using test::run_command;
 
 namespace {
-
-// Two shards (seq0-seq2: train; seq3: val; seq4, seq5: test), so that
-// sequences can be swapped between shards.
-std::string write_two_shards(const std::string& dir) {
-  data::DatasetWriterOptions options;
-  options.sequences_per_shard = 3;
-  data::DatasetWriter writer(dir, options);
-  for (int s = 0; s < 6; ++s)
-    writer.add(regression::detail::fixture_sequence("seq" + std::to_string(s), static_cast<std::uint64_t>(s + 1)));
-  writer.set_split("train", {"seq0", "seq1", "seq2"});
-  writer.set_split("val", {"seq3"});
-  writer.set_split("test", {"seq4", "seq5"});
-  writer.finish();
-  data::write_dataset_stats(dir, data::compute_stats(data::Dataset::open(dir)));
-  return dir;
-}
-
-// Every file below `dir` with its bytes, to show nothing changed.
-std::map<std::string, std::string> snapshot(const std::string& dir) {
-  std::map<std::string, std::string> out;
-  if (!fs::exists(dir)) return out;
-  for (const auto& e : fs::recursive_directory_iterator(dir))
-    if (e.is_regular_file()) out[fs::relative(e.path(), dir).string()] = test::read_bytes(e.path().string());
-  return out;
-}
 
 std::size_t lines(const std::string& text) {
   return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
@@ -67,7 +42,7 @@ class Adversarial : public ::testing::Test {
     fs::create_directories(plugins_);
     const std::string plugin = "liblayers_plugin_test_constant_velocity.so";
     fs::create_symlink(test::plugin_dir() + "/" + plugin, plugins_ + "/" + plugin);
-    clean_ = write_two_shards(root_->file("clean"));
+    clean_ = test::write_two_shards(root_->file("clean"));
     experiment_ = root_->write("exp.yaml",
                                "model: {name: test_constant_velocity, params: {damping: 0.6}}\n"
                                "data: {dataset: " +
@@ -110,7 +85,7 @@ class Adversarial : public ::testing::Test {
   // `verb` (train or eval) on `dataset`: exit 1, one line naming `expect`,
   // nothing written, the dataset unchanged.
   void refused(const std::string& verb, const std::string& dataset, const std::string& expect) const {
-    const auto before = snapshot(dataset);
+    const auto before = test::snapshot(dataset);
     const std::string out = dir_.file(verb + "-out-" + fs::path(dataset).filename().string());
     const std::string where = verb == "train" ? " --set run.output=" + out : " --out " + out;
     const auto r = layers(verb + " " + experiment_ + " --quiet --set data.dataset=" + dataset + where);
@@ -119,7 +94,7 @@ class Adversarial : public ::testing::Test {
     EXPECT_EQ(r.output.rfind("layers: error: ", 0), 0u) << verb << ": " << r.output;
     EXPECT_NE(r.output.find(expect), std::string::npos) << verb << ": " << r.output;
     EXPECT_FALSE(fs::exists(out)) << verb << " wrote " << out;
-    EXPECT_EQ(snapshot(dataset), before) << verb << " changed the dataset";
+    EXPECT_EQ(test::snapshot(dataset), before) << verb << " changed the dataset";
   }
   void invalid(const std::string& dataset, const std::string& expect) const {
     const auto r = layers("validate " + dataset);

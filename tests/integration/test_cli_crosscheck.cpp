@@ -148,6 +148,17 @@ TEST(CliCrosscheck, SeveralScenesGiveASummaryAndResume) {
     aside += e.path().filename().string().rfind("b.replaced-", 0) == 0;
   EXPECT_EQ(aside, 1);
 
+  // Issue 62 S7: resumed with other --frames, the scenes read back were
+  // averaged in under the new count; now refused, the folder unchanged.
+  auto frames = run_command(crosscheck(ds + " a b --frames 3 --blender " + blender + " --work " + work));
+  EXPECT_EQ(frames.exit_code, 1) << frames.output;
+  EXPECT_NE(error_line(frames.output)
+                .find("a/columns.tsv: ours (stored) frames: expected 2 measured frames, as "
+                      "--frames 3 gives"),
+            std::string::npos)
+      << frames.output;
+  EXPECT_EQ(data::testing::read_text(work + "/summary.md"), summary);
+
   // A folder of another dataset's run is refused.
   const std::string other = dir.write("other/scenes.txt", "dataset /elsewhere\n");
   auto refused = run_command(crosscheck(ds + " a b --blender " + blender + " --work " + dir.file("other")));

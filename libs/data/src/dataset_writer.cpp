@@ -131,6 +131,9 @@ void DatasetWriter::finish() {
   manifest.n_garments = w.n_garments;
   manifest.n_shards = w.n_shards;
   manifest.generator_yaml = w.options.generator_config_yaml;
+  // Every dataset has a train split (readers refuse one without it), empty
+  // when nothing was put there: statistics come from it.
+  if (!w.splits.has("train")) w.splits.set("train", {});
   write_splits(splits_path, w.splits);
   write_manifest(w.path(kManifestFile), manifest);
   record_integrity(w.folder);

@@ -92,14 +92,27 @@ std::vector<std::string> export_sequence(const Dataset& dataset, const std::stri
                      "[first,last) with 0 <= first < last <= " + std::to_string(info.n_frames),
                      "[" + std::to_string(first) + "," + std::to_string(last) + ")");
   }
+  const auto statics = dataset.statics(id);
+  std::vector<MeshOut> meshes = meshes_of(*statics);
+  const std::string prefix = (fs::path(out_dir) / file_safe(id)).string() + "_";
+  // Every file this export writes, checked before anything is: a file of
+  // the same name already there is the user's, and is not replaced.
+  std::vector<std::string> planned;
+  if (format == ExportFormat::Glb) planned.push_back((fs::path(out_dir) / file_safe(id)).string() + ".glb");
+  for (const MeshOut& mesh : meshes) {
+    if (format == ExportFormat::Obj)
+      for (std::int64_t t = first; t < last; ++t) planned.push_back(prefix + mesh.name + "_" + frame_text(t) + ".obj");
+    if (format == ExportFormat::Pc2)
+      planned.insert(planned.end(), {prefix + mesh.name + ".obj", prefix + mesh.name + ".pc2"});
+  }
+  for (const std::string& path : planned)
+    if (fs::exists(fs::symlink_status(path)))
+      throw InputError(path, "", "a name not taken in the output folder (an export replaces nothing)",
+                       "a file of that name already there");
   std::error_code ec;
   fs::create_directories(out_dir, ec);
   if (!fs::is_directory(out_dir))
     throw InputError::message(out_dir, "", "cannot create the output folder: " + ec.message());
-
-  const auto statics = dataset.statics(id);
-  std::vector<MeshOut> meshes = meshes_of(*statics);
-  const std::string prefix = (fs::path(out_dir) / file_safe(id)).string() + "_";
   std::vector<std::string> written;
 
   std::vector<std::unique_ptr<Pc2Writer>> caches;

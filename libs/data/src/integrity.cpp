@@ -84,6 +84,9 @@ void check_counts(const std::string& manifest_path, const DatasetManifest& manif
 
 void check_splits(const SplitsSource& source, const std::map<std::string, std::string>& shard_of_id,
                   ProblemSink& sink) {
+  // Complete, not only consistent: statistics come from train.
+  if (!source.splits.has("train"))
+    sink.report(Problem{source.path, "train", "expected a train split (statistics come from it), got none"});
   std::map<std::string, std::string> standard_owner;  // id -> train/val/test split holding it
   for (const auto& name : source.splits.names()) {
     const auto& ids = source.splits.get(name);

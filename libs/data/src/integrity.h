@@ -44,7 +44,8 @@ void check_shard_set(const std::string& manifest_path, const DatasetManifest& ma
 // counts.sequences, frames and garments against the shards.
 void check_counts(const std::string& manifest_path, const DatasetManifest& manifest, const ShardTotals& found,
                   ProblemSink& sink);
-// Every id known, none twice in a split, none in two of train/val/test.
+// A train split present (statistics come from it); every id known, none
+// twice in a split, none in two of train/val/test.
 void check_splits(const SplitsSource& source, const std::map<std::string, std::string>& shard_of_id, ProblemSink& sink);
 
 // A shard's own recorded hashes (id -> hash); empty when it has none.

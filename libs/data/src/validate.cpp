@@ -236,9 +236,6 @@ void validate_splits(const std::string& path, const std::map<std::string, std::s
   try {
     const SplitsSource source = read_splits_source(path);
     check_splits(source, seen, sink);
-    // Complete, not only consistent: statistics come from train.
-    if (!source.splits.has("train"))
-      sink.report(Problem{path, "train", "expected a train split (statistics come from it), got none"});
   } catch (const InputError& e) {
     sink.report(problem_from(e));
   }

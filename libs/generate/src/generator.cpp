@@ -84,6 +84,7 @@ void check_revision(const Layout& layout, bool started_before) {
 // Saves the resolved config and the generator's revision, or checks them
 // against those a previous run of this folder saved.
 void claim_folder(const Layout& layout, const std::string& config_yaml) {
+  check_output_folder(layout.out.string());
   fs::create_directories(layout.out / "parts");
   const bool started_before = check_saved_config(layout, config_yaml);
   if (!started_before) write_text_atomic((layout.out / "generator.yaml").string(), config_yaml);
@@ -235,6 +236,18 @@ FinalizeReport finalize(const Layout& layout, const std::string& config_yaml) {
 }
 
 }  // namespace
+
+void check_output_folder(const std::string& out) {
+  // A folder no generation started (no generator.yaml) must be new or
+  // empty: its files are the user's, and finalizing would replace some.
+  const fs::path dir(out);
+  std::error_code ec;
+  if (fs::exists(dir) && !fs::exists(dir / "generator.yaml") && !(fs::is_directory(dir) && fs::is_empty(dir, ec)))
+    throw InputError(out, "--out",
+                     "a new or empty folder, or a dataset folder a generation with this config started "
+                     "(generator.yaml)",
+                     fs::is_directory(dir) ? "a folder holding other files" : "a file");
+}
 
 GenerateReport generate_dataset(const GeneratorConfig& config, const std::string& config_yaml,
                                 const GenerateOptions& options) {

@@ -1,6 +1,7 @@
 // Typed configs: parsing, include/override, --set, and the error messages
 // for each kind of bad input.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include "layers/core/config.h"
 #include "layers/core/error.h"
@@ -277,4 +278,29 @@ TEST(Config, EraseRemovesOneEntry) {
   EXPECT_EQ(root.map[0].first, "a");
   EXPECT_EQ(root.map[1].first, "c");
   EXPECT_EQ(root.find("b"), nullptr);
+}
+
+// Issue 62 M5: a FIFO given as a config or an include hung forever (opening
+// it waits for a writer); it is refused before it is opened, as a folder is.
+TEST(Config, APipeOrAFolderAsAConfigFileIsRefusedWithoutWaiting) {
+  TempDir dir;
+  const std::string fifo = dir.file("pipe.yaml");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const std::string main = dir.write("main.yaml", "include: pipe.yaml\na: 1\n");
+  for (const std::string& path : {fifo, main}) {
+    try {
+      layers::cfg::load_file(path);
+      ADD_FAILURE() << path << " read";
+    } catch (const layers::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("pipe.yaml: expected a regular file, got a pipe, socket or device"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  try {
+    layers::cfg::load_file(dir.path());
+    ADD_FAILURE() << "a folder read";
+  } catch (const layers::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("expected a regular file, got a folder"), std::string::npos) << e.what();
+  }
 }

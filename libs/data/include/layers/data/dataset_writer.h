@@ -39,7 +39,8 @@ class DatasetWriter {
   bool contains(const std::string& id) const;
   // Appends a sequence; InputError for a bad sequence or a duplicate id.
   void add(const SequenceData& seq);
-  // Sets a split (train, val, test or a named subset).
+  // Sets a split (train, val, test or a named subset). finish() writes an
+  // empty train split when none was set: every dataset has one.
   void set_split(const std::string& name, std::vector<std::string> ids);
   // Commits the last shard and writes dataset.yaml + splits.yaml. Every
   // split must name written sequences only (InputError otherwise).

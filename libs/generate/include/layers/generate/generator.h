@@ -57,6 +57,12 @@ struct FinalizeReport {
   bool done() const { return missing.empty(); }
 };
 
+// InputError (naming --out) unless `out` is new, an empty folder, or a
+// folder a generation started (it holds generator.yaml; whether the config
+// is the same is checked by generate_dataset). Nothing a user put in a
+// folder is replaced by a dataset.
+void check_output_folder(const std::string& out);
+
 // `config_yaml` is the resolved config (saved and compared on resume).
 GenerateReport generate_dataset(const GeneratorConfig& config, const std::string& config_yaml,
                                 const GenerateOptions& options);
