@@ -62,9 +62,13 @@ VerbRun register_report(CLI::App& app, const Global&) {
     if (holds_report && !a->force)
       throw InputError(a->out, "--out", "a new folder, or --force to move the report there aside",
                        std::string("a folder holding a report (") + data::run_layout::kReport + ")");
+    std::vector<fs::path> runs(a->inputs.runs.begin(), a->inputs.runs.end());
     if (holds_report) {
       const fs::path aside = move_aside(a->out, "--out");
       std::printf("moved the old report %s aside to %s\n", a->out.c_str(), aside.string().c_str());
+    } else {
+      // A folder of other files is the user's (issue 62 D1): refused.
+      claim_new_output(a->out, "--out", runs);
     }
     const report::ReportResult r = report::write_report(a->inputs, a->out);
     for (const std::string& p : r.problems) std::fprintf(stderr, "layers report: warning: %s\n", p.c_str());

@@ -43,4 +43,16 @@ TEST(CliReport, AFolderHoldingAReportIsReplacedOnlyWithForceAndMovedAside) {
   EXPECT_EQ(here.exit_code, 1) << here.output;
   EXPECT_NE(here.output.find("a folder other than the current one"), std::string::npos) << here.output;
   EXPECT_TRUE(fs::exists(out / "summary.csv"));
+
+  // Issue 62 D1: a folder of the user's files without report.md was
+  // replaced; now refused, kept as it was.
+  const fs::path mine = dir.file("mine");
+  fs::create_directories(mine);
+  std::ofstream(mine / "thesis.tex") << "chapter 1\n";
+  auto kept = run_command(report + mine.string());
+  EXPECT_EQ(kept.exit_code, 1) << kept.output;
+  EXPECT_NE(kept.output.find("mine: --out: expected a new path (nothing is overwritten"), std::string::npos)
+      << kept.output;
+  EXPECT_EQ(read_text_file((mine / "thesis.tex").string()), "chapter 1\n");
+  EXPECT_FALSE(fs::exists(mine / "summary.csv"));
 }
