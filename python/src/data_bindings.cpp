@@ -160,7 +160,7 @@ void bind_data(py::module_& m) {
   m.def(
       "read_stats",
       [](const std::string& path) {
-        const data::NormStats stats = data::read_stats(path);
+        const data::NormStats stats = data::read_stats_verified(path);
         py::dict out;
         data::for_each_quantity(stats, [&](const char* name, const data::Moments& moments) {
           py::dict q;
@@ -175,7 +175,7 @@ void bind_data(py::module_& m) {
         return out;
       },
       "stats.h5: mean and std of each quantity ('garment/position', ... 'body/acceleration', root-relative; "
-      "docs/format.md), as the models read them",
+      "docs/format.md), as the models read them; a dataset's stats.h5 is checked against dataset.yaml's stats_hash",
       py::arg("path"));
   m.def(
       "open_dataset",

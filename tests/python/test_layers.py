@@ -206,3 +206,16 @@ def test_a_damaged_shard_raises_the_cpp_message(fixture, tmp_path):
         for seq_id in damaged.ids():
             damaged.read_sequence(seq_id)
     assert shard.name in str(e.value) or "seq" in str(e.value), str(e.value)
+
+
+def test_read_stats_checks_the_recorded_hash(fixture, tmp_path):
+    """Issue 62 S4: read_stats returned an edited stats.h5 as it was."""
+    copy = tmp_path / "stats-edited"
+    shutil.copytree(fixture["dataset"], copy)
+    assert layers.read_stats(str(copy / "stats.h5"))["split"] == "train"
+    manifest = (copy / "dataset.yaml").read_text()
+    recorded = next(line.split(":")[1].strip() for line in manifest.splitlines() if line.startswith("stats_hash:"))
+    (copy / "dataset.yaml").write_text(manifest.replace(recorded, "0123456789abcdef"))
+    with pytest.raises(layers.InputError) as e:
+        layers.read_stats(str(copy / "stats.h5"))
+    assert "stats_hash" in str(e.value), str(e.value)

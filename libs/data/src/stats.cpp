@@ -7,11 +7,13 @@
 
 #include "dataset_files.h"
 #include "h5_io.h"
+#include "integrity.h"
 #include "layers/core/atomic_file.h"
 #include "layers/core/checksum.h"
 #include "layers/core/error.h"
 #include "layers/data/dataset.h"
 #include "layers/data/manifest.h"
+#include "shard_layout.h"
 
 namespace layers::data {
 namespace {
@@ -265,6 +267,16 @@ std::string stats_content_hash(const NormStats& stats) {
     h.add(m.mean.data(), sizeof m.mean).add(m.std.data(), sizeof m.std).add(&m.count, sizeof m.count);
   });
   return h.hex();
+}
+
+NormStats read_stats_verified(const std::string& path, bool allow_unhashed) {
+  NormStats stats = read_stats(path);
+  const std::filesystem::path file(path), folder = file.parent_path().empty() ? "." : file.parent_path();
+  if (file.filename() == kStatsFile && std::filesystem::exists(folder / kManifestFile)) {
+    ThrowOnProblem sink;
+    check_stats_hash(folder.string(), read_manifest((folder / kManifestFile).string()), allow_unhashed, sink);
+  }
+  return stats;
 }
 
 void write_dataset_stats(const std::string& folder, const NormStats& stats) {

@@ -62,6 +62,11 @@ void for_each_quantity(Stats& stats, F&& f) {
 NormStats compute_stats(const Dataset& dataset, const StatsOptions& options = {});
 void write_stats(const std::string& path, const NormStats& stats);  // atomic
 NormStats read_stats(const std::string& path);
+// read_stats, and when the file is a dataset's stats.h5 (beside a
+// dataset.yaml), its values checked against the recorded stats_hash as
+// every dataset reader checks them (InputError when they differ or, unless
+// allow_unhashed, when none is recorded).
+NormStats read_stats_verified(const std::string& path, bool allow_unhashed = false);
 // The content hash of the statistics (16 hex digits): what dataset.yaml's
 // stats_hash records and the readers verify (integrity.h).
 std::string stats_content_hash(const NormStats& stats);
