@@ -15,8 +15,9 @@ def rollout(experiment, sequence, out, checkpoint="best", horizon=0, sets=()):
     and `garments`: the predicted positions of each garment, [T,V,3] torch
     tensors (numpy arrays where torch is not installed), ground truth at
     frames 0 and 1 as the rollout starts from it. `sets` are --set
-    overrides ("key.path=value")."""
-    result = _core.rollout(experiment, sequence, out, checkpoint, horizon, list(sets))
+    overrides ("key.path=value"; a single string is one override)."""
+    sets = [sets] if isinstance(sets, str) else list(sets)  # one override given as a string
+    result = _core.rollout(experiment, sequence, out, checkpoint, horizon, sets)
     predicted = _core.open_dataset(result["predictions"]).read_sequence(sequence)
     garments = [g["positions"] for g in predicted["garments"]]
     try:

@@ -12,6 +12,7 @@
 
 #include "bindings.h"
 #include "layers/core/config.h"
+#include "layers/core/error.h"
 #include "layers/data/run_layout.h"
 #include "layers/train/evaluator.h"
 #include "layers/train/experiment_config.h"
@@ -63,6 +64,10 @@ void bind_zoo(py::module_& m) {
       "rollout",
       [](const std::string& experiment, const std::string& sequence, const std::string& out,
          const std::string& checkpoint, int horizon, const std::vector<std::string>& sets) {
+        if (horizon < -1)
+          throw InputError("layers.rollout", "horizon",
+                           "0 (to the end of the sequence), -1 (the experiment's eval.horizon) or a number of frames",
+                           std::to_string(horizon));
         cfg::Node tree = cfg::load_file(experiment);
         for (const std::string& s : sets) cfg::apply_set(tree, s);
         train::ExperimentConfig config = train::read_experiment(tree, experiment);

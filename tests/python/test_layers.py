@@ -219,3 +219,26 @@ def test_read_stats_checks_the_recorded_hash(fixture, tmp_path):
     with pytest.raises(layers.InputError) as e:
         layers.read_stats(str(copy / "stats.h5"))
     assert "stats_hash" in str(e.value), str(e.value)
+
+
+@pytest.mark.parametrize("kwargs, field", [
+    ({"rank": 5, "world": 2}, "rank"),
+    ({"world": 0}, "world"),
+    ({"history": -1}, "history"),
+    ({"horizon": -1}, "horizon"),
+    ({"stride": 0}, "stride"),
+])
+def test_window_arguments_the_cli_would_refuse_raise(fixture, kwargs, field):
+    """Issue 62 S5: these were accepted."""
+    with pytest.raises(layers.InputError) as e:
+        layers.WindowDataset(fixture["dataset"], **kwargs)
+    assert "layers.WindowDataset: " + field + ": expected" in str(e.value), str(e.value)
+
+
+def test_a_rollout_horizon_below_minus_one_raises(fixture, evaluated, tmp_path):
+    """Issue 62 S5: horizon=-7 ran 27 frames."""
+    with pytest.raises(layers.InputError) as e:
+        layers.rollout(os.path.join(fixture["folder"], "static.yaml"), fixture["ids"][0], str(tmp_path / "r"),
+                       horizon=-7)
+    assert "layers.rollout: horizon: expected" in str(e.value) and "got -7" in str(e.value), str(e.value)
+    assert not (tmp_path / "r").exists()
