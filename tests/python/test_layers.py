@@ -242,3 +242,19 @@ def test_a_rollout_horizon_below_minus_one_raises(fixture, evaluated, tmp_path):
                        horizon=-7)
     assert "layers.rollout: horizon: expected" in str(e.value) and "got -7" in str(e.value), str(e.value)
     assert not (tmp_path / "r").exists()
+
+
+def test_measures_refuse_indices_they_would_wrap_float_faces_and_nan(fixture):
+    """Issue 62 S6: an index of 2^32 + 2 was read as 2, float faces were
+    truncated, and an all-NaN garment measured 0.0."""
+    seq = layers.open_dataset(fixture["dataset"]).read_sequence("seq1")
+    garment, body = seq["garments"][0]["positions"][3], seq["body"]
+    faces = np.array(body["faces"], dtype=np.int64)
+    faces[0, 2] = 2**32 + 2
+    with pytest.raises(layers.InputError, match="body: faces: expected vertex indices from 0 to 2"):
+        layers.h_collision(garment, body["positions"][3], faces)
+    with pytest.raises(layers.InputError, match="expected integer vertex indices, got an array of dtype float64"):
+        layers.h_collision(garment, body["positions"][3], body["faces"].astype(np.float64))
+    with pytest.raises(layers.InputError, match="garment: positions: expected finite coordinates"):
+        layers.h_collision(np.full_like(garment, np.nan), body["positions"][3], body["faces"])
+    assert 0 <= layers.h_collision(garment, body["positions"][3], body["faces"].astype(np.uint32)) <= 1
