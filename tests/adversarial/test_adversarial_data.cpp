@@ -240,6 +240,27 @@ TEST_F(Adversarial, S7_ABareCheckpointIsRefused) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+// Issue 62 S8: with dataset.yaml's hashes gone and --allow-unhashed, a
+// value changed behind the checksum was read unverified although its
+// shard records the sequence's hash; it is verified against that.
+TEST_F(Adversarial, S8_UnhashedReadingStillVerifiesTheShardsOwnHashes) {
+  const std::string data = copy("s8");
+  std::string manifest = test::read_bytes(data + "/dataset.yaml");
+  manifest = std::regex_replace(manifest, std::regex("content_hashes:\\n(  .*\\n)*"), "");
+  data::testing::write_text(data + "/dataset.yaml", manifest);
+  data::testing::poke(data + "/shard-00001.h5", "/seq/seq5/body/positions", {2, 7, 0}, 0.25f);
+  const std::string out = dir_.file("s8-eval");
+  const auto r = layers("eval " + experiment_ + " --quiet --set data.dataset=" + data +
+                        " --set data.allow_unhashed=true --out " + out);
+  // The flag's warning, then the one error line.
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_EQ(lines(r.output), 2u) << r.output;
+  EXPECT_NE(r.output.find("layers: error: " + data + "/shard-00001.h5: / attribute content_hashes.seq5: expected "),
+            std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
 // A dataset written before content hashes is refused, read with the flag
 // (which metrics.json records), and migrated by `validate --record-hashes`.
 TEST_F(Adversarial, UnhashedDatasetsNeedTheFlagAndMigrate) {

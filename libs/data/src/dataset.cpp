@@ -187,6 +187,11 @@ Dataset Dataset::open(const std::string& path, ReaderOptions options) {
     impl->splits = source.splits;
     impl->recorded = RecordedHashes{manifest_path, "content_hashes", impl->manifest.content_hashes};
     check_recorded_hashes(impl->recorded, impl->shard_of_id, impl->shard_hashes, options.allow_unhashed, sink);
+    // Read unhashed (dataset.yaml lacks hashes): a sequence whose shard
+    // records its hash is still verified against it (issue 62 S8).
+    for (const auto& [shard, own] : impl->shard_hashes)
+      for (const auto& [id, hash] : own)
+        if (impl->recorded.hashes.emplace(id, hash).second) impl->recorded.from_shard[id] = shard;
     check_stats_hash(path, impl->manifest, options.allow_unhashed, sink);
   } else {
     impl->manifest.name = fs::path(path).stem().string();

@@ -192,7 +192,11 @@ void check_content(const RecordedHashes& recorded, const SequenceData& seq, Prob
   const auto it = recorded.hashes.find(seq.id);
   if (it == recorded.hashes.end()) return;  // unhashed reading was allowed (check_recorded_hashes)
   const std::string now = sequence_content_hash(seq);
-  if (now != it->second)
+  const auto shard = recorded.from_shard.find(seq.id);
+  if (now != it->second && shard != recorded.from_shard.end())
+    sink.report(Problem{shard->second, std::string("/ attribute ") + kContentHashesAttr + "." + seq.id,
+                        "expected " + it->second + ", got " + now + " (the sequence changed since it was written)"});
+  else if (now != it->second)
     sink.report(Problem{recorded.where, recorded.key + "." + seq.id,
                         "expected " + it->second + ", got " + now + " (the sequence changed since it was written)"});
 }

@@ -56,6 +56,9 @@ void write_shard_content_hashes(H5::H5File& file, const std::map<std::string, st
 struct RecordedHashes {
   std::string where, key;  // file, and the field ("content_hashes" or the shard attribute)
   std::map<std::string, std::string> hashes;
+  // Ids `where` has no hash for, whose shard records one (read with
+  // allow_unhashed): id -> that shard, whose hash in `hashes` is verified.
+  std::map<std::string, std::string> from_shard;
 };
 // dataset.yaml's hashes against the ids of the shards and the shards' own
 // hashes: every id has one, the shards agree (a sequence moved, renamed or
