@@ -259,6 +259,13 @@ TEST_F(Adversarial, S8_UnhashedReadingStillVerifiesTheShardsOwnHashes) {
             std::string::npos)
       << r.output;
   EXPECT_FALSE(fs::exists(out));
+  // S3: recording the hashes again verifies against the shards' own first,
+  // so the damaged value's hash is not recorded.
+  const auto before = test::snapshot(data);
+  const auto recorded = layers("validate --record-hashes " + data);
+  EXPECT_EQ(recorded.exit_code, 1) << recorded.output;
+  EXPECT_NE(recorded.output.find("content_hashes.seq5: expected "), std::string::npos) << recorded.output;
+  EXPECT_EQ(test::snapshot(data), before);
 }
 
 // A dataset written before content hashes is refused, read with the flag
