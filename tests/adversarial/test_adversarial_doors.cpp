@@ -7,6 +7,7 @@
 // with exit 1 and one line naming the path and the flag, and changes
 // nothing on disk.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -91,6 +92,15 @@ TEST_F(Doors, S9_ADatasetWithoutATrainSplitIsRefusedByEveryReader) {
   for (const std::string& verb : {"info " + data, "export " + data + " seq3 --format glb --out " + dir_.file("x")})
     refused(verb, data, "splits.yaml: train: expected a train split (statistics come from it), got none");
   EXPECT_FALSE(fs::exists(dir_.file("x")));
+}
+
+// Unclear message 6: /dev/null as a dataset was "no HDF5 signature (...,
+// 18446744073709551615 bytes)"; a FIFO would have hung in libhdf5.
+TEST_F(Doors, U6_ADeviceOrPipeAsADatasetSaysWhatItIs) {
+  const std::string fifo = dir_.file("pipe.h5");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  for (const std::string& path : {std::string("/dev/null"), fifo})
+    refused("info " + path, dir_.path(), path + ": expected an HDF5 file, got a pipe, socket or device");
 }
 
 }  // namespace

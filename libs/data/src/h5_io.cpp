@@ -202,6 +202,8 @@ H5::H5File open_read(const std::string& path, const H5::FileAccPropList& fapl) {
   if (!fs::exists(path, ec))
     throw InputError(path, "", "an existing dataset folder or HDF5 file", "nothing (no such file or folder)");
   if (fs::is_directory(path, ec)) throw InputError(path, "", "an HDF5 file", "a directory");
+  // Before libhdf5 opens it: a FIFO would block, a device has no size.
+  if (!fs::is_regular_file(path, ec)) throw InputError(path, "", "an HDF5 file", "a pipe, socket or device");
   const auto size = fs::file_size(path, ec);
   Lock lock;
   if (H5Fis_hdf5(path.c_str()) <= 0) {
