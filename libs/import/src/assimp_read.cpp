@@ -6,10 +6,14 @@
 #include <assimp/DefaultLogger.hpp>
 #include <assimp/LogStream.hpp>
 
+#include <cctype>
+#include <filesystem>
 #include <mutex>
+#include <regex>
 #include <vector>
 
 #include "layers/core/error.h"
+#include "layers/core/text_file.h"
 
 namespace layers::import::detail {
 namespace {
@@ -29,10 +33,33 @@ std::mutex& assimp_mutex() {
   return m;
 }
 
+// A .gltf names its buffers and images by URI; assimp opens them itself,
+// and a FIFO among them would block it forever. Each file one names (not a
+// data: URI) must be a regular file, checked before assimp opens any.
+void check_gltf_uris(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".gltf") return;
+  const std::string text = read_text_file(path);
+  static const std::regex uri(R"re("uri"\s*:\s*"([^"]*)")re");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), uri); it != std::sregex_iterator(); ++it) {
+    const std::string name = (*it)[1].str();
+    if (name.rfind("data:", 0) == 0) continue;
+    const fs::path file = fs::path(path).parent_path() / name;
+    std::error_code ec;
+    const auto status = fs::status(file, ec);
+    if (fs::exists(status) && !fs::is_regular_file(status))
+      throw InputError(path, "uri", "buffers and images that are regular files",
+                       "'" + name + "', " + (fs::is_directory(status) ? "a folder" : "a pipe, socket or device"));
+  }
+}
+
 }  // namespace
 
 const aiScene* read_with_assimp(Assimp::Importer& importer, const std::string& path, unsigned flags,
                                 const std::string& what) {
+  check_gltf_uris(path);
   std::vector<std::string> said;
   const aiScene* scene = nullptr;
   {

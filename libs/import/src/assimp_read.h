@@ -2,7 +2,9 @@
 // assimp: the import runs with assimp's warnings captured (one import at a
 // time: assimp's logger is process-wide), and what assimp only warns about
 // but silently repairs is refused instead (faces with out-of-range vertex
-// indices, which it drops). InputError naming the file on any failure.
+// indices, which it drops), and a .gltf whose buffers or images are not
+// regular files (a FIFO would block assimp) is refused before assimp
+// opens it. InputError naming the file on any failure.
 #pragma once
 
 #include <assimp/Importer.hpp>

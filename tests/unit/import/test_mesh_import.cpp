@@ -3,9 +3,11 @@
 // our own writer (data/glb.h) whose seam splits vertices (welded back), a file in centimetres with its
 // scale, and each refusal of the cloth-mesh checks and of the side file.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 
 #include "error_of.h"
@@ -123,6 +125,18 @@ TEST(MeshImport, AFaceIndexOutOfRangeIsRefusedNotDropped) {
   const std::string said = message_of([&] { import_mesh(two_triangle_gltf(dir, 1000000)); });
   EXPECT_NE(said.find("two.gltf: faces: expected vertex indices within each mesh's vertices, got faces with indices "
                       "out of range"),
+            std::string::npos)
+      << said;
+}
+
+// Issue 62 M6: a .gltf buffer that is a FIFO hung assimp forever.
+TEST(MeshImport, AGltfBufferThatIsAPipeIsRefusedBeforeAssimpOpensIt) {
+  test::TempDir dir("import");
+  const std::string gltf = two_triangle_gltf(dir, 3);
+  std::filesystem::remove(dir.file("two.bin"));
+  ASSERT_EQ(mkfifo(dir.file("two.bin").c_str(), 0600), 0);
+  const std::string said = message_of([&] { import_mesh(gltf); });
+  EXPECT_NE(said.find("two.gltf: uri: expected buffers and images that are regular files, got 'two.bin', a pipe"),
             std::string::npos)
       << said;
 }
