@@ -69,7 +69,12 @@ VerbRun register_tpose(CLI::App& app, const Global&) {
                   rig_path.string().c_str(),
                   static_cast<long long>(t.rig.joints.size() / (t.rig.joint_names.size() * 12)));
     }
-    if (!t.problem.empty()) std::printf("note: this scene cannot be simulated: %s\n", t.problem.c_str());
+    // What could be written is written (to look at); the scene itself is
+    // refused, naming the config and the user's body file if any (issue 62).
+    if (!t.problem.empty())
+      throw InputError(a->config, "scene " + std::to_string(a->scene),
+                       "a scene that can be simulated (its meshes that could be made are in " + a->out + ")",
+                       t.problem + (config.body.own ? " (body.own.file " + config.body.own->file + ")" : ""));
     return static_cast<int>(kOk);
   };
 }

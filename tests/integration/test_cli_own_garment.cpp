@@ -101,6 +101,15 @@ TEST(CliOwnGarment, AGarmentInsideTheBodyIsOneLineBeforeAnySimulation) {
   EXPECT_NE(r.output.find("vertices inside the body, most near the"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("terminate"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir.file("anim/glb"))) << "nothing exported for a refused scene";
+  // `layers tpose` of that scene writes the meshes it could make and says
+  // the scene is refused, exit 1 (it was a note with exit 0; issue 62).
+  r = run_command(test::layers_bin() + " tpose" +
+                  test::coarse_scene_settings("[{inner: [\"file:" + dir.file("sunk.obj") + "\"], outer: none}]") +
+                  " --out " + dir.file("t2"));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find(": scene 0: expected a scene that can be simulated"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("sunk.obj"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(dir.file("t2/body.obj")));
 }
 
 }  // namespace
