@@ -21,16 +21,27 @@ fs::path aside_name(const fs::path& dir) {
   return candidate;
 }
 
+namespace {
+
+// Whether `path` is `folder` or lies inside it (both made absolute and
+// normal first; false when either cannot be).
+bool same_or_inside(const fs::path& path, const fs::path& folder) {
+  std::error_code ec;
+  const std::string p = fs::weakly_canonical(path, ec).string();
+  if (ec || p.empty()) return false;
+  const std::string f = fs::weakly_canonical(folder, ec).string();
+  if (ec || f.empty()) return false;
+  return p == f || (p.size() > f.size() && p.compare(0, f.size(), f) == 0 && p[f.size()] == '/');
+}
+
+}  // namespace
+
 fs::path move_aside(const fs::path& dir, const std::string& field) {
   std::error_code ec;
   const fs::path here = fs::current_path(ec);
-  const fs::path target = fs::weakly_canonical(dir, ec);
-  if (!here.empty() && !target.empty()) {
-    const std::string t = target.string(), h = here.string();
-    if (h == t || (h.size() > t.size() && h.compare(0, t.size(), t) == 0 && h[t.size()] == '/'))
-      throw InputError(dir.string(), field, "a folder other than the current one or one above it (to move it aside)",
-                       "the folder this command runs in");
-  }
+  if (!here.empty() && same_or_inside(here, dir))
+    throw InputError(dir.string(), field, "a folder other than the current one or one above it (to move it aside)",
+                     "the folder this command runs in");
   const fs::path aside = aside_name(dir);
   fs::rename(dir, aside, ec);
   if (ec)
@@ -40,15 +51,11 @@ fs::path move_aside(const fs::path& dir, const std::string& field) {
 
 void claim_new_output(const fs::path& out, const std::string& flag, const std::vector<fs::path>& inputs) {
   std::error_code ec;
-  const fs::path target = fs::weakly_canonical(out, ec);
-  for (const fs::path& input : inputs) {
-    const fs::path in = fs::weakly_canonical(input, ec);
-    if (in.empty() || target.empty()) continue;
-    const std::string t = target.string(), i = in.string();
-    if (t == i || (t.size() > i.size() && t.compare(0, i.size(), i) == 0 && t[i.size()] == '/'))
-      throw InputError(out.string(), flag, "a path outside the command's inputs (an input is never an output)",
-                       t == i ? "the input " + input.string() : "a path inside the input " + input.string());
-  }
+  for (const fs::path& input : inputs)
+    if (same_or_inside(out, input))
+      throw InputError(
+          out.string(), flag, "a path outside the command's inputs (an input is never an output)",
+          same_or_inside(input, out) ? "the input " + input.string() : "a path inside the input " + input.string());
   if (fs::is_directory(fs::symlink_status(out)) && fs::is_empty(out, ec)) return;  // an empty folder made for it
   if (fs::exists(fs::symlink_status(out)))
     throw InputError(out.string(), flag, "a new path (nothing is overwritten; move or delete it first)",

@@ -6,12 +6,12 @@
 #include <assimp/DefaultLogger.hpp>
 #include <assimp/LogStream.hpp>
 
-#include <cctype>
 #include <filesystem>
 #include <mutex>
 #include <regex>
 #include <vector>
 
+#include "file_names.h"
 #include "layers/core/error.h"
 #include "layers/core/text_file.h"
 
@@ -38,9 +38,7 @@ std::mutex& assimp_mutex() {
 // data: URI) must be a regular file, checked before assimp opens any.
 void check_gltf_uris(const std::string& path) {
   namespace fs = std::filesystem;
-  std::string ext = fs::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (ext != ".gltf") return;
+  if (lower_extension(path) != ".gltf") return;
   const std::string text = read_text_file(path);
   static const std::regex uri(R"re("uri"\s*:\s*"([^"]*)")re");
   for (auto it = std::sregex_iterator(text.begin(), text.end(), uri); it != std::sregex_iterator(); ++it) {

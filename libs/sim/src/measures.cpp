@@ -387,13 +387,11 @@ std::vector<Violation> SequenceMeasures::broken(const ValidationConfig& limits) 
   worst.cloth_crossing_pairs = max_cloth_crossings_;
   worst.max_stretch = max_stretch_;
   const std::vector<Violation> framed = frame_violations(worst, limits);
-  std::vector<Violation> out;
-  // The non-finite count first, as it always came.
-  for (const Violation& v : framed)
-    if (v.rule == std::string("non_finite")) out.push_back(v);
-  out.insert(out.end(), all.begin(), all.end());
-  for (const Violation& v : framed)
-    if (v.rule != std::string("non_finite")) out.push_back(v);
+  // The non-finite count (frame_violations' first, when there is one)
+  // before the means, as it always came.
+  std::vector<Violation> out = framed;
+  const bool nonfinite_first = !out.empty() && std::string(out.front().rule) == "non_finite";
+  out.insert(out.begin() + (nonfinite_first ? 1 : 0), all.begin(), all.end());
   return out;
 }
 
