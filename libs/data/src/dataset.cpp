@@ -185,7 +185,7 @@ Dataset Dataset::open(const std::string& path, ReaderOptions options) {
     const SplitsSource source = read_splits_source(splits_path);
     check_splits(source, impl->shard_of_id, sink);
     impl->splits = source.splits;
-    impl->recorded = RecordedHashes{manifest_path, "content_hashes", impl->manifest.content_hashes};
+    impl->recorded = RecordedHashes{manifest_path, "content_hashes", impl->manifest.content_hashes, {}};
     check_recorded_hashes(impl->recorded, impl->shard_of_id, impl->shard_hashes, options.allow_unhashed, sink);
     // Read unhashed (dataset.yaml lacks hashes): a sequence whose shard
     // records its hash is still verified against it (issue 62 S8).
@@ -198,8 +198,10 @@ Dataset Dataset::open(const std::string& path, ReaderOptions options) {
     impl->add_shard(path);
     const auto own = impl->shard_hashes.find(path);
     impl->recorded =
-        RecordedHashes{path, std::string("/ attribute ") + kContentHashesAttr,
-                       own == impl->shard_hashes.end() ? std::map<std::string, std::string>{} : own->second};
+        RecordedHashes{path,
+                       std::string("/ attribute ") + kContentHashesAttr,
+                       own == impl->shard_hashes.end() ? std::map<std::string, std::string>{} : own->second,
+                       {}};
     ThrowOnProblem sink;
     check_recorded_hashes(impl->recorded, impl->shard_of_id, {}, options.allow_unhashed, sink);
   }

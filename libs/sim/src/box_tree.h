@@ -15,7 +15,7 @@
 namespace layers::sim::detail {
 
 struct Box {
-  Vec3 lo, hi;
+  Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();
   bool overlaps(const Box& o) const { return (lo.array() <= o.hi.array()).all() && (o.lo.array() <= hi.array()).all(); }
 };
 
