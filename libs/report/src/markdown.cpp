@@ -182,25 +182,40 @@ void models_table(std::ostringstream& md, const std::vector<RunResults>& runs) {
 
 void paired_table(std::ostringstream& md, const std::vector<PairedComparison>& paired) {
   if (paired.empty()) return;
+  const auto cell = [](const std::string& reading) {
+    return reading == "lower"    ? std::string("**lower error**")
+           : reading == "higher" ? std::string("**higher error**")
+                                 : std::string("not separated");
+  };
   md << "### Paired comparisons (error per sequence)\n\n"
      << "Each learned row against each reference row (no trained parameters) and against its partner, on the "
         "sequences both evaluated on the same split: per sequence the row's error minus the other's (an "
         "experiment over seeds contributes its mean over seeds per sequence), the mean difference with its 95% "
-        "interval (paired Student t over sequences, sample std), and the sequences where the row is lower / "
-        "higher. A difference is read as one only where its interval excludes 0. All pairs are in "
-        "`paired.csv`.\n\n"
-     << "| row | against | split (sequences) | difference (mm) [95% interval] | lower / higher | reading |\n"
-     << "|---|---|---|---:|---:|---|\n";
+        "interval over sequences (paired Student t, sample std), and the sequences where the row is lower / "
+        "higher. Where a learned side has several seeds, a second interval also counts the seed-to-seed "
+        "variance (the variance over seeds of each seed's mean error, over the number of seeds, added to the "
+        "squared standard error; Satterthwaite's degrees of freedom): that is the interval read, and the "
+        "p-value is its. A difference is read as one only where the interval read excludes 0. The reading "
+        "column is unadjusted; the Holm column keeps only what Holm's rule at 5% still separates over all "
+        "the "
+     << paired.size() << " comparisons of this table. All pairs are in `paired.csv`.\n\n"
+     << "| row | against | split (sequences) | difference (mm) [95%, sequences] | [95%, sequences and seeds] "
+        "(seeds) | lower / higher | p | reading (unadjusted) | Holm |\n"
+     << "|---|---|---|---:|---:|---:|---:|---|---|\n";
+  const auto seeds = [](std::size_t s) { return s == 0 ? std::string("-") : std::to_string(s); };
   for (const PairedComparison& c : paired) {
     const MeanInterval& d = c.difference;
     md << "| `" << md_cell(c.row) << "` | `" << md_cell(c.against) << "`" << (c.why == "partner" ? " (partner)" : "")
        << " | " << md_cell(c.split) << " (" << d.n << ") | " << (std::isfinite(d.mean) ? signed_fixed(d.mean, 2) : "-")
        << " [" << (std::isfinite(d.half_width) ? signed_fixed(d.low(), 2) + ", " + signed_fixed(d.high(), 2) : "n/a")
-       << "] | " << c.wins << " / " << c.losses << " | "
-       << (c.reading() == "lower"    ? "**lower error**"
-           : c.reading() == "higher" ? "**higher error**"
-                                     : "not separated")
-       << " |\n";
+       << "] | "
+       << (c.with_seeds ? "[" + signed_fixed(c.seeds_low(), 2) + ", " + signed_fixed(c.seeds_high(), 2) + "]" : "-")
+       << " (" << seeds(c.row_seeds) << " / " << seeds(c.against_seeds) << ") | " << c.wins << " / " << c.losses
+       << " | "
+       << (!std::isfinite(c.p_value) ? std::string("-")
+           : c.p_value < 0.001       ? std::string("<0.001")
+                                     : fixed(c.p_value, 3))
+       << " | " << cell(c.reading()) << " | " << cell(c.holm_reading()) << " |\n";
   }
   md << "\n";
 }

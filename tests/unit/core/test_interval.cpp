@@ -53,5 +53,35 @@ TEST(Interval, PairedDifferencesSkipIncompletePairs) {
   EXPECT_THROW(paired_interval({1}, {1, 2}), std::invalid_argument);
 }
 
+TEST(Interval, StudentPValuesWorkedByHand) {
+  // df 1 is the Cauchy law: P(|T| >= 1) = 1/2. df 2: P(|T| >= t) = 1 - t / sqrt(2 + t^2).
+  EXPECT_NEAR(t_two_sided_p(1.0, 1), 0.5, 1e-12);
+  EXPECT_NEAR(t_two_sided_p(-1.0, 2), 1 - 1 / std::sqrt(3.0), 1e-12);
+  EXPECT_NEAR(t_two_sided_p(0.0, 7), 1.0, 1e-12);
+  // The table's critical values sit at p = 0.05 (to their 3 decimals);
+  // a fractional df lies between its neighbours.
+  EXPECT_NEAR(t_two_sided_p(2.776, 4), 0.05, 1e-4);
+  EXPECT_NEAR(t_two_sided_p(12.706, 1), 0.05, 1e-4);
+  EXPECT_NEAR(t_two_sided_p(2.042, 30), 0.05, 1e-4);
+  const double between = t_two_sided_p(2.5, 4.5);
+  EXPECT_LT(t_two_sided_p(2.5, 5), between);
+  EXPECT_GT(t_two_sided_p(2.5, 4), between);
+  EXPECT_TRUE(std::isnan(t_two_sided_p(1.0, 0)));
+  EXPECT_TRUE(std::isnan(t_two_sided_p(std::numeric_limits<double>::quiet_NaN(), 3)));
+}
+
+TEST(Interval, HolmStepsDownAndStopsAtTheFirstKept) {
+  // Sorted: 0.005 <= 0.05/4, 0.01 <= 0.05/3, 0.03 > 0.05/2: stop; 0.04 is
+  // kept although it is below 0.05.
+  const std::vector<bool> r = holm_rejects({0.01, 0.04, 0.03, 0.005});
+  EXPECT_EQ(r, (std::vector<bool>{true, false, false, true}));
+  // A NaN counts in m but is never rejected: 0.001 <= 0.05/3, then
+  // 0.03 > 0.05/2 (with m = 2, 0.03 would still be above 0.05/2; 0.02 below).
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(holm_rejects({nan, 0.03, 0.001}), (std::vector<bool>{false, false, true}));
+  EXPECT_EQ(holm_rejects({nan, 0.02, 0.001}), (std::vector<bool>{false, true, true}));
+  EXPECT_TRUE(holm_rejects({}).empty());
+}
+
 }  // namespace
 }  // namespace layers

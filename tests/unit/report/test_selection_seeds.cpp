@@ -267,6 +267,26 @@ TEST(Paired, LearnedRowsAgainstReferencesAndPartnersPerSequence) {
   EXPECT_EQ(m.wins, 2u);
   EXPECT_EQ(m.losses, 3u);
   EXPECT_EQ(m.reading(), "not separated");
+  // With its seeds: seed means over the 5 sequences differ by 0.5 (+0.25
+  // and -0.25 around the mean), so the variance over seeds is 0.125 and
+  // adds 0.125 / 2 to sd^2 / n = 2.55 / 5; Satterthwaite's df
+  // 0.5725^2 / (0.51^2 / 4 + 0.0625^2 / 1) = 4.76, taken as 4.
+  EXPECT_EQ(m.row_seeds, 2u);
+  EXPECT_EQ(m.against_seeds, 0u);
+  ASSERT_TRUE(m.with_seeds);
+  EXPECT_NEAR(m.seeds_se, std::sqrt(0.51 + 0.0625), 1e-9);
+  EXPECT_NEAR(m.seeds_df, 0.5725 * 0.5725 / (0.51 * 0.51 / 4 + 0.0625 * 0.0625), 1e-9);
+  EXPECT_NEAR(m.seeds_half_width, 2.776 * std::sqrt(0.5725), 1e-9);
+  EXPECT_NEAR(m.p_value, t_two_sided_p(0.1 / std::sqrt(0.5725), 4), 1e-12);
+  // `good` has one seed: no seed interval; the reference rows have none to add.
+  EXPECT_FALSE(g.with_seeds);
+  EXPECT_FALSE(paired[2].with_seeds) << "one seed of good beside two of mixed";
+  // Holm over the 3: good - skinned (t = -14.1, df 4, p ~ 1.5e-4) stays
+  // separated; mixed - good (p ~ 0.17) was not separated anyway.
+  EXPECT_LT(g.p_value, 0.05 / 3);
+  EXPECT_TRUE(g.holm);
+  EXPECT_EQ(g.holm_reading(), "lower");
+  EXPECT_FALSE(m.holm);
   EXPECT_EQ(paired[2].row, "mixed");
   EXPECT_EQ(paired[2].against, "good");
   EXPECT_EQ(paired[2].why, "partner");
@@ -276,7 +296,8 @@ TEST(Paired, LearnedRowsAgainstReferencesAndPartnersPerSequence) {
 
   const std::string md = read_text_file(r.report);
   EXPECT_NE(md.find("### Paired comparisons (error per sequence)"), std::string::npos) << md;
-  EXPECT_NE(md.find("| `good` | `skinned` | test (5) | -1.00 [-1.20, -0.80] | 5 / 0 | **lower error** |"),
+  EXPECT_NE(md.find("| `good` | `skinned` | test (5) | -1.00 [-1.20, -0.80] | - (1 / -) | 5 / 0 | <0.001 | **lower "
+                    "error** | **lower error** |"),
             std::string::npos)
       << md;
   EXPECT_NE(md.find("| `mixed` | `good` (partner) | test (5) |"), std::string::npos) << md;
@@ -286,6 +307,11 @@ TEST(Paired, LearnedRowsAgainstReferencesAndPartnersPerSequence) {
   EXPECT_EQ(csv[1].at("row"), "mixed");
   EXPECT_EQ(csv[1].at("wins"), "2");
   EXPECT_EQ(csv[1].at("losses"), "3");
+  EXPECT_EQ(csv[1].at("interval"), "sequences+seeds");
+  EXPECT_EQ(csv[1].at("row_seeds"), "2");
+  EXPECT_EQ(csv[0].at("interval"), "sequences");
+  EXPECT_EQ(csv[0].at("seeds_low_mm"), "");
+  EXPECT_EQ(csv[0].at("holm_reading"), "lower");
 }
 
 }  // namespace

@@ -1,7 +1,9 @@
 // layers/core/interval.h -- the one 95% confidence interval of the
 // toolkit: the mean of n values (per sequence, per scene) with the
 // Student t half-width over the sample standard deviation (n - 1). A
-// paired comparison is the interval of the per-item differences.
+// paired comparison is the interval of the per-item differences. Also the
+// Student t p-value and Holm's step-down rule, for reading many
+// comparisons at once.
 #pragma once
 
 #include <cstddef>
@@ -31,5 +33,16 @@ MeanInterval mean_interval(const std::vector<double>& values);
 // The interval of a[i] - b[i] over the items where both are finite
 // (sizes must agree: std::invalid_argument otherwise).
 MeanInterval paired_interval(const std::vector<double>& a, const std::vector<double>& b);
+
+// Two-sided p-value of a Student t statistic `t` with `df` degrees of
+// freedom (df may be fractional: Satterthwaite's); NaN for df <= 0 or a
+// non-finite t.
+double t_two_sided_p(double t, double df);
+
+// Holm's step-down rule at level `alpha` over the p-values of one family of
+// comparisons: true where that comparison's null is rejected (the k-th
+// smallest p against alpha / (m - k + 1), stopping at the first that is
+// not). NaN p-values are never rejected and count in m.
+std::vector<bool> holm_rejects(const std::vector<double>& p, double alpha = 0.05);
 
 }  // namespace layers
