@@ -240,11 +240,20 @@ void learning_table(std::ostringstream& md, const std::vector<RunResults>& runs)
     const std::size_t last = c.val_error_mm.size() - 1;
     const double seen = c.windows_seen.empty() ? kAbsent : c.windows_seen.back();
     md << "| " << md_cell(r.name) << " | " << c.val_error_mm.size() << " | "
-       << (std::isfinite(seen) ? std::to_string(static_cast<long long>(seen)) : "-") << " | "
-       << fixed(c.val_error_mm[first], 2) << ", " << fixed(c.val_error_mm[best], 2) << " (" << best + 1 << "), "
+       << (std::isfinite(seen) ? std::to_string(static_cast<long long>(seen)) : "-") << " | ";
+    if (c.only_best) {
+      md << "best " << fixed(c.val_error_mm[best], 2) << " (" << best + 1
+         << "); the other epochs' errors were not recorded (selection.json from before the trainer kept them) | - "
+            "|\n";
+      continue;
+    }
+    md << fixed(c.val_error_mm[first], 2) << ", " << fixed(c.val_error_mm[best], 2) << " (" << best + 1 << "), "
        << (std::isfinite(c.val_error_mm[last]) ? fixed(c.val_error_mm[last], 2) : "-") << " | "
        << (best == last && last > first ? "yes: the last epoch is the best" : "no") << " |\n";
   }
+  for (const ReferenceLevel& level : curve_references(runs, nullptr))
+    md << "| " << md_cell(level.name) << " (reference, not trained) | - | - | "
+       << (std::isfinite(level.error_mm) ? fixed(level.error_mm, 2) : "-") << " on the same measure | - |\n";
   md << "\n";
 }
 

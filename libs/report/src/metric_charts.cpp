@@ -263,12 +263,21 @@ Chart learning_curves_chart(const Gnuplot& gp, const std::string& dir, const std
     }
     if (points == 0) continue;
     data << "# " << runs[i].name << "\n" << block.str() << "\n\n";
-    plot << (blocks ? ", \\\n     " : "") << gnuplot_string(name + ".dat") << " index " << blocks
-         << " using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb " << gnuplot_string(run_color(i)) << " title "
-         << gnuplot_string(runs[i].name);
+    plot << (blocks ? ", \\\n     " : "") << gnuplot_string(name + ".dat") << " index " << blocks << " using 1:2 with "
+         << (c.only_best ? "points pt 9 ps 1.6" : "linespoints lw 2 pt 7 ps 0.8") << " lc rgb "
+         << gnuplot_string(run_color(i)) << " title "
+         << gnuplot_string(runs[i].name + (c.only_best ? " (chosen epoch only)" : ""));
     ++blocks;
   }
   if (blocks == 0) throw Error("no run has a validation error per epoch (selection.json): no learning curves");
+  // The reference rows on the same measure: horizontal dashed lines.
+  const std::vector<ReferenceLevel> levels = curve_references(runs, nullptr);
+  for (std::size_t k = 0; k < levels.size(); ++k) {
+    if (!std::isfinite(levels[k].error_mm)) continue;
+    plot << ", \\\n     " << datum(levels[k].error_mm) << " with lines dt 2 lw 2 lc rgb "
+         << gnuplot_string(k % 2 ? "#555555" : "#000000") << " title "
+         << gnuplot_string(levels[k].name + " (reference)");
+  }
   write_data(dir, name + ".dat", data.str());
   std::ostringstream s;
   s << gp.preamble(name, 1000, 560) << "set title 'Learning curves'\n"
@@ -277,8 +286,10 @@ Chart learning_curves_chart(const Gnuplot& gp, const std::string& dir, const std
   gp.plot(dir, name, s.str());
   return {name + ".png", "Learning curves",
           "Each trained run's validation error at the end of every epoch (the trainer's selection metric, "
-          "selection.json) against the training windows seen by then. A curve still falling at its last point "
-          "was stopped before it converged."};
+          "selection.json) against the training windows seen by then; a run whose record kept only its chosen "
+          "epoch is one point. Dashed lines: the reference rows (no trained parameters) evaluated on the same "
+          "measure (same split, rollout frames and sequences), where the runs recorded it. A curve still falling "
+          "at its last point was stopped before it converged."};
 }
 
 }  // namespace layers::report

@@ -69,6 +69,9 @@ ReportResult write_report(const std::vector<RunResults>& runs, const ReportInput
   content.paired = paired_comparisons(runs, inputs.partners, &unpaired);
   for (const std::string& u : unpaired) content.problems.push_back("paired comparisons: " + u);
   write("paired.csv", paired_csv(content.paired));
+  std::vector<std::string> references;
+  curve_references(runs, &references);
+  content.problems.insert(content.problems.end(), references.begin(), references.end());
 
   const std::string charts_dir = (fs::path(out_dir) / content.charts_dir).string();
   std::optional<Gnuplot> gp;

@@ -26,6 +26,7 @@ using json = nlohmann::json;
 class Reader {
  public:
   explicit Reader(std::string file) : file_(std::move(file)) {}
+  const std::string& file() const { return file_; }
 
   json parse(const std::string& text) const {
     try {
@@ -187,16 +188,34 @@ ExperimentFacts experiment_facts(const std::string& file) {
 
 // selection.json's validation error per epoch against the windows seen by
 // the end of each epoch: its windows_by_epoch, else the experiment's
-// windows_per_epoch times the epoch; NaN where neither is known.
+// windows_per_epoch times the epoch; NaN where neither is known. Without
+// the per-epoch record, the chosen epoch's error alone (only_best).
 LearningCurve learning_curve(const Reader& reader, const json& doc, double windows_per_epoch) {
   LearningCurve c;
-  if (!doc.contains("val_error_mm_by_epoch")) return c;
-  const json& vals = reader.array(doc, "val_error_mm_by_epoch", "val_error_mm_by_epoch");
+  c.split = reader.text(doc, "val_split", "val_split");
+  c.horizon = reader.integer(doc, "val_horizon", "val_horizon");
+  c.sequences = reader.integer(doc, "val_sequences", "val_sequences", -1);
+  std::vector<double> vals;
+  if (doc.contains("val_error_mm_by_epoch")) {
+    for (const json& v : reader.array(doc, "val_error_mm_by_epoch", "val_error_mm_by_epoch"))
+      vals.push_back(v.is_number() && v.get<double>() >= 0 ? v.get<double>() : kAbsent);  // -1: none that epoch
+  } else {
+    const std::int64_t chosen = reader.integer(doc, "chosen_epoch", "chosen_epoch");
+    const std::int64_t done = reader.integer(doc, "epochs_done", "epochs_done");
+    const double best = reader.number(doc, "best_val_error_mm", "best_val_error_mm");
+    if (chosen > 0 && std::isfinite(best)) {
+      if (chosen > done)
+        throw InputError(reader.file(), "chosen_epoch", "an epoch from 1 to epochs_done (" + std::to_string(done) + ")",
+                         std::to_string(chosen));
+      vals.assign(static_cast<std::size_t>(done), kAbsent);
+      vals[static_cast<std::size_t>(chosen - 1)] = best;
+      c.only_best = true;
+    }
+  }
   const json* windows = doc.contains("windows_by_epoch") ? &doc.at("windows_by_epoch") : nullptr;
   double seen = 0;
   for (std::size_t k = 0; k < vals.size(); ++k) {
-    const double v = vals[k].is_number() ? vals[k].get<double>() : kAbsent;
-    c.val_error_mm.push_back(v >= 0 ? v : kAbsent);  // -1: no validation that epoch
+    c.val_error_mm.push_back(vals[k]);
     double w = kAbsent;
     if (windows && windows->is_array() && k < windows->size() && (*windows)[k].is_number())
       w = (*windows)[k].get<double>();
@@ -412,6 +431,17 @@ RunResults load_run(const std::string& dir, const std::string& split) {
       run.problems.push_back(std::string("cannot read the selection record: ") + e.what());
     }
   }
+  // The evaluation on the validation split besides the one read (a
+  // reference row's value on the learning curves' measure).
+  const std::string val_split = run.curve.split.empty() ? std::string("val") : run.curve.split;
+  const fs::path val_metrics = path / run_layout::eval_folder(val_split) / run_layout::kMetrics;
+  if ((!run.eval || run.eval->split != val_split) && fs::exists(val_metrics)) {
+    try {
+      run.val_eval = parse_metrics(read_text_file(val_metrics.string()), val_metrics.string());
+    } catch (const std::exception& e) {
+      run.problems.push_back(std::string("cannot read the validation evaluation: ") + e.what());
+    }
+  }
   const fs::path bench = path / run_layout::kBench;
   if (!fs::exists(bench)) {
     run.problems.push_back("no bench.json (run `layers bench <experiment.yaml>` for speed by scene size)");
@@ -424,6 +454,52 @@ RunResults load_run(const std::string& dir, const std::string& split) {
     }
   }
   return run;
+}
+
+std::vector<ReferenceLevel> curve_references(const std::vector<RunResults>& runs, std::vector<std::string>* notes) {
+  const auto note = [&](const std::string& text) {
+    if (notes) notes->push_back(text);
+  };
+  const LearningCurve* protocol = nullptr;
+  bool curves = false;
+  for (const RunResults& r : runs) curves = curves || !r.curve.val_error_mm.empty();
+  if (!curves) return {};
+  for (const RunResults& r : runs) {
+    if (r.curve.val_error_mm.empty() || r.curve.horizon <= 0) continue;
+    if (protocol && (protocol->split != r.curve.split || protocol->horizon != r.curve.horizon ||
+                     protocol->sequences != r.curve.sequences)) {
+      note("learning curves: no reference levels, the curves were validated on different protocols");
+      return {};
+    }
+    protocol = &r.curve;
+  }
+  std::vector<ReferenceLevel> out;
+  for (const RunResults& r : runs) {
+    const EvalResults* e = nullptr;
+    for (const std::optional<EvalResults>* candidate : {&r.eval, &r.val_eval})
+      if (*candidate && (*candidate)->parameters == 0 && (!protocol || (*candidate)->split == protocol->split))
+        e = &**candidate;
+    if (e == nullptr) continue;
+    if (protocol == nullptr) {
+      note("learning curves: " + r.name +
+           " is not drawn as a reference level: no curve records its validation protocol (selection.json "
+           "val_horizon)");
+      continue;
+    }
+    const bool frames = e->horizon == protocol->horizon;
+    const bool sequences = protocol->sequences == 0 || protocol->sequences >= e->sequences;
+    if (!frames || !sequences) {
+      note("learning curves: " + r.name + " is not drawn as a reference level: evaluated on " +
+           std::to_string(e->sequences) + " " + e->split + " sequences over " + std::to_string(e->horizon) +
+           " frames, the curves on " +
+           (protocol->sequences == 0 ? std::string("all") : "the first " + std::to_string(protocol->sequences)) + " " +
+           protocol->split + " sequence" + (protocol->sequences == 0 || protocol->sequences > 1 ? "s" : "") + " over " +
+           std::to_string(protocol->horizon) + " frames");
+      continue;
+    }
+    out.push_back({r.name, e->overall.get(metrics::kError).mean});
+  }
+  return out;
 }
 
 }  // namespace layers::report

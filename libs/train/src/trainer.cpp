@@ -177,6 +177,11 @@ void write_selection(const ExperimentConfig& config, const CheckpointState& stat
       {"loss_by_epoch", state.loss_by_epoch},
       {"val_error_mm_by_epoch", state.val_mm_by_epoch},
       {"windows_by_epoch", state.windows_by_epoch},
+      // The validation's protocol in fields (the metric above in words):
+      // rollout frames and sequences (0: every one of the split).
+      {"val_split", config.data.val_split},
+      {"val_horizon", config.train.val_horizon},
+      {"val_sequences", config.train.val_sequences},
       {"train_split", config.data.train_split},
       {"test_split", config.data.test_split},
       {"source_revision", source_revision()}};  // the build that wrote this record

@@ -314,5 +314,66 @@ TEST(Paired, LearnedRowsAgainstReferencesAndPartnersPerSequence) {
   EXPECT_EQ(csv[0].at("holm_reading"), "lower");
 }
 
+// Learning curves: every trained run is listed, one whose selection.json
+// kept only the chosen epoch too; the reference rows evaluated on the
+// curves' validation protocol are levels beside them, and one evaluated
+// otherwise is a note.
+TEST(Learning, EveryRunAndTheReferenceLevelsOnTheSameMeasure) {
+  TempDir dir("report-learning");
+  FakeRun net;
+  testing::write_run(dir, "net", net);
+  dir.write("net/selection.json",
+            R"({"val_error_mm_by_epoch": [30.0, 25.0], "windows_by_epoch": [100, 100], "val_split": "val", )"
+            R"("val_horizon": 27, "val_sequences": 0})");
+  // Trained before the trainer kept every epoch: the chosen one only.
+  FakeRun old;
+  testing::write_run(dir, "old", old);
+  dir.write("old/selection.json", R"({"chosen_epoch": 2, "best_val_error_mm": 21.5, "epochs_done": 3})");
+  // skinned: evaluated on test and on val (27 frames, 2 sequences): a level.
+  FakeRun skinned;
+  skinned.model = "skinned";
+  skinned.parameters = 0;
+  testing::write_run(dir, "skinned", skinned);
+  skinned.evaluated_on = "val";
+  skinned.error = 19.25;
+  testing::write_run(dir, "skinned", skinned);
+  // static: on test only, so not on the curves' measure.
+  FakeRun still;
+  still.model = "static";
+  still.parameters = 0;
+  testing::write_run(dir, "static", still);
+  const ReportResult r = write_report(
+      tables_only({dir.file("net"), dir.file("old"), dir.file("skinned"), dir.file("static")}), dir.file("out"));
+  const std::string md = read_text_file(r.report);
+  EXPECT_NE(md.find("| net | 2 | 200 | 30.00, 25.00 (2), 25.00 | yes: the last epoch is the best |"), std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| old | 3 | - | best 21.50 (2); the other epochs' errors were not recorded"), std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| skinned (reference, not trained) | - | - | 19.25 on the same measure | - |"), std::string::npos)
+      << md;
+  EXPECT_EQ(md.find("| static (reference"), std::string::npos) << md;
+
+  std::vector<RunResults> runs;
+  for (const char* name : {"net", "old", "skinned", "static"}) runs.push_back(load_run(dir.file(name)));
+  EXPECT_TRUE(runs[1].curve.only_best);
+  EXPECT_EQ(runs[0].curve.horizon, 27);
+  std::vector<std::string> notes;
+  const std::vector<ReferenceLevel> levels = curve_references(runs, &notes);
+  ASSERT_EQ(levels.size(), 1u);
+  EXPECT_EQ(levels[0].name, "skinned");
+  EXPECT_DOUBLE_EQ(levels[0].error_mm, 19.25);
+  // static's only evaluation is on test: not a candidate, so no note; a
+  // val evaluation over other rollout frames is one.
+  EXPECT_TRUE(notes.empty()) << ::testing::PrintToString(notes);
+  dir.write("net/selection.json",
+            R"({"val_error_mm_by_epoch": [30.0, 25.0], "val_split": "val", "val_horizon": 35, "val_sequences": 0})");
+  runs[0] = load_run(dir.file("net"));
+  EXPECT_TRUE(curve_references(runs, &notes).empty());
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_EQ(notes[0],
+            "learning curves: skinned is not drawn as a reference level: evaluated on 2 val sequences over 27 "
+            "frames, the curves on all val sequences over 35 frames");
+}
+
 }  // namespace
 }  // namespace layers::report

@@ -110,8 +110,15 @@ struct BenchResults {
 
 // Validation error (mm) at the end of each training epoch against the
 // training windows seen by then (selection.json; NaN where unknown).
+// A run trained before the trainer kept the errors of every epoch has only
+// its chosen epoch's (only_best: NaN at the other epochs). The protocol
+// is known for runs whose selection.json records it (else horizon 0).
 struct LearningCurve {
   std::vector<double> val_error_mm, windows_seen;
+  bool only_best = false;
+  std::string split;            // the split validated on ("" unknown)
+  std::int64_t horizon = 0;     // rollout frames (0 unknown)
+  std::int64_t sequences = -1;  // first N sequences; 0 every one; -1 unknown
 };
 
 struct RunResults {
@@ -128,10 +135,26 @@ struct RunResults {
   // (parts of a study run in several sittings) share it.
   std::string settings;
   std::optional<EvalResults> eval;
+  // Its evaluation on the split its curve was validated on (eval-val),
+  // read besides `eval` when that is another split: a reference row's
+  // value on the learning curves' measure.
+  std::optional<EvalResults> val_eval;
   std::optional<BenchResults> bench;
   LearningCurve curve;                // empty without selection.json or its per-epoch record
   std::vector<std::string> problems;  // readable messages about missing or bad pieces (without the folder)
 };
+
+// A reference row (an evaluation without trained parameters: static,
+// skinned) measured on the learning curves' validation protocol: the same
+// split and rollout frames, over every sequence the curves validated on
+// (the curves' first N when N covers them all). The protocol is the one
+// every curve with a recorded protocol shares; `notes` says why a
+// reference row or the whole set has no level.
+struct ReferenceLevel {
+  std::string name;
+  double error_mm = kAbsent;
+};
+std::vector<ReferenceLevel> curve_references(const std::vector<RunResults>& runs, std::vector<std::string>* notes);
 
 // Parsers of the two JSON files (`file` names the source in errors).
 // Throw InputError for malformed JSON, a missing required field
