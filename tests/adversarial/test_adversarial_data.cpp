@@ -268,6 +268,49 @@ TEST_F(Adversarial, S8_UnhashedReadingStillVerifiesTheShardsOwnHashes) {
   EXPECT_EQ(test::snapshot(data), before);
 }
 
+// C3 (issue 62): a shard of the kind written before strings were stored
+// fixed-length (a variable-length string attribute, in HDF5's global heap,
+// which has no checksum) reads as before; with that heap's object size
+// damaged (tests/fuzz/libhdf5-crashes: libhdf5 read past it and died) it is
+// refused with one line before libhdf5 reads the string.
+TEST_F(Adversarial, C3_ADamagedGlobalHeapIsRefusedBeforeLibhdf5ReadsIt) {
+  const std::string data = copy("c3");
+  const std::string shard = data + "/shard-00000.h5";
+  {
+    H5::H5File f(shard, H5F_ACC_RDWR);
+    H5::Group root = f.openGroup("/");
+    H5::Attribute fixed = root.openAttribute("format");
+    std::string value;
+    fixed.read(fixed.getStrType(), value);
+    fixed.close();
+    root.removeAttr("format");
+    const H5::StrType variable(H5::PredType::C_S1, H5T_VARIABLE);
+    const char* text = value.c_str();
+    root.createAttribute("format", variable, H5::DataSpace(H5S_SCALAR)).write(variable, &text);
+  }
+  const auto old_kind = layers("info " + shard);
+  ASSERT_EQ(old_kind.exit_code, 0) << "an intact variable-length string reads as before: " << old_kind.output;
+  // The first object of the first collection made to claim 2^53 bytes.
+  std::string bytes = test::read_bytes(shard);
+  const std::size_t at = bytes.find(std::string("GCOL\x01\0\0\0", 8));
+  ASSERT_NE(at, std::string::npos) << "no global heap collection in the shard";
+  const std::uint64_t huge = std::uint64_t{1} << 53;
+  for (int k = 0; k < 8; ++k) bytes[at + 16 + 8 + k] = static_cast<char>((huge >> (8 * k)) & 0xff);
+  {
+    std::ofstream out(shard, std::ios::binary | std::ios::trunc);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  }
+  const std::string expect = shard + ": global heap: expected intact variable-length strings";
+  for (const std::string& verb : {std::string("info ") + shard, std::string("validate ") + data}) {
+    const auto r = layers(verb);
+    EXPECT_EQ(r.exit_code, 1) << verb << ": " << r.output;
+    EXPECT_EQ(lines(r.output), 1u) << verb << ": " << r.output;
+    EXPECT_NE(r.output.find(expect), std::string::npos) << verb << ": " << r.output;
+    EXPECT_NE(r.output.find("object 1 of 9007199254740992 bytes"), std::string::npos) << r.output;
+  }
+  refused("eval", data, expect);
+}
+
 // A dataset written before content hashes is refused, read with the flag
 // (which metrics.json records), and migrated by `validate --record-hashes`.
 TEST_F(Adversarial, UnhashedDatasetsNeedTheFlagAndMigrate) {

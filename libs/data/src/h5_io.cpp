@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "h5_heap_check.h"
 #include "layers/core/error.h"
 
 namespace layers::data::h5 {
@@ -24,15 +25,29 @@ herr_t innermost_entry(unsigned /*n*/, const H5E_error2_t* entry, void* data) {
   return 0;
 }
 
-// Reads every element of a string dataset or attribute. `read` reads the
-// whole extent into a buffer with a given memory type.
+// The name of the file holding object `id` ("" when HDF5 cannot say).
+std::string file_of(hid_t id) {
+  const ssize_t n = H5Fget_name(id, nullptr, 0);
+  if (n <= 0) return {};
+  std::string name(static_cast<std::size_t>(n) + 1, '\0');
+  H5Fget_name(id, name.data(), name.size());
+  name.resize(static_cast<std::size_t>(n));
+  return name;
+}
+
+// Reads every element of a string dataset or attribute (`object`). `read`
+// reads the whole extent into a buffer with a given memory type.
+// Variable-length strings are read only from a file whose global heap is
+// whole (h5_heap_check.h).
 template <class ReadFn>
-std::vector<std::string> read_string_values(const H5::StrType& file_type, hssize_t n, const H5::DataSpace& space,
-                                            ReadFn&& read) {
+std::vector<std::string> read_string_values(hid_t object, const H5::StrType& file_type, hssize_t n,
+                                            const H5::DataSpace& space, ReadFn&& read) {
   std::vector<std::string> out;
   if (n <= 0) return out;
   out.reserve(static_cast<std::size_t>(n));
   if (file_type.isVariableStr()) {
+    const std::string file = file_of(object);
+    if (!file.empty()) check_global_heaps(file);
     H5::StrType mem(H5::PredType::C_S1, H5T_VARIABLE);
     mem.setCset(file_type.getCset());
     std::vector<char*> buffer(static_cast<std::size_t>(n), nullptr);
@@ -400,7 +415,7 @@ std::vector<std::string> read_strings(const H5::DataSet& ds) {
   Lock lock;
   const H5::StrType type = ds.getStrType();
   const H5::DataSpace space = ds.getSpace();
-  return read_string_values(type, space.getSimpleExtentNpoints(), space,
+  return read_string_values(ds.getId(), type, space.getSimpleExtentNpoints(), space,
                             [&](void* buffer, const H5::DataType& mem) { ds.read(buffer, mem); });
 }
 
@@ -526,7 +541,7 @@ std::vector<std::string> attr_strings(const H5::H5Object& obj, const std::string
   const H5::Attribute attr = obj.openAttribute(name);
   const H5::DataSpace space = attr.getSpace();
   const hssize_t n = space.getSimpleExtentType() == H5S_NULL ? 0 : space.getSimpleExtentNpoints();
-  return read_string_values(attr.getStrType(), n, space,
+  return read_string_values(attr.getId(), attr.getStrType(), n, space,
                             [&](void* buffer, const H5::DataType& mem) { attr.read(mem, buffer); });
 }
 
