@@ -11,6 +11,7 @@
 #include <regex>
 #include <vector>
 
+#include "declared_counts.h"
 #include "file_names.h"
 #include "layers/core/error.h"
 #include "layers/core/text_file.h"
@@ -58,6 +59,7 @@ void check_gltf_uris(const std::string& path) {
 const aiScene* read_with_assimp(Assimp::Importer& importer, const std::string& path, unsigned flags,
                                 const std::string& what) {
   check_gltf_uris(path);
+  check_declared_counts(path);
   std::vector<std::string> said;
   const aiScene* scene = nullptr;
   {

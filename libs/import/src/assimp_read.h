@@ -4,7 +4,8 @@
 // but silently repairs is refused instead (faces with out-of-range vertex
 // indices, which it drops), and a .gltf whose buffers or images are not
 // regular files (a FIFO would block assimp) is refused before assimp
-// opens it. InputError naming the file on any failure.
+// opens it, and so is a file declaring more than its size holds
+// (declared_counts.h). InputError naming the file on any failure.
 #pragma once
 
 #include <assimp/Importer.hpp>

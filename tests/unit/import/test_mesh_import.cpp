@@ -141,6 +141,72 @@ TEST(MeshImport, AGltfBufferThatIsAPipeIsRefusedBeforeAssimpOpensIt) {
       << said;
 }
 
+// Two triangles (a 1 m square) as PLY: `vertices` and `faces` are what the
+// header declares (the data holds 4 and 2), binary little-endian or text.
+std::string square_ply(const test::TempDir& dir, std::uint64_t vertices, std::uint64_t faces, bool binary) {
+  std::string s = std::string("ply\nformat ") + (binary ? "binary_little_endian" : "ascii") + " 1.0\nelement vertex " +
+                  std::to_string(vertices) + "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
+                  std::to_string(faces) + "\nproperty list uchar int vertex_indices\nend_header\n";
+  const float xyz[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  const std::int32_t tri[2][3] = {{0, 1, 2}, {0, 2, 3}};
+  for (const auto& v : xyz) {
+    if (binary)
+      s.append(reinterpret_cast<const char*>(v), sizeof v);
+    else
+      s += std::to_string(v[0]) + " " + std::to_string(v[1]) + " " + std::to_string(v[2]) + "\n";
+  }
+  for (const auto& f : tri) {
+    if (binary) {
+      s += static_cast<char>(3);
+      s.append(reinterpret_cast<const char*>(f), sizeof f);
+    } else {
+      s += "3 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) + "\n";
+    }
+  }
+  const std::string path =
+      dir.file(std::string(binary ? "bin" : "text") + std::to_string(vertices) + "_" + std::to_string(faces) + ".ply");
+  std::ofstream(path, std::ios::binary) << s;
+  return path;
+}
+
+// The same square as binary STL declaring `facets`.
+std::string square_stl(const test::TempDir& dir, std::uint32_t facets) {
+  std::string s(80, ' ');
+  s.append(reinterpret_cast<const char*>(&facets), 4);
+  const float tri[2][4][3] = {{{0, 0, 1}, {0, 0, 0}, {1, 0, 0}, {1, 1, 0}},
+                              {{0, 0, 1}, {0, 0, 0}, {1, 1, 0}, {0, 1, 0}}};
+  for (const auto& t : tri) {
+    s.append(reinterpret_cast<const char*>(t), sizeof t);
+    s.append(2, '\0');
+  }
+  const std::string path = dir.file("square" + std::to_string(facets) + ".stl");
+  std::ofstream(path, std::ios::binary) << s;
+  return path;
+}
+
+// Issue 62 M1 and messages 5 and 9: counts a header declares beyond what
+// the file holds are refused before assimp allocates for them (a 227-byte
+// PLY declaring 2e9 vertices took 23.5 GB); files that hold what they
+// declare still reach assimp.
+TEST(MeshImport, DeclaredCountsBeyondTheFileAreRefusedBeforeAssimp) {
+  test::TempDir dir("import");
+  for (bool binary : {true, false}) {
+    const std::string said = message_of([&] { import_mesh(square_ply(dir, 4, 2, binary)); });
+    EXPECT_EQ(said.find("element"), std::string::npos) << "a file holding what it declares: " << said;
+  }
+  EXPECT_EQ(message_of([&] { import_mesh(square_stl(dir, 2)); }).find("facet count"), std::string::npos);
+  std::string said = message_of([&] { import_mesh(square_ply(dir, 2000000000, 2, true)); });
+  EXPECT_NE(said.find("bin2000000000_2.ply: element vertex: expected at most "), std::string::npos) << said;
+  EXPECT_NE(said.find("got a header declaring 2000000000"), std::string::npos) << said;
+  said = message_of([&] { import_mesh(square_ply(dir, 4, 10000000, false)); });
+  EXPECT_NE(said.find("text4_10000000.ply: element face: expected at most "), std::string::npos) << said;
+  said = message_of([&] { import_mesh(square_stl(dir, 2147483648u)); });
+  EXPECT_NE(said.find("square2147483648.stl: facet count: expected at most 2 facets (50 bytes each after the 84-byte "
+                      "header of a 184-byte binary STL), got 2147483648"),
+            std::string::npos)
+      << said;
+}
+
 TEST(MeshImport, CentimetresAreRefusedUntilScaled) {
   test::TempDir dir("import");
   const std::string path = dir.write("tube_cm.obj", tube_obj(8, 100.0));

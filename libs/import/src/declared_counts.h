@@ -1,0 +1,17 @@
+// declared_counts.h (internal) -- what a file says it holds, checked
+// against its size before assimp allocates for it. A PLY header's element
+// counts and a binary STL's facet count are read and each element given
+// the fewest bytes it can take; a file too small for what it declares is
+// refused with one line naming the count (assimp would allocate for the
+// declared count first: 23.5 GB for a 227-byte PLY declaring 2e9 vertices).
+#pragma once
+
+#include <string>
+
+namespace layers::import::detail {
+
+// InputError (path, the count's field, ...) when `path` (.ply or .stl,
+// other extensions pass) declares more than its size can hold.
+void check_declared_counts(const std::string& path);
+
+}  // namespace layers::import::detail
