@@ -28,7 +28,12 @@ using Mat4 = Eigen::Matrix4d;
 constexpr double kRigidTolerance = 1e-3;   // |L^T L - I| of a joint's skinning matrix
 constexpr double kOffsetTolerance = 1e-4;  // m a joint may stray from its fixed offset to its parent
 constexpr double kMaxSeconds = 3600;       // the longest animation read (as a BVH clip's bound)
-constexpr float kSameWeight = 1e-5f;       // weights of two seam copies that may be welded
+// The most joints x sampled frames read: each costs about 120 bytes while
+// sampled and kept (a 53 KB GLB of 250 joints keyed at 0 and 3600 s took
+// 3.24 GB), so this bound keeps a body under about 0.5 GB: an hour at 30
+// fps for 37 joints, ten minutes for 222.
+constexpr long kMaxJointFrames = 4000000;
+constexpr float kSameWeight = 1e-5f;  // weights of two seam copies that may be welded
 
 Mat4 to_eigen(const aiMatrix4x4& m) {
   Mat4 r;
@@ -297,6 +302,12 @@ ImportedBody import_rigged_body(const std::string& path, double scale, const std
                      std::to_string(seconds) + " s");
   const double fps = static_cast<double>(data::kFps);
   const int n_frames = static_cast<int>(std::floor(seconds * fps + 1e-6)) + 1;
+  if (static_cast<long>(n_frames) * joints > kMaxJointFrames)
+    throw InputError(path, "animation '" + out.animation + "'",
+                     "at most " + std::to_string(kMaxJointFrames) +
+                         " joints x frames at 30 fps (name a shorter animation with body.own.animation, or cut it)",
+                     std::to_string(joints) + " joints x " + std::to_string(n_frames) + " frames (" +
+                         std::to_string(seconds) + " s)");
   std::map<const aiNode*, Mat4> world;
   for (int f = 0; f < n_frames; ++f) {
     const double t = f / fps * ticks_per_second;

@@ -177,6 +177,49 @@ TEST(BodyImport, ScaleAnimationNameAndUnskinnedFilesAreOneLineEach) {
   EXPECT_NE(e.find("expected a bone weight on every vertex, got vertex 0 has none"), std::string::npos) << e;
 }
 
+// Issue 62 M4: a small file whose animation asks for more joints x frames
+// than a body may hold (40 joints keyed at 0 and 3600 s: 40 x 108,001) is
+// refused before any frame is sampled; the same rig keyed over one second
+// reads.
+TEST(BodyImport, JointsTimesFramesAreBoundedBeforeSampling) {
+  test::TempDir dir("body_import");
+  const test::TinyRig tiny(1);
+  data::SkinnedBody body;
+  body.rest = tiny.body.rest;
+  body.faces = tiny.body.faces;
+  const int joints = 40;
+  for (int j = 0; j < joints; ++j) {
+    body.joint_names.push_back("j" + std::to_string(j));
+    body.joint_parents.push_back(j - 1);
+    body.rest_joints.insert(body.rest_joints.end(), {0.0f, 0.9f + 0.01f * j, 0.0f});
+  }
+  // Each of the 30 vertices on four joints, so that every joint is bound.
+  for (int v = 0; v < 30; ++v)
+    for (int k = 0; k < 4; ++k) {
+      body.skin_index.push_back((v + 10 * k) % joints);
+      body.skin_weight.push_back(0.25f);
+    }
+  // Two frames of the bind pose.
+  for (int f = 0; f < 2; ++f)
+    for (int j = 0; j < joints; ++j)
+      body.joints.insert(body.joints.end(), {1, 0, 0, 0, 0, 1, 0, 0.9f + 0.01f * j, 0, 0, 1, 0});
+  const auto keyed_until = [&](float seconds) {
+    Glb glb(data::skinned_glb_bytes(body, 30.0));
+    const int input = glb.doc["animations"][0]["samplers"][0]["input"];
+    const int view = glb.doc["accessors"][input]["bufferView"];
+    const std::size_t at = glb.doc["bufferViews"][view]["byteOffset"];
+    std::memcpy(&glb.bin[at + sizeof(float)], &seconds, sizeof seconds);
+    glb.doc["accessors"][input]["max"] = {seconds};
+    return write_bytes(dir, "keyed" + std::to_string(static_cast<int>(seconds)) + ".glb", glb.bytes());
+  };
+  EXPECT_EQ(import_rigged_body(keyed_until(1.0f)).num_frames(), 31);
+  const std::string e = message_of([&] { import_rigged_body(keyed_until(3600.0f)); });
+  EXPECT_NE(e.find("animation 'motion': expected at most 4000000 joints x frames at 30 fps (name a shorter "
+                   "animation with body.own.animation, or cut it), got 40 joints x 108001 frames"),
+            std::string::npos)
+      << e;
+}
+
 // The rig's frames as a mesh sequence: one OBJ per frame, or a .pc2.
 struct Sequence {
   test::TinyRig rig{4};

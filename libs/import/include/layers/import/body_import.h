@@ -66,7 +66,8 @@ bool is_mesh_sequence(const std::string& path);
 // a vertex with no weight, a joint that scales or shears in a frame (the
 // skinning here is rigid per joint), a joint other than the root that
 // leaves its fixed offset from its parent, two joints of one name, an
-// animation longer than 3,600 s, a body outside kMin/kMaxBodyHeight, an
+// animation longer than 3,600 s or of more than 4,000,000 joints x
+// frames at 30 fps (checked before sampling), a body outside kMin/kMaxBodyHeight, an
 // animation name the file does not hold, a non-finite value.
 ImportedBody import_rigged_body(const std::string& path, double scale = 1.0, const std::string& animation = "");
 
