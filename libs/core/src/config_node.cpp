@@ -2,7 +2,6 @@
 // configuration tree (see config_node.h).
 #include "layers/core/config_node.h"
 
-#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -14,6 +13,7 @@
 
 #include "layers/core/error.h"
 #include "layers/core/text_file.h"
+#include "layers/core/yaml_text.h"
 
 namespace fs = std::filesystem;
 
@@ -73,9 +73,7 @@ namespace {
 // is one value many times over), and includes in files loaded (a file may
 // include another several times, and that one others).
 constexpr std::size_t kMaxConfigBytes = 16u << 20;
-constexpr std::int64_t kMaxConfigValues = 1000000;
 constexpr std::int64_t kMaxConfigExpandedBytes = 64 << 20;
-constexpr int kMaxConfigDepth = 64;
 constexpr int kMaxConfigFiles = 256;
 
 struct Budget {
@@ -92,12 +90,12 @@ void spend_bytes(Budget& budget, std::size_t bytes, const std::string& name) {
 }
 
 Node convert(const YAML::Node& y, const std::string& name, Budget& budget) {
-  if (++budget.values > kMaxConfigValues)
-    throw InputError(name, "", "a config of at most " + std::to_string(kMaxConfigValues) + " values",
+  if (++budget.values > kMaxYamlValues)
+    throw InputError(name, "", "a config of at most " + std::to_string(kMaxYamlValues) + " values",
                      "more (YAML aliases expand into copies)");
-  if (budget.depth >= kMaxConfigDepth)
+  if (budget.depth >= kMaxYamlDepth)
     throw InputError(name + ":" + std::to_string(y.Mark().line + 1), "",
-                     "values nested at most " + std::to_string(kMaxConfigDepth) + " levels deep", "deeper nesting");
+                     "values nested at most " + std::to_string(kMaxYamlDepth) + " levels deep", "deeper nesting");
   struct Deeper {
     Budget& b;
     explicit Deeper(Budget& b) : b(b) { ++b.depth; }
@@ -214,17 +212,8 @@ Node parse(const std::string& text, const std::string& name) {
   if (text.size() > kMaxConfigBytes)
     throw InputError(name, "", "a config of at most " + std::to_string(kMaxConfigBytes >> 20) + " MiB",
                      std::to_string(text.size()) + " bytes");
-  try {
-    Budget budget;
-    return convert(YAML::Load(text), name, budget);
-  } catch (const YAML::DeepRecursion& e) {
-    throw InputError(name + ":" + std::to_string(e.mark.line + 1), "", "YAML nested less deeply",
-                     "nesting beyond the parser's limit");
-  } catch (const YAML::Exception& e) {
-    std::string where = name;
-    if (e.mark.line >= 0) where += ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1);
-    throw InputError::message(where, "", "malformed YAML: " + e.msg);
-  }
+  Budget budget;
+  return convert(parse_yaml(text, name), name, budget);
 }
 
 Node load_file(const std::string& path) {

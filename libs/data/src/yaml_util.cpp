@@ -8,6 +8,7 @@
 
 #include "layers/core/error.h"
 #include "layers/core/text_file.h"
+#include "layers/core/yaml_text.h"
 
 namespace layers::data {
 
@@ -17,14 +18,7 @@ std::string yaml_where(const std::string& path, const YAML::Node& node) {
   return path + ":" + std::to_string(mark.line + 1);
 }
 
-YAML::Node parse_yaml_text(const std::string& text, const std::string& name) {
-  try {
-    return YAML::Load(text);
-  } catch (const YAML::ParserException& e) {
-    throw InputError::message(name + ":" + std::to_string(e.mark.line + 1), "",
-                              "malformed YAML (column " + std::to_string(e.mark.column + 1) + "): " + e.msg);
-  }
-}
+YAML::Node parse_yaml_text(const std::string& text, const std::string& name) { return parse_yaml(text, name); }
 
 YAML::Node load_yaml_file(const std::string& path) { return parse_yaml_text(read_text_file(path), path); }
 

@@ -10,7 +10,8 @@ namespace layers::data {
 
 // "path:line" of a node (just "path" when the node has no position).
 std::string yaml_where(const std::string& path, const YAML::Node& node);
-// Loads a file; InputError "path:line: malformed YAML: ..." on parse errors.
+// Loads a file; InputError "path:line: malformed YAML (column c): ..." on
+// parse errors, and the bounds of core/yaml_text.h.
 YAML::Node load_yaml_file(const std::string& path);
 // Parses text; `name` stands for the file in errors.
 YAML::Node parse_yaml_text(const std::string& text, const std::string& name);

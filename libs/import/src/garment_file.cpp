@@ -7,6 +7,8 @@
 #include <filesystem>
 
 #include "layers/core/error.h"
+#include "layers/core/text_file.h"
+#include "layers/core/yaml_text.h"
 
 namespace layers::import {
 
@@ -23,12 +25,7 @@ GarmentFile read_garment_file(const std::string& entry) {
   const fs::path side = fs::path(g.mesh).replace_extension(".yaml");
   if (!fs::is_regular_file(side)) return g;
   g.side_file = side.string();
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(g.side_file);
-  } catch (const std::exception& e) {
-    throw InputError(g.side_file, "", "YAML", std::string("'") + e.what() + "'");
-  }
+  const YAML::Node root = parse_yaml(read_text_file(g.side_file), g.side_file);
   if (!root.IsMap() && !root.IsNull())
     throw InputError(g.side_file, "", "a mapping (name, scale, attributes)", "not a mapping");
   for (const auto& item : root) {

@@ -237,9 +237,25 @@ TEST(Config, AliasBombAndDeepNestingAreBounded) {
   for (int i = 0; i < 100; ++i) deep += "]";
   expect_error([&] { cfg::parse(deep, "deep.yaml"); },
                {"deep.yaml:1", "nested at most 64 levels deep, got deeper nesting"});
+  // Unclosed and far deeper (issue 62 message 2: 100,000 levels): the
+  // counting pass stops at the bound before the parser recurses further.
   std::string deeper = "a: ";
-  for (int i = 0; i < 5000; ++i) deeper += "[";
-  expect_error([&] { cfg::parse(deeper, "deeper.yaml"); }, {"deeper.yaml:1", "got nesting beyond the parser's limit"});
+  for (int i = 0; i < 100000; ++i) deeper += "[";
+  expect_error([&] { cfg::parse(deeper, "deeper.yaml"); },
+               {"deeper.yaml:1: expected values nested at most 64 levels deep, got deeper nesting"});
+}
+
+// Issue 62 M3 and message 1: values are counted while the text is parsed,
+// before any tree is built (a 16 MiB list of 8.4M items took 4.22 GB
+// before its line), and a NUL byte is named where it is.
+TEST(Config, ValuesAreCountedBeforeTheTreeAndANulIsNamed) {
+  std::string items = "list:\n";
+  for (int i = 0; i < 1000001; ++i) items += "- 1\n";
+  expect_error([&] { cfg::parse(items, "items.yaml"); },
+               {"items.yaml:", "expected YAML of at most 1000000 values, got more (counted up to this line)"});
+  expect_error([&] { cfg::parse(std::string("a: 1\nb: \"x\0i\"\n", 14), "nul.yaml"); },
+               {"nul.yaml:2: expected YAML text, got a NUL byte (a binary file?) at byte 10"});
+  EXPECT_EQ(cfg::parse("a: [1, 2]\n", "fine.yaml").find("a")->seq.size(), 2u);
 }
 
 namespace {

@@ -263,6 +263,27 @@ TEST(MeshImport, MissingOrUnreadableFilesAreOneLine) {
   EXPECT_NE(message_of([&] { import_mesh(junk); }).find("a mesh file assimp reads"), std::string::npos);
 }
 
+// Issue 62 M2 and messages 1-2: a side file is parsed with the config's
+// bounds (values counted before the tree is built: a 20 MB side file took
+// 4.78 GB), and a NUL byte or deep nesting is one line naming the file.
+TEST(GarmentFile, SideFilesAreBoundedLikeConfigs) {
+  test::TempDir dir("import");
+  const std::string mesh = dir.write("dress.obj", tube_obj(8));
+  std::string many = "attributes:\n  mass: 0.3\nnotes:\n";
+  for (int i = 0; i < 1000001; ++i) many += "- x\n";
+  dir.write("dress.yaml", many);
+  std::string said = message_of([&] { read_garment_file("file:" + mesh); });
+  EXPECT_NE(said.find("dress.yaml:"), std::string::npos) << said;
+  EXPECT_NE(said.find("expected YAML of at most 1000000 values"), std::string::npos) << said;
+  dir.write("dress.yaml", "a: " + std::string(100000, '['));
+  said = message_of([&] { read_garment_file("file:" + mesh); });
+  EXPECT_NE(said.find("dress.yaml:1: expected values nested at most 64 levels deep"), std::string::npos) << said;
+  dir.write("dress.yaml", std::string("name: \"a\0i\"\n", 13));
+  said = message_of([&] { read_garment_file("file:" + mesh); });
+  EXPECT_NE(said.find("dress.yaml:1: expected YAML text, got a NUL byte (a binary file?) at byte 8"), std::string::npos)
+      << "[" << said << "]";
+}
+
 TEST(GarmentFile, SideFileGivesNameScaleAndAttributes) {
   test::TempDir dir("import");
   const std::string mesh = dir.write("dress.obj", tube_obj(8));
