@@ -31,7 +31,8 @@ endfunction()
 
 # layers_plugin(<name> SOURCES ... [OUTPUT_DIR dir] [DEPS ...])
 # A plugin built into the default folder is installed; one built elsewhere
-# (the test plugins) is not. Every plugin exports only its entry point
+# (the test plugins) is not. Each gets <file>.hash beside it, built and
+# installed (the loader checks it before dlopen). Every plugin exports only its entry point
 # (plugin_exports.map): its model code stays private to it, so two plugins
 # never resolve each other's symbols. Its sources reuse the zoo's
 # precompiled torch headers.
@@ -54,8 +55,19 @@ function(layers_plugin name)
     LINK_DEPENDS ${LAYERS_PLUGIN_EXPORTS_MAP})
   target_link_options(layers_plugin_${name} PRIVATE "LINKER:--version-script=${LAYERS_PLUGIN_EXPORTS_MAP}")
   layers_zoo_pch(layers_plugin_${name})
+  # Its content hash beside it (<file>.hash, zoo/plugin_hash.h), after each
+  # link and again after install (which rewrites its RPATH).
+  add_dependencies(layers_plugin_${name} layers_plugin_hash)
+  add_custom_command(TARGET layers_plugin_${name} POST_BUILD
+    COMMAND layers_plugin_hash $<TARGET_FILE:layers_plugin_${name}> VERBATIM)
   if(installed)
     install(TARGETS layers_plugin_${name} LIBRARY DESTINATION lib/layers/plugins)
+    install(CODE "execute_process(COMMAND \"$<TARGET_FILE:layers_plugin_hash>\"
+        \"\$ENV{DESTDIR}\${CMAKE_INSTALL_PREFIX}/lib/layers/plugins/$<TARGET_FILE_NAME:layers_plugin_${name}>\"
+        RESULT_VARIABLE rc)
+      if(rc)
+        message(FATAL_ERROR \"layers_plugin_hash failed for $<TARGET_FILE_NAME:layers_plugin_${name}>\")
+      endif()")
   endif()
   layers_warnings(layers_plugin_${name})
 endfunction()

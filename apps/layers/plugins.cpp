@@ -13,6 +13,7 @@ Plugins& load_plugins() {
     plugins.report = zoo::load_all(plugins.registry);
     for (const auto& p : plugins.report.problems) spdlog::warn("plugin refused: {}", p.message);
     for (const auto& p : plugins.report.shadowed) spdlog::debug("plugin shadowed: {}", p.message);
+    for (const auto& p : plugins.report.passed_over) spdlog::warn("plugin passed over: {}", p.message);
   }
   return plugins;
 }

@@ -34,7 +34,10 @@ TEST(Install, PrefixIsSelfContainedAndRelocatable) {
   fs::rename(first, prefix);
   for (const char* f : {"bin/layers", "share/layers/assets/body/mpfb2/base.obj",
                         "share/layers/assets/motions/cmu/131_01_start_walk_stop.bvh",
-                        "share/layers/configs/data/tiny.yaml", "lib/layers/plugins/liblayers_plugin_static.so"})
+                        "share/layers/configs/data/tiny.yaml", "lib/layers/plugins/liblayers_plugin_static.so",
+                        // Its content hash, recorded after install rewrote its RPATH (`models --strict`
+                        // below refuses a plugin that does not match it), and the tool that records it.
+                        "lib/layers/plugins/liblayers_plugin_static.so.hash", "bin/layers_plugin_hash"})
     EXPECT_TRUE(fs::exists(prefix + "/" + f)) << f;
 
   // Plugins: found beside the installed binary, not in the build tree.

@@ -16,6 +16,7 @@
 #include "layers/core/error.h"
 #include "layers/core/install_paths.h"
 #include "layers/zoo/plugin_abi.h"
+#include "layers/zoo/plugin_hash.h"
 
 namespace fs = std::filesystem;
 
@@ -229,6 +230,7 @@ LoadedPlugin load_file(Registry& registry, const std::string& file) {
   const std::string path = canonical_or_absolute(file);
   if (auto already = RegistryLoading::models_of(registry, path); !already.empty()) return {path, already};
 
+  const bool verified = check_plugin_hash(path) == PluginHash::Verified;  // throws when the bytes changed
   if (const std::string problem = elf_problem(path); !problem.empty()) refuse(path, "cannot load plugin: " + problem);
   dlerror();
   void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
@@ -254,7 +256,7 @@ LoadedPlugin load_file(Registry& registry, const std::string& file) {
   try {
     std::vector<std::string> models = register_plugin(registry, path, entry);
     // Deliberately never closed: factories and model code live in it.
-    return {path, models};
+    return {path, models, verified};
   } catch (...) {
     dlclose(handle);  // nothing of it is left in the registry
     throw;
@@ -264,23 +266,50 @@ LoadedPlugin load_file(Registry& registry, const std::string& file) {
 LoadReport load_all(Registry& registry, const std::vector<std::string>& directories) {
   LoadReport report;
   report.searched = existing_unique(directories);
-  std::map<std::string, std::string> first_by_name;  // file name -> path loaded
-  for (const auto& dir : report.searched) {
+  // Every file of each name, in search order.
+  std::vector<std::string> names;
+  std::map<std::string, std::vector<std::string>> files_by_name;
+  for (const auto& dir : report.searched)
     for (const auto& file : plugin_files_in(dir)) {
-      std::string name = file.filename().string();
-      auto [it, inserted] = first_by_name.emplace(name, file.string());
-      if (!inserted) {
-        report.shadowed.push_back({file.string(), file.string() + ": skipped, shadowed by " + it->second});
-        continue;
-      }
+      auto& files = files_by_name[file.filename().string()];
+      if (files.empty()) names.push_back(file.filename().string());
+      files.push_back(file.string());
+    }
+  std::error_code ec;
+  const auto recorded = [&](const std::string& f) { return fs::exists(plugin_hash_file(f), ec); };
+  for (const std::string& name : names) {
+    const std::vector<std::string>& files = files_by_name[name];
+    // The first file with a recorded hash, then the first without: a copy
+    // nobody recorded does not shadow one whose bytes can be checked. A
+    // refused file shadows nothing: the next one is tried.
+    std::vector<std::string> order;
+    for (const auto& f : files)
+      if (recorded(f)) order.push_back(f);
+    for (const auto& f : files)
+      if (!recorded(f)) order.push_back(f);
+    std::string chosen;
+    std::vector<std::string> tried;
+    for (const auto& f : order) {
+      tried.push_back(f);
       try {
-        report.loaded.push_back(load_file(registry, file.string()));
+        report.loaded.push_back(load_file(registry, f));
+        chosen = f;
+        break;
       } catch (const std::exception& e) {
-        // A refused file shadows nothing: a good one of the same name
-        // later on the path still loads.
-        report.problems.push_back({file.string(), e.what()});
-        first_by_name.erase(it);
+        report.problems.push_back({f, e.what()});
       }
+    }
+    if (chosen.empty()) continue;
+    for (const auto& f : files) {
+      if (std::find(tried.begin(), tried.end(), f) != tried.end()) continue;
+      if (std::find(files.begin(), files.end(), f) < std::find(files.begin(), files.end(), chosen))
+        report.passed_over.push_back({f, f +
+                                             ": skipped although first on the plugin path: it has no recorded content "
+                                             "hash and " +
+                                             chosen + " has one (" + plugin_hash_file(chosen) +
+                                             "); record one with layers_plugin_hash, or remove it"});
+      else
+        report.shadowed.push_back({f, f + ": skipped, shadowed by " + chosen});
     }
   }
   return report;

@@ -11,8 +11,10 @@
 #include <fstream>
 #include <iterator>
 
+#include "error_of.h"
 #include "layers/core/error.h"
 #include "layers/zoo/plugin_abi.h"
+#include "layers/zoo/plugin_hash.h"
 #include "layers/zoo/plugin_loader.h"
 #include "temp_dir.h"
 #include "test_paths.h"
@@ -248,6 +250,56 @@ TEST(PluginLoader, SearchesLayersPluginPathFirstAndShadows) {
             canonical(second.file(name)) + ": skipped, shadowed by " + canonical(first.file(name)));
   ASSERT_FALSE(report.problems.empty());
   EXPECT_EQ(report.problems[0].message, "/nonexistent/layers: LAYERS_PLUGIN_PATH entry is not a directory");
+}
+
+// Issue 62 C2: a plugin copy with part of its code zeroed loaded, shadowed
+// the installed plugin and crashed `eval`. The build records each plugin's
+// content hash beside it; a copy whose bytes no longer match is refused
+// before dlopen, and a copy with no recorded hash does not shadow one with
+// it (it is passed over with a warning).
+TEST(PluginLoader, RecordedHashesRefuseChangedCopiesAndUnrecordedOnesDoNotShadow) {
+  const std::string built = plugin_file("test_constant_velocity");
+  ASSERT_TRUE(fs::exists(zoo::plugin_hash_file(built))) << "the build records a hash beside each plugin";
+  {
+    zoo::Registry r;
+    EXPECT_TRUE(zoo::load_file(r, built).verified);
+  }
+  layers::test::TempDir first("layers-zoo-damaged"), second("layers-zoo-recorded");
+  const std::string name = "liblayers_plugin_test_constant_velocity.so";
+  // A copy with its record, then a byte of it changed.
+  fs::copy_file(built, first.file(name));
+  fs::copy_file(zoo::plugin_hash_file(built), zoo::plugin_hash_file(first.file(name)));
+  {
+    std::fstream f(first.file(name), std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(static_cast<std::streamoff>(fs::file_size(built) / 2));
+    f.put('\x5a');
+  }
+  zoo::Registry r;
+  const std::string said = layers::test::error_of<layers::InputError>([&] { zoo::load_file(r, first.file(name)); });
+  EXPECT_NE(said.find(canonical(first.file(name)) + ": content hash: expected " + zoo::plugin_content_hash(built) +
+                      " (recorded in "),
+            std::string::npos)
+      << said;
+  EXPECT_TRUE(r.names().empty());
+  // The same damaged copy without a record, first on the path, and the
+  // recorded original after it: the original loads.
+  fs::remove(zoo::plugin_hash_file(first.file(name)));
+  fs::copy_file(built, second.file(name));
+  zoo::record_plugin_hash(second.file(name));
+  PluginPathEnv env(first.path() + ":" + second.path());
+  zoo::Registry both;
+  const zoo::LoadReport report = zoo::load_all(both, {first.path(), second.path()});
+  ASSERT_EQ(report.loaded.size(), 1u);
+  EXPECT_EQ(report.loaded[0].path, canonical(second.file(name)));
+  EXPECT_TRUE(report.loaded[0].verified);
+  ASSERT_EQ(report.passed_over.size(), 1u);
+  EXPECT_NE(report.passed_over[0].message.find(canonical(first.file(name)) +
+                                               ": skipped although first on the plugin path: it has no recorded "
+                                               "content hash and " +
+                                               canonical(second.file(name)) + " has one"),
+            std::string::npos)
+      << report.passed_over[0].message;
+  EXPECT_TRUE(report.shadowed.empty());
 }
 
 TEST(PluginLoader, EmptyPluginPathFindsNothingThere) {

@@ -1,9 +1,13 @@
 // layers/zoo/plugin_loader.h -- finding and loading model plugins.
 //
 // A plugin is a file named liblayers_plugin_<name>.so exporting the entry
-// point that LAYERS_PLUGIN defines (plugin.h). Search order, first match of
-// a file name wins (a later file with the same name is skipped as shadowed,
-// so LAYERS_PLUGIN_PATH can override an installed plugin):
+// point that LAYERS_PLUGIN defines (plugin.h). Before dlopen, a plugin
+// with a recorded content hash (<file>.hash, plugin_hash.h: written by the
+// build and the install) must match it, or it is refused. Search order,
+// first match of a file name wins (a later file with the same name is
+// skipped as shadowed, so LAYERS_PLUGIN_PATH can override an installed
+// plugin), except that a file without a recorded hash never shadows one
+// with it (a hand-copied or damaged copy cannot hide the checked one):
 //   1. every directory of LAYERS_PLUGIN_PATH (colon-separated), in order;
 //   2. plugins/ next to the running binary (/proc/self/exe);
 //   3. the directory of the running binary itself;
@@ -32,6 +36,7 @@ int api_version();
 struct LoadedPlugin {
   std::string path;                 // canonical path of the library
   std::vector<std::string> models;  // names it registered
+  bool verified = false;            // its bytes matched its recorded hash (false: none recorded)
 };
 
 struct PluginProblem {
@@ -44,6 +49,9 @@ struct LoadReport {
   std::vector<LoadedPlugin> loaded;
   std::vector<PluginProblem> problems;  // plugins refused (print as warnings)
   std::vector<PluginProblem> shadowed;  // skipped: same file name found earlier
+  // Skipped although found earlier: no recorded hash, and a later file of
+  // the same name has one (print as warnings).
+  std::vector<PluginProblem> passed_over;
 };
 
 // The directories of the search order above that exist, canonical and
