@@ -192,6 +192,11 @@ void resolve_own_body(GeneratorConfig& config) {
   if (!config.body.own) return;
   OwnBodyConfig& own = *config.body.own;
   const import::ImportedBody body = import::import_body(own.file, own.mesh, own.scale, own.animation);
+  if (body.joint_drift > 1e-4)
+    spdlog::warn(
+        "{}: joint '{}' moves up to {:.1f} mm off its offset from its parent (frame {}); the body follows "
+        "joint rotations and the root's motion, so it is taken at its offset",
+        own.file, body.drift_joint, body.joint_drift * 1000, body.drift_frame);
   if (body.skipped_meshes > 0)
     spdlog::warn("{}: {} mesh{} bound to no joint left out of the body", own.file, body.skipped_meshes,
                  body.skipped_meshes == 1 ? "" : "es");

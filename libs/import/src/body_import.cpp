@@ -25,9 +25,14 @@ namespace {
 
 using Mat4 = Eigen::Matrix4d;
 
-constexpr double kRigidTolerance = 1e-3;   // |L^T L - I| of a joint's skinning matrix
-constexpr double kOffsetTolerance = 1e-4;  // m a joint may stray from its fixed offset to its parent
-constexpr double kMaxSeconds = 3600;       // the longest animation read (as a BVH clip's bound)
+constexpr double kRigidTolerance = 1e-3;  // |L^T L - I| of a joint's skinning matrix
+// m a joint may stray from its fixed offset to its parent: real rigs carry
+// small translation keys (CesiumMan's move by up to 3.0 mm); the body
+// follows joint rotations and the root's motion, so such a joint is taken
+// at its offset (the largest drift is kept for a warning), and a larger
+// one is refused.
+constexpr double kOffsetTolerance = 5e-3;
+constexpr double kMaxSeconds = 3600;  // the longest animation read (as a BVH clip's bound)
 // The most joints x sampled frames read: each costs about 120 bytes while
 // sampled and kept (a 53 KB GLB of 250 joints keyed at 0 and 3600 s took
 // 3.24 GB), so this bound keeps a body under about 0.5 GB: an hour at 30
@@ -338,11 +343,17 @@ ImportedBody import_rigged_body(const std::string& path, double scale, const std
       if (p >= 0) {
         const Eigen::Vector3d fixed = frame.position[p] + frame.rotation[p] * (out.joint_rest[j] - out.joint_rest[p]);
         const double off = (frame.position.back() - fixed).norm();
+        if (off > out.joint_drift) {
+          out.joint_drift = off;
+          out.drift_joint = out.joint_names[j];
+          out.drift_frame = f;
+        }
         if (off > kOffsetTolerance) {
           char mm[32];
           std::snprintf(mm, sizeof mm, "%.1f", off * 1000);
           throw InputError(path, "animation '" + out.animation + "'",
-                           "joints that keep their offset from their parent (only the root may move)",
+                           "joints that keep their offset from their parent within 5 mm (only the root may move; "
+                           "remove the other joints' translation keys)",
                            "joint '" + out.joint_names[j] + "' " + mm + " mm off it in frame " + std::to_string(f));
         }
       }

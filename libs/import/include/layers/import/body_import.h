@@ -52,6 +52,11 @@ struct ImportedBody {
   std::vector<BodyFrame> frames;           // the motion at 30 fps (empty: the file has no animation)
   std::vector<geometry::Points> vertices;  // a sequence's vertices per frame (empty for a rigged body)
   int skipped_meshes = 0;                  // meshes of a rigged file bound to no joint (left out)
+  // The most a joint other than the root strays from its offset to its
+  // parent (m, at most 5 mm: taken at its offset), which and when.
+  double joint_drift = 0;
+  std::string drift_joint;
+  int drift_frame = -1;
   bool rigged() const { return vertices.empty(); }
   int num_frames() const { return static_cast<int>(frames.size()); }
 };
@@ -65,7 +70,8 @@ bool is_mesh_sequence(const std::string& path);
 // missing or unreadable file, no skinned mesh, more than one root joint,
 // a vertex with no weight, a joint that scales or shears in a frame (the
 // skinning here is rigid per joint), a joint other than the root that
-// leaves its fixed offset from its parent, two joints of one name, an
+// leaves its fixed offset from its parent by more than 5 mm (less is
+// taken at the offset: joint_drift), two joints of one name, an
 // animation longer than 3,600 s or of more than 4,000,000 joints x
 // frames at 30 fps (checked before sampling), a body outside kMin/kMaxBodyHeight, an
 // animation name the file does not hold, a non-finite value.
