@@ -207,8 +207,15 @@ ImportedBody import_rigged_body(const std::string& path, double scale, const std
                              "' both named '" + out.joint_names[j] + "'");
   }
 
-  // Bind pose of each joint in the world (from the first mesh bound to it:
-  // the mesh's node transform times the bone's inverse offset).
+  // Bind pose of each joint in the world, from the first mesh bound to it.
+  // By glTF's rule a skinned vertex is placed by its joints alone (joint
+  // world matrix times inverse bind matrix, the mesh node's own transform
+  // ignored): where the joints' rest world matrices times their offsets
+  // agree (A, the skin's space to the world: an armature's Y-up turn and
+  // 0.01 scale as Blender and Mixamo write them), the mesh is placed by A
+  // and each joint binds at its rest world matrix. Otherwise (a file whose
+  // rest pose is not its bind pose) assimp's rule: the mesh's node
+  // transform times the bone's inverse offset.
   std::vector<Mat4> bind(joints), bind_inverse(joints);
   std::vector<char> have(joints, 0);
   struct FileVertex {
@@ -219,7 +226,18 @@ ImportedBody import_rigged_body(const std::string& path, double scale, const std
   std::vector<FileVertex> vertices;
   std::vector<std::array<int, 3>> faces;
   for (const auto& [m, node] : meshes) {
-    const Mat4 g = rest_world.at(node);
+    Mat4 g = rest_world.at(node);
+    bool by_joints = m->mNumBones > 0;
+    Mat4 skin_to_world = Mat4::Identity();
+    for (unsigned b = 0; b < m->mNumBones && by_joints; ++b) {
+      const aiBone* bone = m->mBones[b];
+      const Mat4 a = rest_world.at(rig.nodes[rig.index.at(bone->mName.C_Str())]) * to_eigen(bone->mOffsetMatrix);
+      if (b == 0)
+        skin_to_world = a;
+      else
+        by_joints = (a - skin_to_world).cwiseAbs().maxCoeff() <= 1e-5 * (1 + skin_to_world.cwiseAbs().maxCoeff());
+    }
+    if (by_joints) g = skin_to_world;
     std::vector<std::vector<std::pair<float, int>>> influence(m->mNumVertices);
     for (unsigned b = 0; b < m->mNumBones; ++b) {
       const aiBone* bone = m->mBones[b];

@@ -108,6 +108,90 @@ TEST(BodyImport, SkinnedGlbReadsBackItsRigAndEveryFrame) {
   EXPECT_LT(worst, 1e-5);
 }
 
+// Issue 63 item 1: the rig as Blender and Mixamo write it -- the skin's
+// data in Z-up centimetres, the joints under an armature node turned to
+// Y-up and scaled by 0.01, the skinned mesh's node at the scene's root
+// (its own transform is ignored by glTF's rule). Read at its true height,
+// with the same vertices, joints and frames as the plain file.
+TEST(BodyImport, AnArmatureNodeTurnedAndScaledIsAppliedAsGltfSays) {
+  test::TempDir dir("body_import");
+  const test::TinyRig rig(4);
+  Glb glb(data::skinned_glb_bytes(rig.body, 30.0));
+  // T: the skin's space to the world (a turn of -90 degrees about x takes
+  // z up to y up, then 0.01); the data are written through its inverse.
+  const Eigen::Quaterniond turn(Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitX()));
+  Eigen::Matrix4d t = Eigen::Matrix4d::Identity();
+  t.topLeftCorner<3, 3>() = 0.01 * turn.toRotationMatrix();
+  const Eigen::Matrix4d inverse = t.inverse();
+  const auto floats_of = [&](int accessor) {
+    const int view = glb.doc["accessors"][accessor]["bufferView"];
+    const std::size_t at = glb.doc["bufferViews"][view].value("byteOffset", 0);
+    return reinterpret_cast<float*>(&glb.bin[at]);
+  };
+  const auto& primitive = glb.doc["meshes"][0]["primitives"][0];
+  const int positions = primitive["attributes"]["POSITION"];
+  float* x = floats_of(positions);
+  for (int v = 0; v < glb.doc["accessors"][positions]["count"].get<int>(); ++v) {
+    const Eigen::Vector4d p = inverse * Eigen::Vector4d(x[3 * v], x[3 * v + 1], x[3 * v + 2], 1);
+    for (int a = 0; a < 3; ++a) x[3 * v + a] = static_cast<float>(p[a]);
+  }
+  glb.doc["accessors"][positions].erase("min");
+  glb.doc["accessors"][positions].erase("max");
+  // Inverse bind matrices: each times T (the joints' world matrices stay).
+  float* ibm = floats_of(glb.doc["skins"][0]["inverseBindMatrices"]);
+  for (int j = 0; j < 3; ++j) {
+    const Eigen::Matrix4d m = Eigen::Map<Eigen::Matrix4f>(ibm + 16 * j).cast<double>() * t;
+    Eigen::Map<Eigen::Matrix4f>(ibm + 16 * j) = m.cast<float>();
+  }
+  // The root joint's local transform becomes T^-1 times it: scale 100, its
+  // rotation and translation keys (and rest translation) turned back.
+  auto& hips = glb.doc["nodes"][0];
+  const Eigen::Vector3d rest = 100 * (turn.conjugate() * Eigen::Vector3d(hips["translation"][0].get<double>(),
+                                                                         hips["translation"][1].get<double>(),
+                                                                         hips["translation"][2].get<double>()));
+  const Eigen::Quaterniond back = turn.conjugate();
+  hips["translation"] = {rest.x(), rest.y(), rest.z()};
+  hips["rotation"] = {back.x(), back.y(), back.z(), back.w()};
+  hips["scale"] = {100.0, 100.0, 100.0};
+  for (const auto& channel : glb.doc["animations"][0]["channels"]) {
+    if (channel["target"]["node"] != 0) continue;
+    const auto& sampler = glb.doc["animations"][0]["samplers"][channel["sampler"].get<int>()];
+    const int output = sampler["output"];
+    float* k = floats_of(output);
+    const int n = glb.doc["accessors"][output]["count"];
+    for (int i = 0; i < n; ++i) {
+      if (channel["target"]["path"] == "rotation") {
+        const Eigen::Quaterniond q =
+            turn.conjugate() * Eigen::Quaterniond(k[4 * i + 3], k[4 * i], k[4 * i + 1], k[4 * i + 2]);
+        k[4 * i] = static_cast<float>(q.x()), k[4 * i + 1] = static_cast<float>(q.y());
+        k[4 * i + 2] = static_cast<float>(q.z()), k[4 * i + 3] = static_cast<float>(q.w());
+      } else {
+        const Eigen::Vector3d p = 100 * (turn.conjugate() * Eigen::Vector3d(k[3 * i], k[3 * i + 1], k[3 * i + 2]));
+        for (int a = 0; a < 3; ++a) k[3 * i + a] = static_cast<float>(p[a]);
+      }
+    }
+    glb.doc["accessors"][output].erase("min");
+    glb.doc["accessors"][output].erase("max");
+  }
+  glb.doc["nodes"].push_back({{"name", "Armature"},
+                              {"rotation", {turn.x(), turn.y(), turn.z(), turn.w()}},
+                              {"scale", {0.01, 0.01, 0.01}},
+                              {"children", {0}}});
+  glb.doc["scenes"][0]["nodes"] = {glb.doc["nodes"].size() - 1, 3};  // the armature, the mesh node (3) at the root
+  const ImportedBody b = import_rigged_body(write_bytes(dir, "armature.glb", glb.bytes()));
+  const ImportedBody plain = import_rigged_body(write_bytes(dir, "plain.glb", data::skinned_glb_bytes(rig.body, 30.0)));
+  EXPECT_NEAR(b.rest.vertices.col(1).maxCoeff() - b.rest.vertices.col(1).minCoeff(), 1.7, 1e-4);
+  ASSERT_EQ(b.rest.vertices.rows(), plain.rest.vertices.rows());
+  EXPECT_LT((b.rest.vertices - plain.rest.vertices).cwiseAbs().maxCoeff(), 1e-5);
+  for (int j = 0; j < 3; ++j) EXPECT_LT((b.joint_rest[j] - plain.joint_rest[j]).norm(), 1e-5) << j;
+  ASSERT_EQ(b.num_frames(), plain.num_frames());
+  for (int f = 0; f < b.num_frames(); ++f)
+    for (int j = 0; j < 3; ++j) {
+      EXPECT_LT(b.frames[f].rotation[j].angularDistance(plain.frames[f].rotation[j]), 1e-5) << f << " " << j;
+      EXPECT_LT((b.frames[f].position[j] - plain.frames[f].position[j]).norm(), 1e-5) << f << " " << j;
+    }
+}
+
 TEST(BodyImport, ScaleAnimationNameAndUnskinnedFilesAreOneLineEach) {
   test::TempDir dir("body_import");
   const test::TinyRig rig(3);
