@@ -15,6 +15,7 @@
 #include "layers/core/error.h"
 #include "layers/import/body_import.h"
 #include "layers/import/garment_file.h"
+#include "layers/motion/asf_amc.h"
 #include "layers/motion/body_sequence.h"
 #include "layers/motion/motion.h"
 #include "layers/motion/retarget.h"
@@ -168,9 +169,7 @@ void check_own_body(const GeneratorConfig& config, const std::string& file) {
                      "a variation block");
   for (std::size_t i = 0; i < config.body.motions.size(); ++i) {
     const std::string& m = config.body.motions[i];
-    std::string tail = m.size() > 4 ? m.substr(m.size() - 4) : "";
-    for (char& c : tail) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    const bool bvh = m.rfind("bvh:", 0) == 0 || tail == ".bvh";
+    const bool bvh = m.rfind("bvh:", 0) == 0 || motion::is_clip_file(m);
     if (m == kOwnAnimation || (bvh && !sequence)) continue;
     throw InputError(file, "body.motions[" + std::to_string(i) + "]",
                      sequence ? "animation (a mesh sequence plays its own frames)"

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "layers/core/error.h"
+#include "layers/motion/asf_amc.h"
 #include "layers/motion/bvh.h"
 #include "layers/motion/motion.h"
 
@@ -67,7 +68,7 @@ std::vector<body::Pose> clip_window(const std::vector<body::Pose>& poses, int st
 }
 
 int bvh_clip_frames(const std::string& path, const std::string& asset_root) {
-  return resample(read_bvh(find_bvh_file(path, asset_root)), kFramesPerSecond).num_frames();
+  return resample(read_clip(find_bvh_file(path, asset_root)), kFramesPerSecond).num_frames();
 }
 
 }  // namespace layers::motion

@@ -7,6 +7,7 @@
 #include "layers/body/assets.h"
 #include "layers/body/body_model.h"
 #include "layers/core/error.h"
+#include "layers/motion/asf_amc.h"
 #include "layers/motion/bvh.h"
 #include "layers/motion/clip_ops.h"
 #include "layers/motion/procedural.h"
@@ -121,7 +122,8 @@ std::string find_bvh_file(const std::string& path, const std::string& asset_root
     const std::string shipped = body::motion_asset_dir(asset_root) + "/" + path;
     if (fs::exists(shipped)) return shipped;
   }
-  throw InputError("motion", "bvh", "an existing BVH file (or one in " + body::motion_asset_dir(asset_root) + ")",
+  throw InputError("motion", "bvh",
+                   "an existing clip file, .bvh or .amc (or one in " + body::motion_asset_dir(asset_root) + ")",
                    "'" + path + "'");
 }
 
@@ -133,7 +135,7 @@ std::unique_ptr<MotionSource> make_clip(const ClipSpec& clip, const MotionSpec& 
   const std::string path = find_bvh_file(clip.path, spec.asset_root);
   // Recorded relative to the asset root, so a dataset does not name the
   // folder it was made in; a user's own clip elsewhere keeps its path.
-  const auto track = retarget(resample(read_bvh(path), kFramesPerSecond), body);
+  const auto track = retarget(resample(read_clip(path), kFramesPerSecond), body);
   const std::string name = "bvh:" + body::asset_relative_name(path, spec.asset_root);
   const int clip_frames = track->num_frames();
   if (!clip.explicit_params) {
@@ -196,12 +198,13 @@ std::unique_ptr<MotionSource> make_motion(const MotionSpec& spec, const body::Bo
   if (m.rfind("procedural:", 0) == 0) {
     const int n = body_frames > 0 ? body_frames : kDefaultProceduralFrames - spec.transition_frames;
     motion = make_procedural(parse_procedural(m.substr(11), std::max(1, n), spec.seed, "motion"), body);
-  } else if (clip.path.rfind("bvh:", 0) == 0 || ends_with(clip.path, ".bvh") || ends_with(clip.path, ".BVH")) {
+  } else if (clip.path.rfind("bvh:", 0) == 0 || is_clip_file(clip.path)) {
     ClipSpec named = clip;
     if (named.path.rfind("bvh:", 0) == 0) named.path = named.path.substr(4);
     motion = make_clip(named, spec, body_frames, body);
   } else {
-    throw InputError("motion", "motion", "procedural:<kind>, bvh:<path> or a .bvh path", "'" + m + "'");
+    throw InputError("motion", "motion", "procedural:<kind>, bvh:<path>, a .bvh path or a .amc path (ASF/AMC)",
+                     "'" + m + "'");
   }
   return with_t_pose_transition(std::move(motion), body, spec.transition_frames);
 }

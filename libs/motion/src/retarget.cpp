@@ -241,6 +241,43 @@ const std::map<std::string, std::string>& cmu_3dsmax_names() {
   return names;
 }
 
+const std::map<std::string, std::string>& cmu_asf_names() {
+  static const std::map<std::string, std::string> names = {
+      {"root", "Hips"},
+      {"lhipjoint", "LHipJoint"},
+      {"lfemur", "LeftUpLeg"},
+      {"ltibia", "LeftLeg"},
+      {"lfoot", "LeftFoot"},
+      {"ltoes", "LeftToeBase"},
+      {"rhipjoint", "RHipJoint"},
+      {"rfemur", "RightUpLeg"},
+      {"rtibia", "RightLeg"},
+      {"rfoot", "RightFoot"},
+      {"rtoes", "RightToeBase"},
+      {"lowerback", "LowerBack"},
+      {"upperback", "Spine"},
+      {"thorax", "Spine1"},
+      {"lowerneck", "Neck"},
+      {"upperneck", "Neck1"},
+      {"head", "Head"},
+      {"lclavicle", "LeftShoulder"},
+      {"lhumerus", "LeftArm"},
+      {"lradius", "LeftForeArm"},
+      {"lwrist", "LeftHand"},
+      {"lhand", "LeftFingerBase"},
+      {"lfingers", "LeftHandFinger1"},
+      {"lthumb", "LThumb"},
+      {"rclavicle", "RightShoulder"},
+      {"rhumerus", "RightArm"},
+      {"rradius", "RightForeArm"},
+      {"rwrist", "RightHand"},
+      {"rhand", "RightFingerBase"},
+      {"rfingers", "RightHandFinger1"},
+      {"rthumb", "RThumb"},
+  };
+  return names;
+}
+
 std::string bare_joint_name(const std::string& name) {
   const auto colon = name.rfind(':');
   return colon == std::string::npos ? name : name.substr(colon + 1);
@@ -250,6 +287,7 @@ std::map<std::string, std::string> joint_name_map(const BvhClip& clip) {
   for (const BvhJoint& j : clip.joints) {
     const std::string name = bare_joint_name(j.name);
     if (name == "LeftUpLeg" || name == "RightUpLeg" || name == "LeftForeArm" || name == "RightForeArm") return {};
+    if (name == "lfemur" || name == "rfemur" || name == "lhumerus" || name == "rhumerus") return cmu_asf_names();
   }
   return cmu_3dsmax_names();
 }

@@ -25,11 +25,15 @@ namespace layers::motion {
 
 // CMU 3dsMax-friendly BVH joint names -> cmu_mb rig joint names.
 const std::map<std::string, std::string>& cmu_3dsmax_names();
+// CMU's ASF bone names (asf_amc.h: lfemur, lhumerus, ...) -> rig names.
+const std::map<std::string, std::string>& cmu_asf_names();
 
 // The name map a clip's joints need (BVH -> rig), by the clip's naming:
 // MotionBuilder style (what Mixamo, the SFU set and our rig use: a joint
 // LeftUpLeg, RightUpLeg, LeftForeArm or RightForeArm) maps names as they
-// are, where LeftShoulder is the clavicle; otherwise the CMU 3dsMax names,
+// are, where LeftShoulder is the clavicle; CMU's ASF names (a bone lfemur,
+// rfemur, lhumerus or rhumerus) map through cmu_asf_names(); otherwise the
+// CMU 3dsMax names,
 // where LeftShoulder is the upper arm. Names are read without a namespace
 // prefix ("mixamorig:Hips" is Hips).
 std::map<std::string, std::string> joint_name_map(const BvhClip& clip);
