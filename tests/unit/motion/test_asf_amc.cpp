@@ -11,6 +11,7 @@
 #include "error_of.h"
 #include "layers/core/error.h"
 #include "layers/motion/asf_amc.h"
+#include "layers/motion/bvh_write.h"
 #include "layers/motion/retarget.h"
 #include "temp_dir.h"
 
@@ -129,6 +130,35 @@ TEST(AsfAmc, DamageIsOneLineNamingFileAndLine) {
   test::TempDir lone("asf_amc_lone");
   e = message_of([&] { read_asf_amc(lone.write("walk.amc", "1\nroot 0 0 0 0 0 0\n")); });
   EXPECT_NE(e.find("walk.amc: skeleton: expected its skeleton beside it"), std::string::npos) << e;
+}
+
+// The clips shipped from ASF/AMC are written as BVH: read back, every
+// joint's world position equals the clip's in every frame; a dropped
+// joint takes those below it and leaves an End Site where it started.
+TEST(AsfAmc, WrittenAsBvhItReadsBackTheSameMotion) {
+  test::TempDir dir("asf_amc");
+  dir.write("07.asf", kAsf);
+  const BvhClip clip = read_asf_amc(dir.write("07_01.amc",
+                                              ":DEGREES\n1\nroot 1 2 3 10 20 30\na 45\n"
+                                              "2\nroot 10 0 0 -100 5 170\na -120\n"));
+  write_bvh(clip, dir.file("07_01.bvh"));
+  const BvhClip back = read_bvh(dir.file("07_01.bvh"));
+  ASSERT_EQ(back.num_joints(), 3);
+  ASSERT_EQ(back.num_frames(), 2);
+  EXPECT_NEAR(back.frame_time, clip.frame_time, 1e-12);
+  for (int f = 0; f < 2; ++f) {
+    const BvhWorld a = bvh_world(clip, f), b = bvh_world(back, f);
+    for (int j = 0; j < 3; ++j) {
+      // Back in metres from the file's centimetres.
+      EXPECT_LT((a.position[j] * 100 - b.position[j]).norm(), 1e-4) << f << " " << j;
+      EXPECT_LT(a.rotation[j].angularDistance(b.rotation[j]), 1e-6) << f << " " << j;
+    }
+  }
+  const BvhClip cut = without_joints(clip, {"b"});
+  ASSERT_EQ(cut.num_joints(), 2);
+  EXPECT_TRUE(cut.joints[1].has_end_site);
+  EXPECT_LT((cut.joints[1].end_site - clip.joints[2].offset).norm(), 1e-12);
+  EXPECT_EQ(cut.rotation[1].size(), 2u);
 }
 
 }  // namespace
