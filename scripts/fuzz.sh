@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # scripts/fuzz.sh -- a longer run of the readers' fuzzer (tests/fuzz):
 # ROUNDS rounds of ITERATIONS mutants per reader (BVH, YAML experiment and
-# generator configs, LAYERS-H5), each round with its own RNG seed. An input
+# generator configs, LAYERS-H5, and the importers: OBJ, PLY, STL, GLB,
+# garment side files, PC2), each round with its own RNG seed. An input
 # that crashes a reader or escapes with something other than the toolkit's
 # error is kept in tests/fuzz/regressions/ (the ctest fuzz_smoke replays
 # them all), and the script exits 1.

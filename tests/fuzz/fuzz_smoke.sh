@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # tests/fuzz/fuzz_smoke.sh -- the fuzz smoke test of ctest: each reader
-# (BVH, YAML, LAYERS-H5) on a few hundred mutants of a real seed with a
-# fixed RNG seed, after every kept finding in tests/fuzz/regressions/.
+# (BVH, YAML, LAYERS-H5, and the importers: OBJ, PLY, STL, GLB, garment
+# side files, PC2) on a few hundred mutants of a seed with a fixed RNG
+# seed, after every kept finding in tests/fuzz/regressions/.
 #   fuzz_smoke.sh <layers_fuzz> <layers> <source dir> [iterations] [rng seed]
 # With LAYERS_FUZZ_KEEP=<dir>, a finding (or the input a reader crashed
 # on) is copied there as seed<rng seed>-<name> before the work folder goes.
@@ -24,6 +25,14 @@ for kind in bvh yaml h5; do
   "$fuzz" "$kind" "$work/seed.$kind" "$n" "$seed" "$work/$kind" "${kept[@]}" || status=1
 done
 "$fuzz" yaml "$work/generator.yaml" "$n" "$seed" "$work/generator" || status=1
+# The importers of users' garments and mesh sequences, from the fuzzer's
+# own seeds (a small tube as OBJ, binary PLY and STL, GLB, a side file, a
+# PC2 cache).
+for kind in obj ply stl glb side pc2; do
+  "$fuzz" seed "$kind" "$work/seed.$kind"
+  mapfile -t kept < <(find "$src/tests/fuzz/regressions" -name "*.$kind" -type f | sort)
+  "$fuzz" "$kind" "$work/seed.$kind" "$n" "$seed" "$work/$kind" "${kept[@]}" || status=1
+done
 if [ $status != 0 ] && [ -n "${LAYERS_FUZZ_KEEP:-}" ]; then
   for f in "$work"/*/finding.* "$work"/*/current.*; do
     [ -e "$f" ] || continue

@@ -2,6 +2,7 @@
 // assimp_read.h).
 #include "assimp_read.h"
 
+#include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <assimp/DefaultLogger.hpp>
 #include <assimp/LogStream.hpp>
@@ -67,7 +68,10 @@ const aiScene* read_with_assimp(Assimp::Importer& importer, const std::string& p
     Assimp::DefaultLogger::create(nullptr, Assimp::Logger::NORMAL, 0);
     // The logger owns its streams and deletes them in kill().
     Assimp::DefaultLogger::get()->attachStream(new Captured(said), Assimp::Logger::Warn | Assimp::Logger::Err);
-    scene = importer.ReadFile(path, flags);
+    // Validation first: assimp's own post-processing steps (triangulation,
+    // sorting) read face indices unchecked, and a damaged file with an index
+    // past its vertices crashed them (the importer fuzzer, a mutated PLY).
+    scene = importer.ReadFile(path, flags | aiProcess_ValidateDataStructure);
     Assimp::DefaultLogger::kill();
   }
   if (!scene || !scene->mRootNode) throw InputError(path, "", what, std::string("'") + importer.GetErrorString() + "'");

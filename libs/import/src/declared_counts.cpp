@@ -1,6 +1,8 @@
 // Declared counts against the file's size (see declared_counts.h).
 #include "declared_counts.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -24,53 +26,186 @@ std::uint64_t ply_type_size(const std::string& t) {
   return it == sizes.end() ? 0 : it->second;
 }
 
+struct PlyProperty {
+  std::string name;
+  std::uint64_t size = 0;        // scalar (or list item) bytes
+  std::uint64_t count_size = 0;  // a list's count bytes (0: a scalar)
+  bool is_float = false;
+};
+
 struct PlyElement {
   std::string name;
   std::uint64_t count = 0;
   std::uint64_t least = 0;  // the fewest bytes one element takes
+  std::vector<PlyProperty> properties;
 };
+
+[[noreturn]] void ply_fail(const std::string& path, const std::string& where, const std::string& expected,
+                           const std::string& got) {
+  throw InputError(path, where, expected, got);
+}
+
+// An unsigned or signed integer of `size` bytes at p (little- or big-endian).
+std::int64_t ply_integer(const unsigned char* p, std::uint64_t size, bool big, bool is_signed) {
+  std::uint64_t v = 0;
+  for (std::uint64_t k = 0; k < size; ++k) v |= static_cast<std::uint64_t>(p[big ? size - 1 - k : k]) << (8 * k);
+  if (is_signed && size < 8 && (v >> (8 * size - 1)) & 1) v |= ~0ull << (8 * size);
+  return static_cast<std::int64_t>(v);
+}
+
+// Every element's rows against the header: the data's length (binary) or
+// token counts (text), list counts, and the faces' vertex indices within
+// the vertices. assimp 5.2's PLY reader and its post-processing crashed
+// on files that break these (the importer fuzzer).
+void check_ply_data(const std::string& path, std::ifstream& in, const std::string& format,
+                    const std::vector<PlyElement>& elements, std::uint64_t size, std::uint64_t header) {
+  std::uint64_t vertices = 0;
+  for (const PlyElement& e : elements)
+    if (e.name == "vertex") vertices = e.count;
+  const auto is_index = [](const PlyElement& e, const PlyProperty& p) {
+    return e.name == "face" && p.count_size > 0 && (p.name == "vertex_indices" || p.name == "vertex_index");
+  };
+  const auto bad_index = [&](const PlyElement& e, std::uint64_t row, std::int64_t index) {
+    ply_fail(path, "element " + e.name + " " + std::to_string(row),
+             "vertex indices from 0 to " + std::to_string(vertices == 0 ? 0 : vertices - 1), std::to_string(index));
+  };
+  if (format == "ascii") {
+    std::string token;
+    for (const PlyElement& e : elements)
+      for (std::uint64_t row = 0; row < e.count; ++row) {
+        std::string line;
+        do {
+          if (!std::getline(in, line))
+            ply_fail(path, "element " + e.name, std::to_string(e.count) + " rows", std::to_string(row));
+        } while (line.find_first_not_of(" \t\r") == std::string::npos);
+        std::istringstream words(line);
+        for (const PlyProperty& p : e.properties) {
+          std::uint64_t n = 1;
+          if (p.count_size > 0) {
+            if (!(words >> token) || token.find_first_not_of("0123456789") != std::string::npos || token.size() > 9)
+              ply_fail(path, "element " + e.name + " " + std::to_string(row), "a list count", "'" + token + "'");
+            n = std::stoull(token);
+            if (is_index(e, p) && n < 3)
+              ply_fail(path, "element " + e.name + " " + std::to_string(row), "a face of 3 or more vertices",
+                       std::to_string(n));
+          }
+          for (std::uint64_t k = 0; k < n; ++k) {
+            if (!(words >> token))
+              ply_fail(path, "element " + e.name + " " + std::to_string(row), "a value of " + p.name,
+                       "the end of the line");
+            char* stop = nullptr;
+            const double v = std::strtod(token.c_str(), &stop);
+            if (stop == token.c_str() || *stop != '\0' || !std::isfinite(v))
+              ply_fail(path, "element " + e.name + " " + std::to_string(row), "a number", "'" + token + "'");
+            if (is_index(e, p) && (v < 0 || v >= static_cast<double>(vertices) || v != std::floor(v)))
+              bad_index(e, row, static_cast<std::int64_t>(v));
+          }
+        }
+      }
+    return;
+  }
+  const bool big = format == "binary_big_endian";
+  std::uint64_t at = header;
+  std::vector<unsigned char> buf(64);
+  for (const PlyElement& e : elements)
+    for (std::uint64_t row = 0; row < e.count; ++row)
+      for (const PlyProperty& p : e.properties) {
+        std::uint64_t n = 1;
+        if (p.count_size > 0) {
+          if (at + p.count_size > size)
+            ply_fail(path, "element " + e.name, "data for " + std::to_string(e.count) + " rows",
+                     "the file ends in row " + std::to_string(row));
+          in.read(reinterpret_cast<char*>(buf.data()), static_cast<std::streamsize>(p.count_size));
+          const std::int64_t c = ply_integer(buf.data(), p.count_size, big, false);
+          at += p.count_size;
+          if (c < 0 || static_cast<std::uint64_t>(c) > (size - at) / std::max<std::uint64_t>(p.size, 1))
+            ply_fail(path, "element " + e.name + " " + std::to_string(row), "a list count within the file",
+                     std::to_string(c));
+          n = static_cast<std::uint64_t>(c);
+          if (is_index(e, p) && n < 3)
+            ply_fail(path, "element " + e.name + " " + std::to_string(row), "a face of 3 or more vertices",
+                     std::to_string(n));
+        }
+        if (at + n * p.size > size)
+          ply_fail(path, "element " + e.name, "data for " + std::to_string(e.count) + " rows",
+                   "the file ends in row " + std::to_string(row));
+        for (std::uint64_t k = 0; k < n; ++k) {
+          in.read(reinterpret_cast<char*>(buf.data()), static_cast<std::streamsize>(p.size));
+          if (is_index(e, p) && !p.is_float) {
+            const std::int64_t index = ply_integer(buf.data(), p.size, big, true);
+            if (index < 0 || static_cast<std::uint64_t>(index) >= vertices) bad_index(e, row, index);
+          }
+        }
+        at += n * p.size;
+      }
+}
 
 void check_ply(const std::string& path, std::uint64_t size) {
   std::ifstream in(path, std::ios::binary);
   std::string line, format;
   std::vector<PlyElement> elements;
   std::uint64_t header = 0;
+  int number = 0;
   bool ended = false;
-  // A header is a few hundred bytes; 64 KiB without end_header is not one
-  // this check understands, and assimp says what it finds.
+  const auto where = [&]() { return "header line " + std::to_string(number); };
   while (header < (64u << 10) && std::getline(in, line)) {
     header += line.size() + 1;
+    ++number;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     std::istringstream words(line);
     std::string key;
     words >> key;
+    if (number == 1) {
+      if (key != "ply") ply_fail(path, where(), "'ply'", "'" + key + "'");
+      continue;
+    }
     if (key == "format") {
       words >> format;
+      if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
+        ply_fail(path, where(), "format ascii, binary_little_endian or binary_big_endian", "'" + format + "'");
     } else if (key == "element") {
       PlyElement e;
       std::string count;
       words >> e.name >> count;
-      if (count.empty() || count.find_first_not_of("0123456789") != std::string::npos || count.size() > 19) return;
+      if (e.name.empty() || count.empty() || count.find_first_not_of("0123456789") != std::string::npos ||
+          count.size() > 19)
+        ply_fail(path, where(), "element <name> <count>", "'" + line + "'");
       e.count = std::stoull(count);
       elements.push_back(e);
-    } else if (key == "property" && !elements.empty()) {
+    } else if (key == "property") {
+      if (elements.empty()) ply_fail(path, where(), "an element before its properties", "'" + line + "'");
       std::string type;
       words >> type;
       const bool ascii = format == "ascii";
+      PlyProperty p;
       if (type == "list") {
-        std::string count_type;
-        words >> count_type;
+        std::string count_type, item_type;
+        words >> count_type >> item_type >> p.name;
+        p.count_size = ply_type_size(count_type);
+        p.size = ply_type_size(item_type);
+        p.is_float = item_type.find("float") != std::string::npos || item_type == "double";
+        if (p.count_size == 0 || p.size == 0 || p.name.empty() || count_type.find("float") != std::string::npos ||
+            count_type == "double")
+          ply_fail(path, where(), "property list <integer type> <type> <name>", "'" + line + "'");
         // An empty list: its count alone (a digit and a separator in text).
-        elements.back().least += ascii ? 2 : ply_type_size(count_type);
+        elements.back().least += ascii ? 2 : p.count_size;
       } else {
-        elements.back().least += ascii ? 2 : ply_type_size(type);
+        words >> p.name;
+        p.size = ply_type_size(type);
+        p.is_float = type.find("float") != std::string::npos || type == "double";
+        if (p.size == 0 || p.name.empty()) ply_fail(path, where(), "property <type> <name>", "'" + line + "'");
+        elements.back().least += ascii ? 2 : p.size;
       }
+      elements.back().properties.push_back(p);
     } else if (key == "end_header") {
       ended = true;
       break;
+    } else if (key != "comment" && key != "obj_info") {
+      ply_fail(path, where(), "ply, format, comment, obj_info, element, property or end_header", "'" + key + "'");
     }
   }
-  if (!ended) return;
+  if (!ended) ply_fail(path, "header", "an end_header line within 64 KiB", "none");
+  if (format.empty()) ply_fail(path, "header", "a format line", "none");
   std::uint64_t left = size > header ? size - header : 0;
   for (const PlyElement& e : elements) {
     if (e.least == 0) continue;
@@ -82,6 +217,7 @@ void check_ply(const std::string& path, std::uint64_t size) {
                        "a header declaring " + std::to_string(e.count));
     left -= e.count * e.least;
   }
+  check_ply_data(path, in, format, elements, size, header);
 }
 
 void check_stl(const std::string& path, std::uint64_t size) {
