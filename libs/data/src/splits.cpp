@@ -40,7 +40,7 @@ const std::vector<std::string>& Splits::get(const std::string& name) const {
   }
   std::string names;
   for (const auto& n : this->names()) names += (names.empty() ? "" : ", ") + n;
-  throw InputError("splits.yaml", name, "a split named '" + name + "'",
+  throw InputError(source_.empty() ? std::string("splits.yaml") : source_, name, "a split named '" + name + "'",
                    names.empty() ? std::string("no splits") : "only " + names);
 }
 
@@ -70,6 +70,7 @@ std::string SplitsSource::where(const std::string& name, std::size_t index) cons
 
 SplitsSource read_splits_source(const std::string& path) {
   SplitsSource source;
+  source.splits.set_source(path);
   source.path = path;
   const YAML::Node root = load_yaml_file(path);
   if (root.IsNull()) return source;

@@ -13,6 +13,8 @@
 #include "file_names.h"
 #include "layers/core/error.h"
 
+#include <nlohmann/json.hpp>
+
 namespace layers::import::detail {
 namespace {
 
@@ -242,6 +244,43 @@ void check_stl(const std::string& path, std::uint64_t size) {
                      std::to_string(facets));
 }
 
+// A glTF's JSON must parse (assimp says only "No suitable reader found"
+// when it does not); a GLB's header and JSON chunk must lie in the file.
+void check_gltf(const std::string& path, std::uint64_t size, bool binary) {
+  std::ifstream in(path, std::ios::binary);
+  std::string json_text;
+  if (binary) {
+    unsigned char head[20] = {};
+    in.read(reinterpret_cast<char*>(head), sizeof head);
+    if (in.gcount() < 20)
+      throw InputError(path, "GLB header", "a 12-byte header and a JSON chunk", std::to_string(size) + " bytes");
+    const auto u32 = [&](int at) {
+      return static_cast<std::uint64_t>(head[at]) | (static_cast<std::uint64_t>(head[at + 1]) << 8) |
+             (static_cast<std::uint64_t>(head[at + 2]) << 16) | (static_cast<std::uint64_t>(head[at + 3]) << 24);
+    };
+    if (u32(0) != 0x46546C67u) throw InputError(path, "GLB header", "the magic 'glTF'", "other bytes");
+    if (u32(4) != 2) throw InputError(path, "GLB header", "glTF version 2", std::to_string(u32(4)));
+    if (u32(8) > size)
+      throw InputError(path, "GLB header", "a length within the file's " + std::to_string(size) + " bytes",
+                       std::to_string(u32(8)));
+    if (u32(16) != 0x4E4F534Au) throw InputError(path, "GLB chunk 0", "a JSON chunk first", "another chunk type");
+    if (u32(12) > size - 20)
+      throw InputError(path, "GLB chunk 0", "a JSON chunk within the file", std::to_string(u32(12)) + " bytes");
+    json_text.resize(static_cast<std::size_t>(u32(12)));
+    in.read(json_text.data(), static_cast<std::streamsize>(json_text.size()));
+  } else {
+    std::ostringstream all;
+    all << in.rdbuf();
+    json_text = all.str();
+  }
+  try {
+    const nlohmann::json doc = nlohmann::json::parse(json_text);
+    if (!doc.is_object()) throw InputError(path, binary ? "GLB JSON chunk" : "JSON", "a JSON object", doc.type_name());
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(path, binary ? "GLB JSON chunk" : "JSON", "valid JSON", e.what());
+  }
+}
+
 }  // namespace
 
 void check_declared_counts(const std::string& path) {
@@ -251,6 +290,7 @@ void check_declared_counts(const std::string& path) {
   const std::string ext = lower_extension(path);
   if (ext == ".ply") check_ply(path, size);
   if (ext == ".stl") check_stl(path, size);
+  if (ext == ".glb" || ext == ".gltf") check_gltf(path, size, ext == ".glb");
 }
 
 }  // namespace layers::import::detail

@@ -1,5 +1,7 @@
 // declared_counts.h (internal) -- what a file says it holds, checked
-// against its size before assimp allocates for it. A PLY header's element
+// before assimp reads it: a glTF's JSON and a GLB's header and chunk, a
+// PLY whole (header, rows, list counts, face indices: assimp 5.2 crashed
+// on damaged ones), and counts against the file's size. A PLY header's element
 // counts and a binary STL's facet count are read and each element given
 // the fewest bytes it can take; a file too small for what it declares is
 // refused with one line naming the count (assimp would allocate for the

@@ -168,6 +168,15 @@ TEST_F(DataValidate, MalformedSplitsYaml) {
   EXPECT_TRUE(has_problem(validate_dataset(dir.path()), "splits.yaml:1: train: expected a list of sequence ids"));
 }
 
+// Issue 62 message 7: a split the file lacks is named with the file's path
+// (which dataset), not a bare "splits.yaml".
+TEST_F(DataValidate, AMissingSplitNamesTheDatasetsFile) {
+  const Dataset ds = Dataset::open(dir.path());
+  const std::string said = test::error_of<InputError>([&] { ds.splits().get("nope"); });
+  EXPECT_EQ(said.rfind(dir.file("splits.yaml") + ": nope: expected a split named 'nope', got only train", 0), 0u)
+      << said;
+}
+
 TEST_F(DataValidate, MissingDatasetYaml) {
   std::filesystem::remove(dir.file("dataset.yaml"));
   EXPECT_TRUE(has_problem(validate_dataset(dir.path()), "dataset.yaml: missing"));

@@ -207,6 +207,24 @@ TEST(MeshImport, DeclaredCountsBeyondTheFileAreRefusedBeforeAssimp) {
       << said;
 }
 
+// Issue 62 message 4: a GLB whose JSON chunk does not parse was "No
+// suitable reader found"; now the chunk and the parser's line.
+TEST(MeshImport, AGlbWithBrokenJsonSaysSo) {
+  test::TempDir dir("import");
+  const std::vector<float> xyz = {0, 0, 0, 1, 0, 0, 1, 1, 0};
+  std::string glb = data::glb_bytes({data::GlbMesh{"tri", {0, 1, 2}, {xyz, xyz}}}, 30.0);
+  glb[20] = 'x';  // the JSON chunk's opening brace
+  const std::string path = dir.file("broken.glb");
+  std::ofstream(path, std::ios::binary) << glb;
+  const std::string said = message_of([&] { import_mesh(path); });
+  EXPECT_NE(said.find("broken.glb: GLB JSON chunk: expected valid JSON, got [json.exception.parse_error"),
+            std::string::npos)
+      << said;
+  glb[0] = 'X';
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << glb;
+  EXPECT_NE(message_of([&] { import_mesh(path); }).find("GLB header: expected the magic 'glTF'"), std::string::npos);
+}
+
 TEST(MeshImport, CentimetresAreRefusedUntilScaled) {
   test::TempDir dir("import");
   const std::string path = dir.write("tube_cm.obj", tube_obj(8, 100.0));

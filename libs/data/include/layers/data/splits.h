@@ -20,13 +20,18 @@ class Splits {
   // Replaces or adds a split.
   void set(const std::string& name, std::vector<std::string> ids);
   bool has(const std::string& name) const;
-  // Throws InputError naming the split and the available names if missing.
+  // Throws InputError naming the file (source(), else "splits.yaml"), the
+  // split and the available names if missing.
   const std::vector<std::string>& get(const std::string& name) const;
   std::vector<std::string> names() const;
   bool empty() const { return sets_.empty(); }
+  // The file these splits were read from (read_splits), named in errors.
+  void set_source(std::string path) { source_ = std::move(path); }
+  const std::string& source() const { return source_; }
 
  private:
   std::vector<std::pair<std::string, std::vector<std::string>>> sets_;
+  std::string source_;
 };
 
 std::string splits_to_yaml(const Splits& splits);
