@@ -21,10 +21,6 @@ fs::path aside_name(const fs::path& dir) {
   return candidate;
 }
 
-namespace {
-
-// Whether `path` is `folder` or lies inside it (both made absolute and
-// normal first; false when either cannot be).
 bool same_or_inside(const fs::path& path, const fs::path& folder) {
   std::error_code ec;
   const std::string p = fs::weakly_canonical(path, ec).string();
@@ -33,8 +29,6 @@ bool same_or_inside(const fs::path& path, const fs::path& folder) {
   if (ec || f.empty()) return false;
   return p == f || (p.size() > f.size() && p.compare(0, f.size(), f) == 0 && p[f.size()] == '/');
 }
-
-}  // namespace
 
 fs::path move_aside(const fs::path& dir, const std::string& field) {
   std::error_code ec;

@@ -18,6 +18,10 @@ std::filesystem::path aside_name(const std::filesystem::path& dir);
 // or the rename fails.
 std::filesystem::path move_aside(const std::filesystem::path& dir, const std::string& field);
 
+// Whether `path` is `folder` or lies inside it (both made absolute and
+// normal first; false when either cannot be).
+bool same_or_inside(const std::filesystem::path& path, const std::filesystem::path& folder);
+
 // An output path (file or folder) a verb is about to write, checked before
 // anything is computed or written: InputError naming `flag` when it is one
 // of `inputs` or lies inside one of them (an input is never an output),

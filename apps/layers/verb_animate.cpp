@@ -46,6 +46,7 @@ VerbRun register_animate(CLI::App& app, const Global&) {
     std::vector<std::string> sets, formats{"glb"};
     std::int64_t glb_chunk = data::kGlbFramesPerChunk;
     std::string model, checkpoint = "best";
+    bool keep_refused = false;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--config", a->config, "generator config: body, motion, outfit (templates or file:<mesh>), wind")
@@ -53,6 +54,8 @@ VerbRun register_animate(CLI::App& app, const Global&) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--set", a->sets, "override a config value: --set key.path=value (repeatable)");
   cmd->add_option("--out", a->out, "output folder: data/ (LAYERS-H5) and the exports")->required();
+  cmd->add_flag("--keep-refused", a->keep_refused,
+                "a refused scene's frames into --out/refused/ (<id>.h5, <id>.refused.yaml, a GLB in glb/)");
   cmd->add_option("--format", a->formats, "export format: glb, obj or pc2 (repeatable)")->capture_default_str();
   cmd->add_option("--glb-chunk", a->glb_chunk, "glb: frames per chunk (as `layers export --glb-chunk`)")
       ->capture_default_str()
@@ -93,13 +96,39 @@ VerbRun register_animate(CLI::App& app, const Global&) {
       throw InputError(a->out, "--out", "a new folder (each animate simulates its scene afresh)",
                        "a folder holding data/ from an earlier run");
     options.progress = false;
+    const std::string refused_dir = (fs::path(a->out) / "refused").string();
+    if (a->keep_refused) {
+      if (fs::exists(refused_dir))
+        throw InputError(a->out, "--keep-refused", "a folder without refused/ (from an earlier run)",
+                         "'" + refused_dir + "'");
+      options.keep_refused = refused_dir;
+    }
     const generate::GenerateReport report =
         generate::generate_dataset(config, cfg::to_yaml(cfg::to_node(config)), options);
-    if (report.written == 0)
+    if (report.written == 0) {
+      // A refused scene does not use up --out: its data/ (made by this
+      // run) goes, so the same command can run again.
+      std::error_code ec;
+      fs::remove_all(options.out, ec);
+      std::string kept;
+      if (a->keep_refused && fs::exists(refused_dir)) {
+        for (const auto& e : fs::directory_iterator(refused_dir))
+          if (e.path().extension() == ".h5") {
+            const std::string id = e.path().stem().string();
+            const data::Dataset refused = data::Dataset::open(e.path().string());
+            const auto files = data::export_sequence(refused, id, data::ExportFormat::Glb, 0, -1,
+                                                     (fs::path(refused_dir) / "glb").string(), a->glb_chunk);
+            kept = "; its frames up to the one that broke a rule are in " + e.path().string() + " (" +
+                   (fs::path(refused_dir) / (id + ".refused.yaml")).string() + " says what broke; " + files.front() +
+                   " to look at)";
+          }
+      }
       throw InputError::message(
           a->config, "",
           "the scene was refused: " +
-              (report.skip_reasons.empty() ? std::string("no reason given") : report.skip_reasons.front()));
+              (report.skip_reasons.empty() ? std::string("no reason given") : report.skip_reasons.front()) + kept +
+              (a->keep_refused ? std::string() : " (--keep-refused keeps its frames to look at)"));
+    }
     std::printf("%s: one scene simulated\n", options.out.c_str());
     const data::Dataset simulated = data::Dataset::open(options.out);
     const std::string id = simulated.ids().front();

@@ -12,6 +12,7 @@
 #include "layers/generate/generator.h"
 #include "layers/generate/imported_garment.h"
 #include "layers/generate/shard.h"
+#include "output_folder.h"
 #include "verbs.h"
 
 namespace layers::app {
@@ -19,7 +20,7 @@ namespace layers::app {
 VerbRun register_generate(CLI::App& app, const Global&) {
   auto* cmd = app.add_subcommand("generate", "Generate a LAYERS dataset (simulated garments on moving bodies)");
   struct Args {
-    std::string config, out, shard = "0/1";
+    std::string config, out, shard = "0/1", keep_refused;
     std::vector<std::string> sets;
     int threads = 1;
     bool quiet = false, print_config = false, finalize = false, no_finalize = false;
@@ -46,6 +47,9 @@ VerbRun register_generate(CLI::App& app, const Global&) {
       ->excludes(threads)
       ->excludes(no_finalize);
   cmd->add_flag("--quiet", a->quiet, "no progress line");
+  cmd->add_option("--keep-refused", a->keep_refused,
+                  "folder for refused scenes: <id>.h5 (their recorded frames, up to the one that broke a rule) and "
+                  "<id>.refused.yaml (what broke); never replaces a file");
   cmd->add_flag("--print-config", a->print_config, "print the resolved config (it is always saved as generator.yaml)");
   return [a]() {
     // The file holds the generator config at its top level.
@@ -70,6 +74,12 @@ VerbRun register_generate(CLI::App& app, const Global&) {
     options.shard_count = choice.count;
     options.threads = a->threads;
     options.progress = !a->quiet;
+    if (!a->keep_refused.empty()) {
+      if (same_or_inside(a->keep_refused, options.out) || same_or_inside(options.out, a->keep_refused))
+        throw InputError("layers generate", "--keep-refused", "a folder apart from the dataset folder --out",
+                         "'" + a->keep_refused + "'");
+      options.keep_refused = a->keep_refused;
+    }
     options.finalize = !a->no_finalize;
     const std::string shard_text = std::to_string(choice.index) + "/" + std::to_string(choice.count);
     if (choice.source != "--shard") spdlog::info("--shard {}: shard {} from {}", a->shard, shard_text, choice.source);

@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "coarse_scene.h"
+#include "file_bytes.h"
 #include "layers/data/dataset.h"
 #include "layers/data/obj.h"
 #include "run_command.h"
@@ -50,6 +51,37 @@ TEST(CliOwnGarment, TposeThenAnimateTheGarmentFiles) {
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("a folder holding data/ from an earlier run"), std::string::npos) << r.output;
   EXPECT_TRUE(fs::exists(dir.file("anim/glb/seq-000000.glb")));
+}
+
+// Issue 63 item 4: a refused scene leaves something to look at with
+// --keep-refused (its frames as a shard, what broke, a GLB), and a refused
+// animate does not use up its --out folder.
+TEST(CliOwnGarment, ARefusedSceneIsKeptToLookAtAndDoesNotUseUpOut) {
+  test::TempDir dir("own-garment");
+  const std::string refuse =
+      test::coarse_scene_settings("[{inner: [dress], outer: jacket}]") + " --set sim.validation.max_stretch=0";
+  const std::string out = dir.file("anim");
+  auto r = run_command(test::layers_bin() + " animate" + refuse + " --out " + out + " --keep-refused");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("the scene was refused: seq-000000"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("are in " + out + "/refused/seq-000000.h5"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out + "/data")) << "a refused run's data/ does not stay";
+  EXPECT_TRUE(fs::exists(out + "/refused/glb/seq-000000.glb"));
+  const data::Dataset kept = data::Dataset::open(out + "/refused/seq-000000.h5");
+  ASSERT_EQ(kept.ids(), std::vector<std::string>{"seq-000000"});
+  EXPECT_EQ(kept.info("seq-000000").n_frames, 3) << "every recorded frame (no clean windows here)";
+  const std::string about = test::read_bytes(out + "/refused/seq-000000.refused.yaml");
+  EXPECT_NE(about.find("rule: stretch"), std::string::npos) << about;
+  EXPECT_NE(about.find("maximum edge stretch"), std::string::npos) << about;
+  // The same command again: the same refusal, not "a folder holding data/";
+  // with --keep-refused again, refused/ is not replaced.
+  r = run_command(test::layers_bin() + " animate" + refuse + " --out " + out);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("the scene was refused"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("(--keep-refused keeps its frames to look at)"), std::string::npos) << r.output;
+  r = run_command(test::layers_bin() + " animate" + refuse + " --out " + out + " --keep-refused");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("--keep-refused: expected a folder without refused/"), std::string::npos) << r.output;
 }
 
 TEST(CliOwnGarment, BadFilesAreOneLineAndChangedFilesAreNotResumed) {

@@ -235,6 +235,27 @@ FinalizeReport finalize(const Layout& layout, const std::string& config_yaml) {
   return report;
 }
 
+// A refused scene to look at (GenerateOptions::keep_refused). Never
+// replaces a file: a name already there is refused.
+void write_refused(const std::string& folder, const SceneSpec& spec, const SceneResult& result) {
+  fs::create_directories(folder);
+  const fs::path shard = fs::path(folder) / (spec.id + ".h5");
+  const fs::path about = fs::path(folder) / (spec.id + ".refused.yaml");
+  if (fs::exists(shard) || fs::exists(about))
+    throw InputError(folder, "--keep-refused", "a folder without this scene's files", "'" + shard.string() + "'");
+  data::write_shard(shard.string(), {result.sequence});
+  std::string text = "scene: " + spec.id + "\nmotion: \"" + spec.motion +
+                     "\"\nrule: " + (result.rule.empty() ? std::string("none") : result.rule) +
+                     "\nfirst_broken_frame: " + std::to_string(result.cut_frame) +
+                     "\nframes_kept: " + std::to_string(result.sequence.wind.strength.size()) + "\nviolations:\n";
+  for (const std::string& v : result.violations) {
+    std::string quoted;
+    for (char c : v) quoted += c == '"' ? std::string("\\\"") : std::string(1, c);
+    text += "  - \"" + quoted + "\"\n";
+  }
+  write_text_atomic(about.string(), text);
+}
+
 }  // namespace
 
 void check_output_folder(const std::string& out) {
@@ -273,9 +294,11 @@ GenerateReport generate_dataset(const GeneratorConfig& config, const std::string
   // Scenes on `threads` threads; a failure stops new scenes and is rethrown.
   parallel_indices(todo.size(), options.threads, [&](std::size_t k) {
     const SceneSpec spec = sample_scene(config, todo[k]);
-    SceneResult result = simulate_scene(config, spec);
+    SceneResult result = simulate_scene(config, spec, {}, !options.keep_refused.empty());
     std::string reasons;
     for (const auto& v : result.violations) reasons += (reasons.empty() ? "" : "; ") + v;
+    if (!result.ok && !options.keep_refused.empty() && !result.sequence.garments.empty())
+      write_refused(options.keep_refused, spec, result);
     // The outcome first: a scene counts as done once its part or marker exists.
     if (config.window_min_frames > 0) write_outcome(layout, spec.id, result);
     if (result.ok)

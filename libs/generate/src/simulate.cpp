@@ -268,7 +268,8 @@ double thread_cpu_seconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-SceneResult simulate_scene(const GeneratorConfig& config, const SceneSpec& spec, const FrameObserver& observer) {
+SceneResult simulate_scene(const GeneratorConfig& config, const SceneSpec& spec, const FrameObserver& observer,
+                           bool keep_refused) {
   Timer timer;
   const double cpu_start = thread_cpu_seconds();
   SceneResult result;
@@ -303,24 +304,7 @@ SceneResult simulate_scene(const GeneratorConfig& config, const SceneSpec& spec,
   const sim::ValidationConfig& limits = config.sim.validation;
   std::vector<sim::Violation> broken;  // clean windows: the rules the cut frame broke
   int recorded = 0;
-  for (int r = 0; r < record; ++r) {
-    scene.record(r);
-    recorded = r + 1;
-    const sim::FrameMeasures m = sim::measure_frame(solver);
-    if (config.window_min_frames > 0) {
-      broken = sim::frame_violations(m, limits);
-      if (!broken.empty()) {
-        // The rest of the scene is discarded: frames 0..r-1 are the window.
-        result.cut_frame = r;
-        if (observer) observer("record", r, solver);
-        break;
-      }
-    }
-    measures.add(m);
-    if (trace)
-      spdlog::trace("{} record {}: H-crossing {:.3f}%, L-crossing {:.3f}%, stretch {:.3f}", spec.id, r,
-                    100 * m.h_crossing, 100 * m.l_crossing, m.max_stretch);
-    if (observer) observer("record", r, solver);
+  const auto keep_frame = [&](int r) {
     for (std::size_t k = 0; k < garments.size(); ++k) {
       geometry::Points p = solver.cloth(static_cast<int>(k)).positions();
       std::copy(p.data(), p.data() + p.size(),
@@ -330,6 +314,28 @@ SceneResult simulate_scene(const GeneratorConfig& config, const SceneSpec& spec,
     const Eigen::Vector4d q = wind.rotation();
     for (int c = 0; c < 4; ++c) seq.wind.rotation[static_cast<std::size_t>(r) * 4 + c] = static_cast<float>(q[c]);
     seq.wind.strength[r] = static_cast<float>(wind.strength);
+  };
+  for (int r = 0; r < record; ++r) {
+    scene.record(r);
+    recorded = r + 1;
+    const sim::FrameMeasures m = sim::measure_frame(solver);
+    if (config.window_min_frames > 0) {
+      broken = sim::frame_violations(m, limits);
+      if (!broken.empty()) {
+        // The rest of the scene is discarded: frames 0..r-1 are the window
+        // (frame r too when a refused scene is kept to be looked at).
+        result.cut_frame = r;
+        if (keep_refused) keep_frame(r);
+        if (observer) observer("record", r, solver);
+        break;
+      }
+    }
+    measures.add(m);
+    if (trace)
+      spdlog::trace("{} record {}: H-crossing {:.3f}%, L-crossing {:.3f}%, stretch {:.3f}", spec.id, r,
+                    100 * m.h_crossing, 100 * m.l_crossing, m.max_stretch);
+    if (observer) observer("record", r, solver);
+    keep_frame(r);
   }
   result.simulated_frames = scene.warm_up_frames() + recorded;
   result.recorded_frames = recorded;
@@ -372,18 +378,20 @@ SceneResult simulate_scene(const GeneratorConfig& config, const SceneSpec& spec,
       solver.timings().cap_unfinished, 1e3 * solver.timings().collision_pass / std::max(1L, solver.timings().frames),
       solver.timings().pass_pairs, solver.timings().pass_zoned, solver.timings().pass_reverted,
       solver.timings().pass_yielded);
-  if (!result.ok) return result;
+  if (!result.ok && !keep_refused) return result;
 
-  if (kept < record) {
-    for (auto& g : garments) g.positions.resize(static_cast<std::size_t>(kept) * g.rest.size());
-    seq.wind.rotation.resize(static_cast<std::size_t>(kept) * 4);
-    seq.wind.strength.resize(static_cast<std::size_t>(kept));
+  // A refused scene kept to be looked at: every frame recorded.
+  const int stored = result.ok ? kept : recorded;
+  if (stored < record) {
+    for (auto& g : garments) g.positions.resize(static_cast<std::size_t>(stored) * g.rest.size());
+    seq.wind.rotation.resize(static_cast<std::size_t>(stored) * 4);
+    seq.wind.strength.resize(static_cast<std::size_t>(stored));
   }
-  result.stored_frames = kept;
+  if (result.ok) result.stored_frames = kept;
   seq.id = spec.id;
   seq.seed = spec.seed;
   seq.tags = spec.tags;
-  fill_body(seq, scene.body(), config.body.transition_frames, kept, scene.placement());
+  fill_body(seq, scene.body(), config.body.transition_frames, stored, scene.placement());
   seq.motion = scene.body().sequence.motion;
   seq.garments = std::move(garments);
   return result;

@@ -32,6 +32,11 @@ struct GenerateOptions {
   int threads = 1;      // scenes simulated in parallel
   bool progress = true;
   bool finalize = true;  // finalize_dataset() at the end (when every shard exists)
+  // A folder for refused scenes (empty: none kept): each as <id>.h5, a
+  // shard of its recorded frames up to and including the one that broke a
+  // rule (`layers export <folder>/<id>.h5 <id> --format glb`), and
+  // <id>.refused.yaml: the rules broken, the frame, the motion.
+  std::string keep_refused;
 };
 
 struct GenerateReport {

@@ -104,7 +104,10 @@ class SceneSimulation {
 double thread_cpu_seconds();
 
 // Never writes anything; a scene over its thresholds comes back with
-// ok = false and the reasons.
-SceneResult simulate_scene(const GeneratorConfig& config, const SceneSpec& spec, const FrameObserver& observer = {});
+// ok = false and the reasons. With `keep_refused`, a refused scene's
+// `sequence` holds its recorded frames too (up to and including the frame
+// that broke a rule, or every frame), to be looked at.
+SceneResult simulate_scene(const GeneratorConfig& config, const SceneSpec& spec, const FrameObserver& observer = {},
+                           bool keep_refused = false);
 
 }  // namespace layers::generate
