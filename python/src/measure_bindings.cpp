@@ -70,7 +70,11 @@ void bind_measures(py::module_& m) {
   m.def(
       "error_mm",
       [](const Floats& predicted, const Floats& truth) {
-        return metrics::euclidean_error_mm(points(predicted, "predicted"), points(truth, "truth"));
+        const geometry::Points p = points(predicted, "predicted"), t = points(truth, "truth");
+        if (p.rows() != t.rows())
+          throw InputError("predicted", "shape", std::to_string(t.rows()) + " vertices as truth",
+                           std::to_string(p.rows()));
+        return metrics::euclidean_error_mm(p, t);
       },
       "mean over vertices of |predicted - truth|, in mm (the evaluation's error)", py::arg("predicted"),
       py::arg("truth"));

@@ -186,7 +186,8 @@ def test_wrong_input_is_the_cpp_line(fixture, tmp_path):
     assert str(tmp_path / "none") in str(e.value) and e.value.file
     with pytest.raises(layers.InputError, match=r"\[V,3\]"):
         layers.error_mm(np.zeros((4, 2), np.float32), np.zeros((4, 2), np.float32))
-    with pytest.raises(layers.Error):
+    # Issue 63: arrays of different vertex counts are a bad input too.
+    with pytest.raises(layers.InputError, match="predicted: shape: expected 5 vertices as truth, got 4"):
         layers.error_mm(np.zeros((4, 3), np.float32), np.zeros((5, 3), np.float32))
 
 
