@@ -244,6 +244,85 @@ void check_stl(const std::string& path, std::uint64_t size) {
                      std::to_string(facets));
 }
 
+// An integer field of `o` (`fallback` when absent); InputError naming
+// `where` when present and not an integer in [lo, hi].
+std::int64_t gltf_int(const std::string& path, const nlohmann::json& o, const char* key, const std::string& where,
+                      std::int64_t lo, std::int64_t hi, std::int64_t fallback) {
+  if (!o.is_object() || !o.contains(key)) return fallback;
+  const nlohmann::json& v = o.at(key);
+  if (!v.is_number_integer() || v.get<std::int64_t>() < lo || v.get<std::int64_t>() > hi)
+    throw InputError(path, where + "." + key, "an integer from " + std::to_string(lo) + " to " + std::to_string(hi),
+                     v.dump().substr(0, 40));
+  return v.get<std::int64_t>();
+}
+
+// The buffer views and accessors, as the glTF 2.0 specification bounds
+// them, before assimp reads them: assimp 5.2 divided by an accessor's
+// count of 0 (SIGFPE; the importer fuzzer, a mutated GLB) and reads a view
+// past its buffer unchecked.
+void check_gltf_accessors(const std::string& path, const nlohmann::json& doc) {
+  constexpr std::int64_t kBig = std::int64_t{1} << 40;
+  const auto array = [&](const char* key) {
+    if (!doc.contains(key)) return nlohmann::json::array();
+    if (!doc.at(key).is_array()) throw InputError(path, key, "an array", doc.at(key).type_name());
+    return doc.at(key);
+  };
+  const nlohmann::json buffers = array("buffers"), views = array("bufferViews"), accessors = array("accessors");
+  std::vector<std::int64_t> buffer_length;
+  for (std::size_t b = 0; b < buffers.size(); ++b)
+    buffer_length.push_back(gltf_int(path, buffers[b], "byteLength", "buffers[" + std::to_string(b) + "]", 1, kBig, 0));
+  struct View {
+    std::int64_t length, stride;
+  };
+  std::vector<View> view_of;
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    const std::string where = "bufferViews[" + std::to_string(v) + "]";
+    const std::int64_t buffer =
+        gltf_int(path, views[v], "buffer", where, 0, static_cast<std::int64_t>(buffers.size()) - 1, -1);
+    if (buffer < 0) throw InputError(path, where + ".buffer", "a buffer index", "none");
+    const std::int64_t offset = gltf_int(path, views[v], "byteOffset", where, 0, kBig, 0);
+    const std::int64_t length = gltf_int(path, views[v], "byteLength", where, 1, kBig, 0);
+    if (length < 1) throw InputError(path, where + ".byteLength", "a length of 1 or more", "none");
+    if (buffer_length[static_cast<std::size_t>(buffer)] > 0 &&
+        offset + length > buffer_length[static_cast<std::size_t>(buffer)])
+      throw InputError(
+          path, where,
+          "a view within its buffer of " + std::to_string(buffer_length[static_cast<std::size_t>(buffer)]) + " bytes",
+          "bytes " + std::to_string(offset) + " to " + std::to_string(offset + length));
+    view_of.push_back({length, gltf_int(path, views[v], "byteStride", where, 4, 252, 0)});
+  }
+  static const std::map<std::int64_t, std::int64_t> component = {{5120, 1}, {5121, 1}, {5122, 2},
+                                                                 {5123, 2}, {5125, 4}, {5126, 4}};
+  static const std::map<std::string, std::int64_t> components = {{"SCALAR", 1}, {"VEC2", 2}, {"VEC3", 3}, {"VEC4", 4},
+                                                                 {"MAT2", 4},   {"MAT3", 9}, {"MAT4", 16}};
+  for (std::size_t a = 0; a < accessors.size(); ++a) {
+    const nlohmann::json& acc = accessors[a];
+    const std::string where = "accessors[" + std::to_string(a) + "]";
+    const std::int64_t count = gltf_int(path, acc, "count", where, 1, kBig, 0);
+    if (count < 1) throw InputError(path, where + ".count", "a count of 1 or more", "none");
+    const std::int64_t type = gltf_int(path, acc, "componentType", where, 0, 1 << 20, 0);
+    const std::string kind = acc.is_object() && acc.contains("type") && acc.at("type").is_string()
+                                 ? acc.at("type").get<std::string>()
+                                 : std::string();
+    if (!component.count(type))
+      throw InputError(path, where + ".componentType", "5120, 5121, 5122, 5123, 5125 or 5126", std::to_string(type));
+    if (!components.count(kind))
+      throw InputError(path, where + ".type", "SCALAR, VEC2, VEC3, VEC4, MAT2, MAT3 or MAT4", "'" + kind + "'");
+    const std::int64_t view =
+        gltf_int(path, acc, "bufferView", where, 0, static_cast<std::int64_t>(views.size()) - 1, -1);
+    if (view < 0) continue;  // all zeros (or sparse), nothing read
+    const std::int64_t element = component.at(type) * components.at(kind);
+    const View& v = view_of[static_cast<std::size_t>(view)];
+    const std::int64_t offset = gltf_int(path, acc, "byteOffset", where, 0, kBig, 0);
+    const std::int64_t stride = v.stride > 0 ? v.stride : element;
+    if (offset + stride * (count - 1) + element > v.length)
+      throw InputError(path, where,
+                       "its " + std::to_string(count) + " elements within bufferViews[" + std::to_string(view) + "] (" +
+                           std::to_string(v.length) + " bytes)",
+                       std::to_string(offset + stride * (count - 1) + element) + " bytes");
+  }
+}
+
 // A glTF's JSON must parse (assimp says only "No suitable reader found"
 // when it does not); a GLB's header and JSON chunk must lie in the file.
 void check_gltf(const std::string& path, std::uint64_t size, bool binary) {
@@ -273,12 +352,14 @@ void check_gltf(const std::string& path, std::uint64_t size, bool binary) {
     all << in.rdbuf();
     json_text = all.str();
   }
+  nlohmann::json doc;
   try {
-    const nlohmann::json doc = nlohmann::json::parse(json_text);
-    if (!doc.is_object()) throw InputError(path, binary ? "GLB JSON chunk" : "JSON", "a JSON object", doc.type_name());
+    doc = nlohmann::json::parse(json_text);
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(path, binary ? "GLB JSON chunk" : "JSON", "valid JSON", e.what());
   }
+  if (!doc.is_object()) throw InputError(path, binary ? "GLB JSON chunk" : "JSON", "a JSON object", doc.type_name());
+  check_gltf_accessors(path, doc);
 }
 
 }  // namespace

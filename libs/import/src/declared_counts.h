@@ -1,5 +1,6 @@
 // declared_counts.h (internal) -- what a file says it holds, checked
-// before assimp reads it: a glTF's JSON and a GLB's header and chunk, a
+// before assimp reads it: a glTF's JSON, a GLB's header and chunk, the
+// buffer views and accessors within their buffers (counts of 1 or more), a
 // PLY whole (header, rows, list counts, face indices: assimp 5.2 crashed
 // on damaged ones), and counts against the file's size. A PLY header's element
 // counts and a binary STL's facet count are read and each element given
