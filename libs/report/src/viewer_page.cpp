@@ -18,7 +18,7 @@ const std::string& viewer_page() {
   #slider { flex: 1; }
   #stage { position: relative; height: 62vh; }
   #stage canvas { display: block; }
-  .label { position: absolute; transform: translate(-50%, 0); font-weight: bold; pointer-events: none; }
+  .label { position: absolute; transform: translate(-50%, 0); font-weight: bold; pointer-events: none; white-space: nowrap; }
   table { border-collapse: collapse; margin: 8px 12px; background: #fff; }
   th, td { border: 1px solid #ccc; padding: 3px 8px; text-align: right; }
   th:first-child, td:first-child { text-align: left; }
