@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "layers/core/atomic_file.h"
+#include "layers/core/config_node.h"
 #include "layers/core/error.h"
 #include "layers/core/parallel.h"
 #include "layers/core/progress.h"
@@ -244,15 +245,28 @@ void write_refused(const std::string& folder, const SceneSpec& spec, const Scene
   if (fs::exists(shard) || fs::exists(about))
     throw InputError(folder, "--keep-refused", "a folder without this scene's files", "'" + shard.string() + "'");
   data::write_shard(shard.string(), {result.sequence});
-  std::string text = "scene: " + spec.id + "\nmotion: \"" + spec.motion +
-                     "\"\nrule: " + (result.rule.empty() ? std::string("none") : result.rule) +
-                     "\nfirst_broken_frame: " + std::to_string(result.cut_frame) +
-                     "\nframes_kept: " + std::to_string(result.sequence.wind.strength.size()) + "\nviolations:\n";
+  // Written with the config tree's emitter (quoting is its job).
+  cfg::Node about_node;
+  about_node.kind = cfg::Node::Kind::Map;
+  const auto scalar = [&](const std::string& key, const std::string& value) {
+    cfg::Node& n = about_node.child(key);
+    n.kind = cfg::Node::Kind::Scalar;
+    n.scalar = value;
+  };
+  scalar("scene", spec.id);
+  scalar("motion", spec.motion);
+  scalar("rule", result.rule.empty() ? std::string("none") : result.rule);
+  scalar("first_broken_frame", std::to_string(result.cut_frame));
+  scalar("frames_kept", std::to_string(result.sequence.wind.strength.size()));
+  cfg::Node& violations = about_node.child("violations");
+  violations.kind = cfg::Node::Kind::Seq;
   for (const std::string& v : result.violations) {
-    std::string quoted;
-    for (char c : v) quoted += c == '"' ? std::string("\\\"") : std::string(1, c);
-    text += "  - \"" + quoted + "\"\n";
+    cfg::Node item;
+    item.kind = cfg::Node::Kind::Scalar;
+    item.scalar = v;
+    violations.seq.push_back(item);
   }
+  const std::string text = cfg::to_yaml(about_node);
   write_text_atomic(about.string(), text);
 }
 
