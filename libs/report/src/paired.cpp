@@ -1,6 +1,7 @@
 // Paired per-sequence comparisons of the report's rows (see paired.h).
 #include "layers/report/paired.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -78,6 +79,10 @@ double seed_variance(const Row& row, const std::vector<std::string>& ids) {
   return m.sd * m.sd;
 }
 
+// Satterthwaite's degrees of freedom as the t value is taken at: rounded
+// down, at least 1.
+double floored_df(double df) { return std::max(1.0, std::floor(df)); }
+
 // The interval with seed-to-seed variance: SE^2 = sd^2 / n + sum over the
 // learned sides of s_seed^2 / S, Satterthwaite's degrees of freedom.
 void add_seed_interval(const Row& row, const Row& other, const std::vector<std::string>& ids, PairedComparison& c) {
@@ -100,8 +105,7 @@ void add_seed_interval(const Row& row, const Row& other, const std::vector<std::
   c.seeds_se = std::sqrt(v);
   // All components zero (identical errors everywhere): the smallest df.
   c.seeds_df = denominator > 0 ? v * v / denominator : 1.0;
-  const auto df = static_cast<std::size_t>(std::max(1.0, std::floor(c.seeds_df)));
-  c.seeds_half_width = t_critical_95(df) * c.seeds_se;
+  c.seeds_half_width = t_critical_95(static_cast<std::size_t>(floored_df(c.seeds_df))) * c.seeds_se;
 }
 
 PairedComparison compare(const Row& row, const Row& other, const std::string& why) {
@@ -133,8 +137,7 @@ PairedComparison compare(const Row& row, const Row& other, const std::string& wh
   // value was taken at.
   const MeanInterval& d = c.difference;
   if (c.with_seeds) {
-    c.p_value = c.seeds_se > 0 ? t_two_sided_p(d.mean / c.seeds_se, std::max(1.0, std::floor(c.seeds_df)))
-                               : (d.mean == 0 ? 1.0 : 0.0);
+    c.p_value = c.seeds_se > 0 ? t_two_sided_p(d.mean / c.seeds_se, floored_df(c.seeds_df)) : (d.mean == 0 ? 1.0 : 0.0);
   } else if (d.n >= 2) {
     const double se = d.sd / std::sqrt(static_cast<double>(d.n));
     c.p_value = se > 0 ? t_two_sided_p(d.mean / se, static_cast<double>(d.n - 1)) : (d.mean == 0 ? 1.0 : 0.0);
