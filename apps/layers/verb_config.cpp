@@ -54,8 +54,8 @@ VerbRun register_config(CLI::App& app, const Global&) {
         break;
       }
       case ConfigKind::Generator: {
-        const auto config = cfg::read<generate::GeneratorConfig>(tree);
-        generate::check(config, args->config.file);
+        // As the generator resolves it (motion folders expanded, garment files read).
+        const auto config = generate::load_generator_config(args->config.file, args->config.sets, false);
         text = cfg::to_yaml(cfg::to_node(config));
         break;
       }

@@ -1,7 +1,8 @@
 // `layers tpose --config C [--scene K] --out DIR`: a generator config's
 // scene in the T-pose its garments are fitted in, as OBJ files: body.obj
-// and one <garment>.obj per garment with its UVs, and the body as a rig
-// with the scene's motion, body.glb (generate/tpose.h). The reference a
+// and one <garment>.obj per garment with its UVs (none for a config whose
+// garments.outfits is empty), and the body as a rig with the scene's
+// motion, body.glb (generate/tpose.h). The reference a
 // user models an own garment around, and a rig to animate
 // (docs/own-data.md). Files already in DIR are never replaced.
 #include <cstdio>
@@ -37,7 +38,8 @@ VerbRun register_tpose(CLI::App& app, const Global&) {
   cmd->add_option("--out", a->out, "output folder")->required();
   return [a]() {
     namespace fs = std::filesystem;
-    const generate::GeneratorConfig config = generate::load_generator_config(a->config, a->sets);
+    // An empty outfit list is a body alone: body.obj and body.glb only.
+    const generate::GeneratorConfig config = generate::load_generator_config(a->config, a->sets, false);
     if (a->scene >= config.sequences)
       throw InputError(a->config, "--scene", "a scene index below sequences (" + std::to_string(config.sequences) + ")",
                        std::to_string(a->scene));

@@ -4,24 +4,31 @@
 // deleted) with --force; the model is checked before the folder is touched.
 // Data-parallel when the environment names ranks (dist_join.h, `layers
 // launch`): every rank checks the same things, rank 0 alone touches the
-// folder and prints.
+// folder and prints. Otherwise it may start its own ranks (run.ranks),
+// which share each batch.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include <spdlog/spdlog.h>
 
 #include "config_loading.h"
 #include "dist_join.h"
 #include "layers/core/atomic_file.h"
 #include "layers/core/error.h"
 #include "layers/data/run_layout.h"
+#include "layers/dist/env.h"
 #include "layers/train/trainer.h"
 #include "layers/zoo/model_config.h"
 #include "output_folder.h"
 #include "plugins.h"
+#include "rank_launch.h"
 #include "verbs.h"
 
 namespace layers::app {
@@ -43,9 +50,45 @@ std::vector<std::string> run_results_in(const fs::path& dir) {
   return found;
 }
 
+// Set in the ranks `layers train` starts for itself: how many share the
+// experiment's batch.
+constexpr const char* kSharedBatch = "LAYERS_SHARED_BATCH";
+
+// The ranks this command starts for itself (run.ranks), 0 when it runs as
+// it is: the environment already names ranks (layers launch, torchrun,
+// srun), it is one of them, or one process is asked for.
+int own_ranks(const train::ExperimentConfig& c, const std::string& file) {
+  if (dist::read_env() || std::getenv(kSharedBatch)) return 0;
+  const int batch = c.train.batch_size;
+  if (c.run.ranks == 0) {
+    if (c.run.threads < 2) return 0;
+    if (batch % c.run.threads == 0) return c.run.threads;
+    spdlog::info("one process with {} threads: train.batch_size {} is not shared evenly by {} ranks (run.ranks)",
+                 c.run.threads, batch, c.run.threads);
+    return 0;
+  }
+  if (c.run.ranks > 1 && batch % c.run.ranks != 0)
+    throw InputError(file, "run.ranks",
+                     "a number of ranks that shares train.batch_size (" + std::to_string(batch) + ") evenly",
+                     std::to_string(c.run.ranks));
+  return c.run.ranks > 1 ? c.run.ranks : 0;
+}
+
+// In a rank started by own_ranks(): its share of the batch, one thread.
+void take_share(train::ExperimentConfig& c) {
+  const char* shared = std::getenv(kSharedBatch);
+  if (!shared) return;
+  const std::optional<dist::DistEnv> env = dist::read_env();
+  if (!env || std::to_string(env->world_size) != shared)
+    throw InputError("environment", kSharedBatch, "the world size of the ranks `layers train` started",
+                     std::string("'") + shared + "'");
+  c.train.batch_size /= env->world_size;
+  c.run.threads = 1;
+}
+
 }  // namespace
 
-VerbRun register_train(CLI::App& app, const Global&) {
+VerbRun register_train(CLI::App& app, const Global& global) {
   auto* cmd = app.add_subcommand("train", "Train the model of an experiment config (configs/experiments/*.yaml)");
   struct Args {
     ConfigArgs config;
@@ -59,8 +102,9 @@ VerbRun register_train(CLI::App& app, const Global&) {
                 "<run.output>.replaced-<time>, never deleted")
       ->excludes(resume);
   cmd->add_flag("--quiet", a->quiet, "no progress line");
-  return [a]() {
+  return [a, &global]() {
     LoadedConfig loaded = load_config(a->config);
+    take_share(loaded.typed);
     // Everything that can be checked before the run folder is touched: a
     // failing command leaves it as it was.
     train::check_selection(loaded.typed);
@@ -70,6 +114,22 @@ VerbRun register_train(CLI::App& app, const Global&) {
       if (!loaded.typed.data.dataset.empty() && !fs::exists(loaded.typed.data.dataset, ec))
         throw InputError(a->config.file, "data.dataset", "a dataset folder (made by `layers generate`) or shard file",
                          "'" + loaded.typed.data.dataset + "' (no such folder or file)");
+    }
+    if (const int ranks = own_ranks(loaded.typed, a->config.file)) {
+      // The same command as `ranks` processes of one thread, each taking
+      // its share of every batch: the steps of one process (the windows
+      // cut to a multiple of the ranks).
+      RankLaunch launch;
+      launch.ranks = ranks;
+      launch.args = {"--log-level", global.log_level, "train", a->config.file};
+      for (const std::string& s : a->config.sets) launch.args.insert(launch.args.end(), {"--set", s});
+      if (a->resume) launch.args.push_back("--resume");
+      if (a->force) launch.args.push_back("--force");
+      if (a->quiet) launch.args.push_back("--quiet");
+      launch.env = {{kSharedBatch, std::to_string(ranks)}};
+      spdlog::info("training as {} ranks of one thread each, {} windows of every batch each (run.ranks)", ranks,
+                   loaded.typed.train.batch_size / ranks);
+      return launch_ranks(launch, "train");
     }
     const std::unique_ptr<dist::Group> group = join_group(loaded.typed);
     const bool root = !group || group->is_root();

@@ -1,12 +1,14 @@
 // `layers launch` and the distributed environment end to end: 2 ranks
 // train the test plugin's model on the regression fixture, one process
-// resumes the run, 2 ranks evaluate it; exit codes are forwarded; bad
+// resumes the run, 2 ranks evaluate it; `layers train` starts its own
+// ranks (run.ranks); exit codes are forwarded; bad
 // distributed variables and a missing rank are one line each, exit 1.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <filesystem>
 
+#include "layers/core/text_file.h"
 #include "run_command.h"
 #include "synthetic_fixture.h"
 #include "temp_dir.h"
@@ -71,6 +73,47 @@ TEST_F(CliLaunch, TwoRanksTrainOneResumesTwoEvaluate) {
   ASSERT_EQ(evaluated.exit_code, 0) << evaluated.output;
   EXPECT_EQ(count(evaluated.output, "overall"), 1) << evaluated.output;
   EXPECT_TRUE(fs::exists(run + "/eval-test/metrics.json"));
+}
+
+// run.threads 2 with run.ranks at auto: `layers train` starts two ranks of
+// one thread that share each batch, so it makes the steps one process
+// makes (same count, the same validation error), and records the
+// experiment as given. A number of ranks that does not share the batch is
+// one line; threads that do not share it leave one process.
+TEST_F(CliLaunch, TrainStartsItsOwnRanksThatShareTheBatch) {
+  const std::string two = dir.file("two"), one = dir.file("one");
+  auto ranked =
+      run_command(layers_cmd() + " train " + experiment + " --quiet --set run.threads=2 --set run.output=" + two);
+  ASSERT_EQ(ranked.exit_code, 0) << ranked.output;
+  EXPECT_EQ(count(ranked.output, "trained 1 epochs (4 steps)"), 1) << ranked.output;
+  EXPECT_NE(ranked.output.find(" on 2 ranks, "), std::string::npos) << ranked.output;
+  auto single = run_command(layers_cmd() + " train " + experiment +
+                            " --quiet --set run.threads=2 --set run.ranks=1 --set run.output=" + one);
+  ASSERT_EQ(single.exit_code, 0) << single.output;
+  EXPECT_NE(single.output.find("trained 1 epochs (4 steps)"), std::string::npos) << single.output;
+  EXPECT_EQ(single.output.find(" ranks, "), std::string::npos) << single.output;
+  const auto val_error = [](const std::string& text) {
+    const std::size_t at = text.find("val error ");
+    return at == std::string::npos ? std::string("none") : text.substr(at, text.find(" mm", at) - at);
+  };
+  EXPECT_EQ(val_error(ranked.output), val_error(single.output)) << ranked.output << single.output;
+  const std::string recorded = read_text_file(two + "/experiment.yaml");
+  EXPECT_NE(recorded.find("batch_size: 2"), std::string::npos) << recorded;
+  EXPECT_NE(recorded.find("threads: 2"), std::string::npos) << recorded;
+
+  auto uneven = run_command(layers_cmd() + " train " + experiment +
+                            " --quiet --set run.ranks=3 --set run.output=" + dir.file("three"));
+  EXPECT_EQ(uneven.exit_code, 1) << uneven.output;
+  EXPECT_NE(from_error(uneven.output)
+                .find("run.ranks: expected a number of ranks that shares train.batch_size (2) evenly, got 3"),
+            std::string::npos)
+      << uneven.output;
+  EXPECT_FALSE(fs::exists(dir.file("three")));
+  auto odd = run_command(layers_cmd() + " train " + experiment +
+                         " --quiet --set run.threads=3 --set run.output=" + dir.file("odd"));
+  ASSERT_EQ(odd.exit_code, 0) << odd.output;
+  EXPECT_EQ(odd.output.find(" ranks, "), std::string::npos) << odd.output;
+  EXPECT_NE(odd.output.find("not shared evenly by 3 ranks"), std::string::npos) << odd.output;
 }
 
 TEST_F(CliLaunch, ExitCodesAreForwarded) {

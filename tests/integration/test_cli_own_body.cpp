@@ -1,6 +1,7 @@
 // A user's own body and a trained model through the CLI: `layers tpose`
 // writes the scene's body as a rig (body.glb), which `layers animate`
-// reads back as body.own with the garment files tpose wrote; a template
+// reads back as body.own with the garment files tpose wrote; with no
+// outfit tpose writes that body alone, which animate refuses; a template
 // outfit or a body in centimetres on body.own is one line, exit 1; our
 // body's frames exported as a .pc2 drive a scene as a vertex cache; and
 // `layers animate --model` rolls a trained model (the `static` reference
@@ -9,6 +10,7 @@
 // model never saw.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -55,6 +57,28 @@ TEST(CliOwnBody, TheTposeRigIsABodyAndBadBodiesAreOneLine) {
   EXPECT_NE(r.output.find("body.glb: height: expected a body 0.5-2.5 m tall along y"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("terminate"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir.file("cm/data")));
+  // The body alone (no outfit): tpose writes its rest mesh to model
+  // garments around; animate refuses it in one line.
+  r = run_command(test::layers_bin() + " tpose" + test::coarse_scene_settings("[]") + own + " --out " +
+                  dir.file("rest"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::vector<std::string> written;
+  for (const auto& e : fs::directory_iterator(dir.file("rest"))) written.push_back(e.path().filename().string());
+  std::sort(written.begin(), written.end());
+  EXPECT_EQ(written, (std::vector<std::string>{"body.glb", "body.obj"}));
+  const auto vertex_lines = [](const std::string& path) {
+    std::ifstream in(path);
+    int n = 0;
+    for (std::string line; std::getline(in, line);) n += line.rfind("v ", 0) == 0;
+    return n;
+  };
+  EXPECT_GT(vertex_lines(dir.file("rest/body.obj")), 1000);
+  EXPECT_EQ(vertex_lines(dir.file("rest/body.obj")), vertex_lines(t + "/body.obj"));
+  r = run_command(test::layers_bin() + " animate" + test::coarse_scene_settings("[]") + own + " --out " +
+                  dir.file("bare"));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("garments.outfits: expected at least one outfit to simulate"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir.file("bare/data")));
 }
 
 TEST(CliOwnBody, AnimateWithAModelExportsItsPredictionAndNamesWhatItNeverSaw) {

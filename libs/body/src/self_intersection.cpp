@@ -165,16 +165,20 @@ FrameIntersection SelfIntersection::check(const geometry::Points& posed, const s
       if (b == 0 && (a == 1 || a == 2) && gap_vertex_[v])
         out.arm_gap[a - 1] = std::min(out.arm_gap[a - 1], std::max(offset, 0.0));
       if (a == 3 && b == 4 && gap_vertex_[v]) out.thigh_gap = std::min(out.thigh_gap, std::max(offset, 0.0));
-      if (offset >= 0.0) continue;
-      const double depth = -offset;
-      if (depth > options_.tolerance) ++out.vertices;
+      // The limb meets b at its root (limb/torso, thigh/thigh): the gap
+      // counts only beyond the share of the bone from the joint.
+      const bool beside = b == 0 || (a == 3 && b == 4);
+      const double required = options_.gap > 0.0 && (!beside || gap_vertex_[v]) ? options_.gap : -options_.tolerance;
+      const double shortfall = required - offset;
+      const double depth = std::max(-offset, 0.0);
+      if (shortfall > 0.0) ++out.vertices;
       out.depth = std::max(out.depth, depth);
+      out.shortfall = std::max(out.shortfall, shortfall);
       // Arms move for any contact; legs share leg/leg and leg/torso contact.
-      if (a == 1 || a == 2) {
-        out.limb_depth[limb(a)] = std::max(out.limb_depth[limb(a)], depth);
-      } else {
-        out.limb_depth[2] = std::max(out.limb_depth[2], depth);
-        out.limb_depth[3] = std::max(out.limb_depth[3], depth);
+      const bool arm = a == 1 || a == 2;
+      for (int l : {arm ? limb(a) : 2, arm ? limb(a) : 3}) {
+        out.limb_depth[l] = std::max(out.limb_depth[l], depth);
+        out.limb_shortfall[l] = std::max(out.limb_shortfall[l], shortfall);
       }
     }
   }

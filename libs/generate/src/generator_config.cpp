@@ -10,6 +10,7 @@
 #include "layers/generate/imported_garment.h"
 #include "layers/generate/own_body.h"
 #include "layers/import/garment_file.h"
+#include "layers/motion/motion.h"
 
 namespace layers::generate {
 namespace {
@@ -42,7 +43,8 @@ void check_holdouts(const GeneratorConfig& c, const std::string& file) {
     }
     std::size_t kept = 0;
     for (const auto& k : known) kept += std::find(held.begin(), held.end(), k) == held.end();
-    if (kept == 0) throw InputError(file, path, "at least one entry left for training", "all of them held out");
+    if (kept == 0 && !known.empty())
+      throw InputError(file, path, "at least one entry left for training", "all of them held out");
   };
   check_list(c.splits.unseen_motions, c.body.motions, "splits.unseen_motions");
   check_list(c.splits.unseen_outfits, labels, "splits.unseen_outfits");
@@ -91,7 +93,6 @@ void check(const GeneratorConfig& c, const std::string& file) {
   if (c.splits.val + c.splits.test >= 1.0)
     throw InputError(file, "splits", "val + test < 1 (the rest is train)",
                      std::to_string(c.splits.val + c.splits.test));
-  if (c.garments.outfits.empty()) throw InputError(file, "garments.outfits", "at least one outfit", "an empty list");
   double total = 0;
   std::string inner_types;
   for (const std::string& t : data::garment_types_of_layer(0)) inner_types += (inner_types.empty() ? "" : ", ") + t;
@@ -125,18 +126,42 @@ void check(const GeneratorConfig& c, const std::string& file) {
       throw InputError(file, path, "an outfit of templates only or of garment files only",
                        std::to_string(files) + " files among " + std::to_string(garments) + " garments");
   }
-  if (total <= 0) throw InputError(file, "garments.outfits", "at least one outfit with a positive weight", "all zero");
+  if (total <= 0 && !c.garments.outfits.empty())
+    throw InputError(file, "garments.outfits", "at least one outfit with a positive weight", "all zero");
   check_holdouts(c, file);
   check_own_body(c, file);
   garment::validate(c.garments.fit);
   sim::check(c.sim, "sim");
 }
 
-GeneratorConfig load_generator_config(const std::string& file, const std::vector<std::string>& sets) {
+void expand_motion_folders(GeneratorConfig& config, const std::string& file) {
+  if (config.body.own) return;  // an own body's entries are its animation or clips (own_body.h)
+  std::vector<std::string> expanded;
+  for (std::size_t i = 0; i < config.body.motions.size(); ++i) {
+    const std::string& m = config.body.motions[i];
+    std::vector<std::string> clips =
+        m.rfind("procedural:", 0) == 0
+            ? std::vector<std::string>{}
+            : motion::clip_folder_entries(m, file + ": body.motions[" + std::to_string(i) + "]");
+    if (clips.empty())
+      expanded.push_back(m);
+    else
+      expanded.insert(expanded.end(), clips.begin(), clips.end());
+  }
+  config.body.motions = std::move(expanded);
+}
+
+GeneratorConfig load_generator_config(const std::string& file, const std::vector<std::string>& sets, bool to_simulate) {
   cfg::Node tree = cfg::load_file(file);
   for (const std::string& s : sets) cfg::apply_set(tree, s);
   GeneratorConfig config = cfg::read<GeneratorConfig>(tree);
+  expand_motion_folders(config, file);
   check(config, file);
+  if (to_simulate && config.garments.outfits.empty())
+    throw InputError(file, "garments.outfits",
+                     "at least one outfit to simulate (an empty list is for `layers tpose`, which writes the body "
+                     "alone)",
+                     "an empty list");
   resolve_garment_files(config);
   resolve_own_body(config);
   return config;

@@ -266,6 +266,7 @@ motion::GeneratedBody own_body(const GeneratorConfig& config, const SceneSpec& s
   }
   motion::SequenceOptions o;
   o.intersection.tolerance = config.body.intersection_tolerance_mm / 1000.0;
+  o.intersection.gap = config.body.self_gap_mm / 1000.0;
   o.resolve = false;
   o.on_intersection = "keep";
   o.skin_untangle = config.body.skin_untangle.options();

@@ -129,9 +129,11 @@ SceneSpec sample_scene(const GeneratorConfig& config, int index) {
     s.motion = vary_motion(*config.body.variation, s.motion_entry, config.frames, s.seed, occurrence, config.seed);
   }
 
+  // No outfit (a config for the body alone, `layers tpose`): no garments.
   std::vector<double> weights;
   for (const auto& o : config.garments.outfits) weights.push_back(o.weight);
-  const OutfitConfig& outfit = config.garments.outfits.at(rng.pick(weights));
+  const OutfitConfig outfit =
+      config.garments.outfits.empty() ? OutfitConfig{{}, "none"} : config.garments.outfits.at(rng.pick(weights));
   const auto garment = [&](const std::string& entry, int layer) {
     const bool file = import::is_garment_file(entry);
     return GarmentSpec{file ? "imported" : entry, layer, sample_attributes(config.garments.attributes, rng),

@@ -52,6 +52,7 @@ motion::GeneratedBody make_body(const GeneratorConfig& config, const SceneSpec& 
   body.transition_frames = config.body.transition_frames;
   body.seed = spec.seed;
   body.intersection_tolerance_mm = config.body.intersection_tolerance_mm;
+  body.self_gap_mm = config.body.self_gap_mm;
   body.arm_room_mm = config.body.arm_room_mm;
   body.thigh_room_mm = config.body.thigh_room_mm;
   body.skin_untangle = config.body.skin_untangle;
@@ -171,6 +172,7 @@ SceneSimulation::SceneSimulation(const GeneratorConfig& config, const SceneSpec&
 }
 
 void SceneSimulation::add_garments() {
+  if (spec_.garments.empty()) return;  // the body alone (no outfit: `layers tpose`)
   const garment::TPoseBody t_pose = garment::t_pose_body(generated_.body);
   if (has_imported_garments(spec_)) {
     garments_ = imported_outfit(t_pose, spec_, config_.garments.fit.layer_reach);

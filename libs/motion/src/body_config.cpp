@@ -36,6 +36,7 @@ MotionSpec motion_spec(const BodyMotionConfig& config) {
 SequenceOptions sequence_options(const BodyMotionConfig& config) {
   SequenceOptions o;
   o.intersection.tolerance = config.intersection_tolerance_mm / 1000.0;
+  o.intersection.gap = config.self_gap_mm / 1000.0;
   o.arm_room = config.arm_room_mm / 1000.0;
   o.thigh_room = config.thigh_room_mm / 1000.0;
   o.skin_untangle = config.skin_untangle.options();

@@ -2,6 +2,7 @@
 #include "layers/motion/body_sequence.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -20,6 +21,27 @@ body::FrameIntersection check_pose(const body::Body& body, const body::SelfInter
   return si.check(v);
 }
 
+// The repair's size per frame it changed: the largest turn of a limb root
+// against its pose before the repair (rad) and the largest move of a skin
+// vertex (m).
+void measure_corrections(const body::Body& body, const std::vector<body::Pose>& before,
+                         const std::vector<body::Pose>& after, IntersectionReport& report) {
+  const body::Skeleton& sk = body.skeleton;
+  const std::array<int, 4> roots{sk.require("LeftArm"), sk.require("RightArm"), sk.require("LeftUpLeg"),
+                                 sk.require("RightUpLeg")};
+  for (std::size_t f = 0; f < before.size(); ++f) {
+    double turn = 0.0;
+    for (int j : roots) turn = std::max(turn, before[f].local[j].angularDistance(after[f].local[j]));
+    if (turn < 1e-9) continue;
+    ++report.corrected;
+    report.max_turn = std::max(report.max_turn, turn);
+    geometry::Points a, b;
+    body::skin(body.rest.vertices, body.weights, sk, body::forward_kinematics(sk, before[f]), a);
+    body::skin(body.rest.vertices, body.weights, sk, body::forward_kinematics(sk, after[f]), b);
+    report.max_shift = std::max(report.max_shift, static_cast<double>((a - b).rowwise().norm().maxCoeff()));
+  }
+}
+
 }  // namespace
 
 std::string RoomReport::describe(const std::string& limbs, int of) const {
@@ -35,7 +57,6 @@ BodySequence generate_body_sequence(const body::Body& body, const MotionSource& 
     throw InputError("body", "on_intersection", "longest_run, drop or keep", "'" + policy + "'");
   const body::Skeleton& sk = body.skeleton;
   const body::SelfIntersection si(body, options.intersection);
-  const double tol = options.intersection.tolerance;
   const int n = motion.num_frames();
 
   std::vector<body::Pose> poses(n);
@@ -49,20 +70,20 @@ BodySequence generate_body_sequence(const body::Body& body, const MotionSource& 
   for (int f = 0; f < n; ++f) {
     found[f] = check_pose(body, si, poses[f]);
     report.worst_before = std::max(report.worst_before, found[f].depth);
-    if (found[f].intersects(tol)) ++report.intersecting;
+    if (found[f].offends()) ++report.intersecting;
     report.crossing_before += found[f].crossings;
   }
 
   const auto needs_repair = [&](const std::vector<body::FrameIntersection>& r) {
-    return std::any_of(r.begin(), r.end(), [&](const body::FrameIntersection& x) { return x.needs_repair(tol); });
+    return std::any_of(r.begin(), r.end(), [](const body::FrameIntersection& x) { return x.needs_repair(); });
   };
   if (options.resolve && needs_repair(found)) {
     std::vector<char> was_bad(n);
-    for (int f = 0; f < n; ++f) was_bad[f] = found[f].intersects(tol);
+    for (int f = 0; f < n; ++f) was_bad[f] = found[f].offends();
     const std::vector<body::Pose> original = poses;
     const std::vector<body::FrameIntersection> before = found;
     const auto deep = [&](const std::vector<body::FrameIntersection>& r) {
-      return std::count_if(r.begin(), r.end(), [&](const body::FrameIntersection& x) { return x.intersects(tol); });
+      return std::count_if(r.begin(), r.end(), [](const body::FrameIntersection& x) { return x.offends(); });
     };
     RepairLimits limits{options.max_arm_correction, options.max_leg_correction, {}};
     // The arms' crossings only: clearing the thighs' (a spin's, a squat's)
@@ -80,7 +101,7 @@ BodySequence generate_body_sequence(const body::Body& body, const MotionSource& 
       RepairLimits fewer = limits;
       for (int limb = 0; limb < 4; ++limb) {
         bool drop = attempt == 1;
-        for (int f = 0; f < n && !drop; ++f) drop = found[f].limb_depth[limb] > tol;
+        for (int f = 0; f < n && !drop; ++f) drop = found[f].limb_shortfall[limb] > 0.0;
         if (drop) fewer.crossings[limb] = false;
       }
       std::vector<body::Pose> p = original;
@@ -94,12 +115,13 @@ BodySequence generate_body_sequence(const body::Body& body, const MotionSource& 
     }
     report.crossing_limbs = static_cast<int>(std::count(limits.crossings.begin(), limits.crossings.end(), true));
     for (int f = 0; f < n; ++f) found[f] = check_pose(body, si, poses[f]);
-    for (int f = 0; f < n; ++f) report.resolved += was_bad[f] && !found[f].intersects(tol);
+    for (int f = 0; f < n; ++f) report.resolved += was_bad[f] && !found[f].offends();
+    measure_corrections(body, original, poses, report);
   }
 
   std::vector<char> bad(n, 0);
   for (int f = 0; f < n; ++f) {
-    bad[f] = found[f].intersects(tol);
+    bad[f] = found[f].offends();
     report.remaining += bad[f];
     report.crossing_after += found[f].crossings;
     report.worst_after = std::max(report.worst_after, found[f].depth);

@@ -88,13 +88,12 @@ class Repair {
 
   // Steps the channels of the offending limbs (arms the way given per
   // arm) until frame f is clean or at the limits. A limb is offending while
-  // deeper than the tolerance or, until its limit is reached, while it
+  // deeper than the tolerance (or short of the gap) or, until its limit is reached, while it
   // crosses another region exactly; at its limit with crossings left its
   // turn goes back to where it started and only its depth counts. Returns
   // 2 when every exact crossing cleared, 1 when only the depth verdict
   // did, 0 when not even that.
   int search(int f, Corrections& c, body::FrameIntersection r, const std::array<int, 2>& way) const {
-    const double tol = si_.options().tolerance;
     const Corrections start = c;
     std::array<bool, 4> exact{true, true, true, true};
     // One probe with every crossing limb at its limit: a limb still
@@ -114,7 +113,7 @@ class Repair {
     for (;;) {
       bool offending = false, moved = false;
       for (int limb = 0; limb < 4; ++limb) {
-        const bool deep = r.limb_depth[limb] > tol;
+        const bool deep = r.limb_shortfall[limb] > 0.0;  // deeper than the tolerance or short of the gap
         if (!deep && !(exact[limb] && r.limb_crossings[limb] > 0)) continue;
         offending = true;
         const int ch = channel(limb, way);
@@ -242,7 +241,6 @@ RoomReport make_room(const body::Body& body, const body::SelfIntersection& check
 
 void repair_intersections(const body::Body& body, const body::SelfIntersection& checker, const RepairLimits& limits,
                           std::vector<body::Pose>& poses, std::vector<body::FrameIntersection>& found) {
-  const double tol = checker.options().tolerance;
   const int n = static_cast<int>(poses.size());
   const std::vector<body::Pose> original = poses;
   const Repair repair(body, checker, limits, original);
@@ -267,7 +265,7 @@ void repair_intersections(const body::Body& body, const body::SelfIntersection& 
   // only cross keep abduction, which turns the arm away from the body.
   for (int a = 0; a < 2; ++a) {
     std::vector<char> deep(n);
-    for (int f = 0; f < n; ++f) deep[f] = found[f].limb_depth[a] > tol;
+    for (int f = 0; f < n; ++f) deep[f] = found[f].limb_shortfall[a] > 0.0;
     for (const auto& [first, last] : runs(deep)) {
       const long frames = std::count(deep.begin() + first, deep.begin() + last + 1, 1);
       std::array<long, kWays> score{};
@@ -299,7 +297,7 @@ void repair_intersections(const body::Body& body, const body::SelfIntersection& 
   for (int round = 0; round < kRounds; ++round) {
     bool grew = false;
     for (int f = 0; f < n; ++f) {
-      if (!found[f].needs_repair(tol)) continue;
+      if (!found[f].needs_repair()) continue;
       Corrections c = at(applied, f);
       repair.search(f, c, found[f], {way[0][f], way[1][f]});
       for (int ch = 0; ch < kChannels; ++ch) {

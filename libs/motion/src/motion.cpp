@@ -1,6 +1,7 @@
 // Pose tracks, the T-pose transition and motion specs (see motion.h).
 #include "layers/motion/motion.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -125,6 +126,32 @@ std::string find_bvh_file(const std::string& path, const std::string& asset_root
   throw InputError("motion", "bvh",
                    "an existing clip file, .bvh or .amc (or one in " + body::motion_asset_dir(asset_root) + ")",
                    "'" + path + "'");
+}
+
+std::vector<std::string> clip_folder_entries(const std::string& entry, const std::string& where,
+                                             const std::string& asset_root) {
+  namespace fs = std::filesystem;
+  const bool prefixed = entry.rfind("bvh:", 0) == 0;
+  const std::string named = prefixed ? entry.substr(4) : entry;
+  if (named.empty() || named.find(' ') != std::string::npos) return {};
+  fs::path folder = named;
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec)) {
+    if (!folder.is_relative()) return {};
+    folder = fs::path(body::motion_asset_dir(asset_root)) / named;
+    if (!fs::is_directory(folder, ec)) return {};
+  }
+  std::vector<std::string> names;
+  for (const fs::directory_entry& e : fs::directory_iterator(folder, ec))
+    if (e.is_regular_file(ec) && is_clip_file(e.path().string())) names.push_back(e.path().filename().string());
+  if (ec) throw InputError(where, "'" + entry + "'", "a readable folder of clips", ec.message());
+  if (names.empty())
+    throw InputError(where, "'" + entry + "'", "a folder holding at least one .bvh or .amc clip", "none in it");
+  std::sort(names.begin(), names.end());
+  std::string base = named;
+  while (base.size() > 1 && base.back() == '/') base.pop_back();
+  for (std::string& n : names) n = (prefixed ? "bvh:" : "") + base + "/" + n;
+  return names;
 }
 
 namespace {

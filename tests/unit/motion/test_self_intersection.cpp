@@ -75,10 +75,10 @@ TEST(SelfIntersection, ExactCrossingsSeeWhatTheNearestVertexTestMisses) {
   const geometry::Points posed = body::pose_body(b, p).vertices;
   const body::SelfIntersection exact(b);
   const body::FrameIntersection r = exact.check(posed);
-  EXPECT_FALSE(r.intersects(exact.options().tolerance));  // the depth verdict is blind here
+  EXPECT_FALSE(r.offends());  // the depth verdict is blind here
   EXPECT_GT(r.limb_crossings[0], 20);
   EXPECT_EQ(r.limb_crossings[1], 0);
-  EXPECT_TRUE(r.needs_repair(exact.options().tolerance));
+  EXPECT_TRUE(r.needs_repair());
   body::IntersectionOptions o;
   o.exact = false;
   EXPECT_EQ(body::SelfIntersection(b, o).check(posed).crossings, 0);
@@ -128,6 +128,65 @@ TEST(SelfIntersection, ArmGapIsTheRoomUnderTheArm) {
     last = r.arm_gap[0];
   }
   EXPECT_LT(last, 0.01);
+}
+
+// The left arm turned in until it is within `room` of the torso but not
+// inside it (the angle, 0.01 rad steps). Its faces already cross the
+// torso's at the shoulder's blend zone.
+double arm_near(const body::Body& b, const body::SelfIntersection& si, double room) {
+  for (double angle = 0.4; angle < 1.0; angle += 0.01) {
+    const body::FrameIntersection r = si.check(body::pose_body(b, arm_in(b, angle)).vertices);
+    if (r.arm_gap[0] < room && r.depth == 0.0) return angle;
+  }
+  return -1.0;
+}
+
+TEST(SelfIntersection, GapAsksForRoomWhereTheDepthAllowsContact) {
+  const body::Body& b = body::test::body();
+  const body::SelfIntersection depth_only(b);
+  body::IntersectionOptions o;
+  o.gap = 0.004;
+  const body::SelfIntersection gapped(b, o);
+  const double angle = arm_near(b, depth_only, 0.003);
+  ASSERT_GT(angle, 0.0);
+  const geometry::Points posed = body::pose_body(b, arm_in(b, angle)).vertices;
+  const body::FrameIntersection plain = depth_only.check(posed);
+  EXPECT_FALSE(plain.offends());
+  const body::FrameIntersection r = gapped.check(posed);
+  EXPECT_TRUE(r.offends());
+  EXPECT_GE(r.limb_shortfall[0], 0.004 - plain.arm_gap[0] - 1e-9);  // at least what the arm's gap lacks
+  EXPECT_LT(r.limb_shortfall[1], 0.0);                              // the right arm has its room
+  EXPECT_EQ(r.depth, 0.0);
+  // The rest pose keeps the room everywhere it is asked.
+  EXPECT_FALSE(gapped.check(b.rest.vertices).offends());
+}
+
+TEST(SelfIntersection, SequencesKeepTheGapAndSayHowMuchTheyTurned) {
+  const body::Body& b = body::test::body();
+  const double angle = arm_near(b, body::SelfIntersection(b), 0.002);
+  ASSERT_GT(angle, 0.0);
+  // 40 frames: the left arm comes within 2 mm of the torso and goes back.
+  std::vector<body::Pose> poses;
+  for (int f = 0; f < 40; ++f) poses.push_back(arm_in(b, angle * std::sin(M_PI * f / 39.0)));
+  const PoseTrack motion(poses, "test:near");
+  SequenceOptions o;
+  o.on_intersection = "keep";
+  o.intersection.exact = false;  // the shoulder's crossings would steer the repair too
+  const BodySequence plain = generate_body_sequence(b, motion, o);
+  EXPECT_EQ(plain.intersection.intersecting, 0);
+  EXPECT_EQ(plain.intersection.corrected, 0);
+  EXPECT_EQ(plain.intersection.max_turn, 0.0);
+  o.intersection.gap = 0.004;
+  const BodySequence seq = generate_body_sequence(b, motion, o);
+  EXPECT_GT(seq.intersection.intersecting, 0);
+  EXPECT_EQ(seq.intersection.remaining, 0);
+  EXPECT_GE(seq.intersection.corrected, seq.intersection.intersecting);  // the spread turns neighbours too
+  EXPECT_LT(seq.intersection.corrected, 40);
+  EXPECT_GT(seq.intersection.max_turn, 0.0);
+  EXPECT_LE(seq.intersection.max_turn, o.max_arm_correction + 1e-9);
+  EXPECT_GT(seq.intersection.max_shift, 0.002);  // the hand moves more than the gap lacked
+  const body::SelfIntersection si(b, o.intersection);
+  for (int f = 0; f < seq.num_frames; ++f) EXPECT_FALSE(si.check(frame_vertices(seq, f)).offends()) << "frame " << f;
 }
 
 // 60 frames: the rest pose, with `pose(s)` in frames 20-40 (s rising from

@@ -24,6 +24,16 @@
 // one region (fingers, toes, elbow and knee pits, the groin's own folds)
 // are not counted: no limb turn clears them.
 //
+// With a gap (IntersectionOptions::gap > 0, the paper's 4 mm) the verdict
+// asks for room instead of allowing depth: a limb vertex closer than the
+// gap in front of another part's surface offends, wherever the two parts
+// are not neighbours -- everywhere for arm/arm and arm/leg, and beyond
+// 40% of the upper arm from the shoulder (30% of the thigh from the hip)
+// for a limb against the torso and for the thighs against each other.
+// Nearer the joint, where the limb lies against its neighbour by
+// construction and no turn about the joint opens it, the depth tolerance
+// still applies.
+//
 // Per frame it also measures the room a limb leaves the cloth (arm to
 // torso, thigh to thigh; the motion's arm and thigh room).
 #pragma once
@@ -44,6 +54,7 @@ const char* body_part_name(BodyPart part);
 
 struct IntersectionOptions {
   double tolerance = 0.004;    // m: deeper than this counts as intersecting
+  double gap = 0.0;            // m: room non-neighbouring parts keep (0 = contact allowed; see above)
   double max_distance = 0.06;  // m: farther from the nearest surface vertex is not tested
   bool exact = true;           // also count exact crossings between regions
 };
@@ -51,7 +62,14 @@ struct IntersectionOptions {
 struct FrameIntersection {
   double depth = 0.0;                  // deepest penetration found (m)
   std::array<double, 4> limb_depth{};  // left arm, right arm, left leg, right leg
-  int vertices = 0;                    // vertices deeper than the tolerance
+  // How far the worst tested vertex is from what the options ask (m; > 0
+  // offends): gap - offset where a gap is asked, depth - tolerance
+  // elsewhere; -infinity when no part is near another. Per limb as above.
+  double shortfall = -std::numeric_limits<double>::infinity();
+  std::array<double, 4> limb_shortfall{
+      -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+      -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  int vertices = 0;  // vertices that offend
   // Exact crossings between regions (face pairs), all and per limb.
   int crossings = 0;
   std::array<int, 4> limb_crossings{};
@@ -68,11 +86,12 @@ struct FrameIntersection {
   // none is within `max_distance`. The room the thighs leave the cloth of
   // two trouser legs between them (the motion's thigh room).
   double thigh_gap = std::numeric_limits<double>::infinity();
-  // The verdict that drops frames: deeper than the tolerance.
-  bool intersects(double tolerance) const { return depth > tolerance; }
+  // The verdict that drops frames: a vertex deeper than the tolerance, or
+  // closer than the gap where one is asked.
+  bool offends() const { return shortfall > 0.0; }
   // What the repair clears where its limits allow: the verdict above and
   // every exact crossing counted.
-  bool needs_repair(double tolerance) const { return intersects(tolerance) || crossings > 0; }
+  bool needs_repair() const { return offends() || crossings > 0; }
 };
 
 // Keeps a reference to `body`, which must outlive it.

@@ -15,6 +15,10 @@ struct RunConfig {
   std::string device = "cpu";   // cpu or cuda
   std::string output = "runs";  // where runs write checkpoints, metrics, reports
   int dist_timeout_s = 60;      // data-parallel runs: longest wait for another rank (layers/dist)
+  // Processes `layers train` runs as when the environment names no ranks
+  // (docs/training.md): 0 = auto (`threads` ranks of one thread each when
+  // threads >= 2 and they share train.batch_size evenly), 1 = one process.
+  int ranks = 0;
 
   template <class V>
   void visit(V& v) {
@@ -26,6 +30,10 @@ struct RunConfig {
     v("output", output, cfg::opt().help("output folder"));
     v("dist_timeout_s", dist_timeout_s,
       cfg::opt().range(1, 86400).help("data-parallel runs: seconds to wait for another rank before failing"));
+    v("ranks", ranks,
+      cfg::opt().range(0, 256).help(
+          "processes `layers train` starts for itself, sharing train.batch_size, one thread each (0 = auto: "
+          "run.threads when it is 2 or more and divides the batch; 1 = one process with run.threads threads)"));
   }
 };
 

@@ -124,6 +124,7 @@ struct BodySampling {
   std::optional<MotionVariation> variation;             // parametric families (motion_variation.h); absent: off
   int transition_frames = 10;                           // T-pose -> motion blend (part of warm-up)
   double intersection_tolerance_mm = 4.0;
+  double self_gap_mm = 0.0;    // room body parts keep from each other (body::IntersectionOptions::gap); 0 = off
   double arm_room_mm = 0.0;    // room for the cloth under the arms (motion::SequenceOptions::arm_room); 0 = off
   double thigh_room_mm = 0.0;  // room for the cloth between the thighs (SequenceOptions::thigh_room); 0 = off
   motion::SkinUntangleConfig skin_untangle;  // smoothing of the skin's own folds (body::SkinUntangler); off by default
@@ -138,6 +139,7 @@ struct BodySampling {
     v("transition_frames", transition_frames,
       cfg::opt().range(1, 300).help("frames blending from the T-pose into the motion"));
     v("intersection_tolerance_mm", intersection_tolerance_mm, cfg::opt().range(0.5, 50));
+    v("self_gap_mm", self_gap_mm, motion::kSelfGapOption);
     v("arm_room_mm", arm_room_mm,
       cfg::opt().range(0, 100).help("room for the cloth between arms and torso; closer arms are abducted (0 = off)"));
     v("thigh_room_mm", thigh_room_mm,
@@ -252,11 +254,20 @@ struct GeneratorConfig {
 // made before it existed; a file the schema rejects is not the same.
 bool same_saved_config(const std::string& path, const std::string& resolved);
 
+// The body.motions entries that name a folder of clips (a motion library,
+// motion::clip_folder_entries) replaced by its clips in name order, so
+// that scenes draw a clip uniformly and the saved config lists the clips
+// a dataset was made from. Not for an own body's entries.
+void expand_motion_folders(GeneratorConfig& config, const std::string& file);
+
 // A generator config as every verb reads one: the file, its `--set`
-// overrides in order, the typed config, check(), and the garment files its
-// outfits name read and recorded (resolve_garment_files,
-// imported_garment.h). InputError naming the file on any problem.
-GeneratorConfig load_generator_config(const std::string& file, const std::vector<std::string>& sets);
+// overrides in order, the typed config, motion folders expanded, check(),
+// and the garment files its outfits name read and recorded
+// (resolve_garment_files, imported_garment.h). An empty outfit list (the
+// body alone) is refused when the config is `to_simulate`. InputError
+// naming the file on any problem.
+GeneratorConfig load_generator_config(const std::string& file, const std::vector<std::string>& sets,
+                                      bool to_simulate = true);
 
 // The generator config a dataset's manifest records (dataset.yaml's
 // `generator`), read through the schema; nullopt for a dataset not made by

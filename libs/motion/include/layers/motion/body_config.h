@@ -10,6 +10,7 @@
 //     seed: 7
 //     transition_frames: 15        # blend in from the T-pose
 //     intersection_tolerance_mm: 4
+//     self_gap_mm: 0               # > 0: parts that are not neighbours keep this room (the paper's 4)
 //     arm_room_mm: 0               # > 0: abduct arms closer than this to the torso
 //     thigh_room_mm: 0             # > 0: abduct legs whose thighs come closer than this
 //     skin_untangle: {passes: 0, margin_mm: 0.5, steps: 3}  # push the skin out of itself
@@ -49,6 +50,12 @@ struct SkinUntangleConfig {
   }
 };
 
+// The one definition of the body.self_gap_mm setting (motion configs and
+// the generator's body sampling).
+inline const cfg::Opt kSelfGapOption = cfg::opt().range(0, 50).help(
+    "room (mm) body parts that are not neighbours keep from each other; closer frames are repaired or dropped as "
+    "unresolvable (0 = off: only depth over the tolerance counts; the paper keeps 4)");
+
 struct BodyMotionConfig {
   body::ShapeParams shape;
   std::string motion = "procedural:walk";
@@ -56,6 +63,7 @@ struct BodyMotionConfig {
   std::uint64_t seed = 0;
   int transition_frames = 15;
   double intersection_tolerance_mm = 4.0;
+  double self_gap_mm = 0.0;    // body::IntersectionOptions::gap; 0 = off
   double arm_room_mm = 0.0;    // SequenceOptions::arm_room; 0 = off
   double thigh_room_mm = 0.0;  // SequenceOptions::thigh_room; 0 = off
   SkinUntangleConfig skin_untangle;
@@ -73,6 +81,7 @@ struct BodyMotionConfig {
       cfg::opt().range(0, 100000).help("frames blending in from the T-pose (at most 100000)"));
     v("intersection_tolerance_mm", intersection_tolerance_mm,
       cfg::opt().range(0.5, 50).help("allowed self-intersection depth"));
+    v("self_gap_mm", self_gap_mm, kSelfGapOption);
     v("arm_room_mm", arm_room_mm,
       cfg::opt().range(0, 100).help("room for the cloth between arms and torso; closer arms are abducted (0 = off)"));
     v("thigh_room_mm", thigh_room_mm,

@@ -61,10 +61,15 @@ struct RoomReport {
 };
 
 struct IntersectionReport {
-  int frames = 0;                                // frames of the motion checked
-  int intersecting = 0;                          // frames deeper than the tolerance before resolution
-  int resolved = 0;                              // of those, frames clean after resolution
-  int remaining = 0;                             // frames still intersecting after resolution
+  int frames = 0;        // frames of the motion checked
+  int intersecting = 0;  // frames that offend before resolution (deeper than the tolerance, or short of the gap)
+  int resolved = 0;      // of those, frames clean after resolution
+  int remaining = 0;     // frames still offending after resolution: unresolvable within the turn limits
+  // The repair's size: frames whose limbs it turned (the spread included),
+  // the largest turn of a limb root (rad) and the largest move of a skin
+  // vertex (m) against the pose before it (after arm and thigh room).
+  int corrected = 0;
+  double max_turn = 0.0, max_shift = 0.0;
   int dropped = 0;                               // frames removed by the policy
   double worst_before = 0.0, worst_after = 0.0;  // deepest penetration (m), before and after resolution
   // Exact crossings between body regions (SelfIntersection's `exact`):

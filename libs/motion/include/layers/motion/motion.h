@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "layers/body/skeleton.h"
 
@@ -73,5 +74,13 @@ std::unique_ptr<MotionSource> make_motion(const MotionSpec& spec, const body::Bo
 
 // The BVH file a spec's path names (as above); InputError when none exists.
 std::string find_bvh_file(const std::string& path, const std::string& asset_root = "");
+
+// A motion library: when `entry` (optionally "bvh:"-prefixed) names a
+// folder, here or inside the motion asset folder, the clip files in it
+// (.bvh, or .amc with its skeleton beside it), named as `entry` names the
+// folder and sorted by name; not sub-folders. Empty when `entry` is not a
+// folder; InputError naming `where` when the folder holds no clip.
+std::vector<std::string> clip_folder_entries(const std::string& entry, const std::string& where,
+                                             const std::string& asset_root = "");
 
 }  // namespace layers::motion
