@@ -13,7 +13,7 @@ packages=(
   build-essential cmake ninja-build ccache pkg-config
   libtorch-dev libgloo-dev libopenblas0-pthread
   libeigen3-dev libhdf5-dev libnanoflann-dev libspdlog-dev libyaml-cpp-dev libcli11-dev zlib1g-dev
-  nlohmann-json3-dev gnuplot-nox libassimp-dev
+  nlohmann-json3-dev gnuplot-nox libassimp-dev libcgal-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libjs-three chromium-headless-shell blender python3-numpy
   pybind11-dev python3-dev python3-torch python3-pytest

@@ -57,8 +57,7 @@ void resolve_garment_files(GeneratorConfig& config) {
   for (const std::string& entry : entries) {
     if (!import::is_garment_file(entry)) continue;
     const import::GarmentFile file = import::read_garment_file(entry);
-    const import::ImportedMesh m = import::import_mesh(file.mesh, file.scale);
-    import::check_cloth_mesh(m.mesh, file.mesh);
+    import::read_garment_mesh(file, config.garments.fit.edge_length);  // reads, remeshes and checks
     config.garments.files[file.mesh] = content_hash(read_text_file(file.mesh));
     if (file.side_file.empty()) continue;
     config.garments.files[file.side_file] = content_hash(read_text_file(file.side_file));
@@ -101,7 +100,7 @@ void cylindrical_uv(const geometry::TriMesh& mesh, const Eigen::Vector3d& axis, 
 }
 
 std::vector<data::GarmentData> imported_outfit(const garment::TPoseBody& body, const SceneSpec& spec,
-                                               double layer_reach) {
+                                               double layer_reach, double edge_length) {
   const Eigen::Vector3d axis(body.joints.at(0).x(), body.joints.at(0).y(), body.joints.at(0).z());
   std::vector<data::GarmentData> out;
   const geometry::Surface body_surface = geometry::Surface::from_mesh(body.mesh, "T-pose body");  // once
@@ -110,8 +109,7 @@ std::vector<data::GarmentData> imported_outfit(const garment::TPoseBody& body, c
     if (g.source.empty())
       throw Error("imported_outfit: garment '" + g.type + "' of scene " + spec.id + " is a template, not a file");
     const import::GarmentFile file = import::read_garment_file(g.source);
-    import::ImportedMesh m = import::import_mesh(file.mesh, file.scale);
-    import::check_cloth_mesh(m.mesh, file.mesh);
+    import::ImportedMesh m = import::read_garment_mesh(file, edge_length);
     const std::string inside = inside_body(m.mesh.vertices, body, body_surface);
     if (!inside.empty())
       throw InputError(file.mesh, "vertices", "a garment outside the body in its T-pose (frame 0)", inside);

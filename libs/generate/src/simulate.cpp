@@ -175,7 +175,7 @@ void SceneSimulation::add_garments() {
   if (spec_.garments.empty()) return;  // the body alone (no outfit: `layers tpose`)
   const garment::TPoseBody t_pose = garment::t_pose_body(generated_.body);
   if (has_imported_garments(spec_)) {
-    garments_ = imported_outfit(t_pose, spec_, config_.garments.fit.layer_reach);
+    garments_ = imported_outfit(t_pose, spec_, config_.garments.fit.layer_reach, config_.garments.fit.edge_length);
   } else {
     // The room a motion asks of the templates (measured on our body's landmarks).
     const garment::MotionRoom room = motion_room(t_pose);

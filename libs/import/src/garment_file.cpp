@@ -1,6 +1,7 @@
 // A user's garment entry and its side file (see garment_file.h).
 #include "layers/import/garment_file.h"
 
+#include <spdlog/spdlog.h>
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
@@ -9,6 +10,8 @@
 #include "layers/core/error.h"
 #include "layers/core/text_file.h"
 #include "layers/core/yaml_text.h"
+#include "layers/import/mesh_checks.h"
+#include "layers/import/remesh.h"
 
 namespace layers::import {
 
@@ -41,6 +44,18 @@ GarmentFile read_garment_file(const std::string& entry) {
           throw InputError(g.side_file, key, "a positive factor to metres", std::to_string(g.scale));
       } else if (key == "self_contact") {
         g.self_contact = item.second.as<bool>();
+      } else if (key == "remesh") {
+        const std::string text = item.second.as<std::string>();
+        if (text == "fit") {
+          g.remesh = kRemeshToFit;
+        } else if (text == "off" || text == "false") {
+          g.remesh = 0.0;
+        } else {
+          g.remesh = item.second.as<double>();
+          if (!(g.remesh > 0.0005 && g.remesh < 0.5))
+            throw InputError(g.side_file, key, "fit, off, or an edge length in metres in (0.0005, 0.5)",
+                             "'" + text + "'");
+        }
       } else if (key == "attributes") {
         if (!item.second.IsMap()) throw InputError(g.side_file, key, "a mapping of attribute values", "not a mapping");
         for (const auto& a : item.second) {
@@ -51,13 +66,36 @@ GarmentFile read_garment_file(const std::string& entry) {
           g.attributes[name] = v;
         }
       } else {
-        throw InputError(g.side_file, key, "name, scale, self_contact or attributes", "'" + key + "'");
+        throw InputError(g.side_file, key, "name, scale, self_contact, remesh or attributes", "'" + key + "'");
       }
     } catch (const YAML::Exception& e) {
       throw InputError(g.side_file, key, "a value of the right type", std::string("'") + e.what() + "'");
     }
   }
   return g;
+}
+
+ImportedMesh read_garment_mesh(const GarmentFile& file, double fit_edge_length) {
+  ImportedMesh m = import_mesh(file.mesh, file.scale);
+  if (file.remesh != 0.0) {
+    const double target = file.remesh > 0.0 ? file.remesh : fit_edge_length;
+    RemeshReport r;
+    m = remesh(m, target, 5, &r);
+    spdlog::info("{}: remeshed to {:.1f} mm edges: {} faces -> {}, shortest edge {:.1f} -> {:.1f} mm", file.mesh,
+                 1000 * target, r.faces_before, r.faces_after, 1000 * r.shortest_before, 1000 * r.shortest_after);
+  } else {
+    double shortest = 0, mean = 0;
+    edge_lengths(m.mesh, shortest, mean);
+    if (shortest < 0.25 * fit_edge_length)
+      spdlog::warn(
+          "{}: edges down to {:.1f} mm (mean {:.1f} mm) against the simulator's {:.1f} mm: short edges make the "
+          "stretch cap hard to keep; `remesh: fit` in {} remeshes it",
+          file.mesh, 1000 * shortest, 1000 * mean, 1000 * fit_edge_length,
+          file.side_file.empty() ? std::filesystem::path(file.mesh).replace_extension(".yaml").string()
+                                 : file.side_file);
+  }
+  check_cloth_mesh(m.mesh, file.mesh);
+  return m;
 }
 
 }  // namespace layers::import

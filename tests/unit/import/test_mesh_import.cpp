@@ -315,8 +315,9 @@ TEST(GarmentFile, SideFileGivesNameScaleAndAttributes) {
   EXPECT_EQ(g.scale, 0.01);
   EXPECT_EQ(g.attributes, (std::map<std::string, double>{{"mass", 0.3}, {"bending", 40}}));
   dir.write("dress.yaml", "colour: red\n");
-  EXPECT_NE(message_of([&] { read_garment_file("file:" + mesh); }).find("name, scale, self_contact or attributes"),
-            std::string::npos);
+  EXPECT_NE(
+      message_of([&] { read_garment_file("file:" + mesh); }).find("name, scale, self_contact, remesh or attributes"),
+      std::string::npos);
   dir.write("dress.yaml", "scale: 0\n");
   EXPECT_NE(message_of([&] { read_garment_file("file:" + mesh); }).find("a positive factor"), std::string::npos);
   dir.write("dress.yaml", "attributes: {mass: -1}\n");

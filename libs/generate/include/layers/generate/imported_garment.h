@@ -2,8 +2,9 @@
 // own garment meshes (outfit entries `file:<mesh>`, import/garment_file.h)
 // instead of templates, as LAYERS-H5 garment arrays of type `imported`.
 //
-// Each mesh is read and checked (import/mesh_import.h, mesh_checks.h) and
-// taken as modelled around our body in its T-pose for the scene's shape
+// Each mesh is read, remeshed when its side file asks (`remesh: fit`: to
+// garments.fit.edge_length, import/remesh.h) and checked
+// (import/garment_file.h read_garment_mesh) and taken as modelled around our body in its T-pose for the scene's shape
 // (arms along x, y up, facing +z, soles on y = 0; `layers tpose` writes
 // that body). UVs: the file's, per face corner; without them a
 // cylindrical parametrisation in metres about the vertical axis through
@@ -40,8 +41,9 @@ void resolve_garment_files(GeneratorConfig& config);
 // generator config refuses a mix).
 bool has_imported_garments(const SceneSpec& spec);
 
+// `edge_length`: garments.fit.edge_length, the target of `remesh: fit`.
 std::vector<data::GarmentData> imported_outfit(const garment::TPoseBody& body, const SceneSpec& spec,
-                                               double layer_reach);
+                                               double layer_reach, double edge_length);
 
 // The cylindrical parametrisation above, per face corner: uv [3F,2] and
 // uv_faces [F,3] (the identity). `axis`: a point on the vertical axis.

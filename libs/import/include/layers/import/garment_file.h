@@ -7,6 +7,7 @@
 //   name: my_dress                    # default: the mesh file's stem
 //   scale: 0.01                       # the file's units to metres (default 1)
 //   self_contact: false               # collide with itself (default true)
+//   remesh: fit                       # remesh to garments.fit.edge_length, or to a length in m (default off)
 //   attributes: {mass: 0.3, bending: 40}
 //
 // `attributes`: any of the seven LAYERS-H5 garment attributes (mass,
@@ -19,9 +20,12 @@
 #include <map>
 #include <string>
 
+#include "layers/import/mesh_import.h"
+
 namespace layers::import {
 
 inline constexpr const char* kFilePrefix = "file:";
+inline constexpr double kRemeshToFit = -1.0;
 
 // Whether an outfit entry names a file ("file:<path>").
 bool is_garment_file(const std::string& entry);
@@ -31,7 +35,10 @@ struct GarmentFile {
   std::string side_file;  // its .yaml, "" when there is none
   std::string name;
   double scale = 1.0;
-  bool self_contact = true;                  // unknown shape: it may fold onto itself
+  bool self_contact = true;  // unknown shape: it may fold onto itself
+  // Remeshing (remesh.h) before the checks: 0 off, > 0 to that edge
+  // length (m), kRemeshToFit to the config's garments.fit.edge_length.
+  double remesh = 0.0;
   std::map<std::string, double> attributes;  // as given; checked by the generator
 };
 
@@ -40,5 +47,13 @@ struct GarmentFile {
 // is not true or false, a non-finite or
 // negative attribute, or a mesh file that does not exist.
 GarmentFile read_garment_file(const std::string& entry);
+
+// The garment's mesh as the simulator takes it: read (mesh_import.h) at
+// the file's scale, remeshed when the side file asks (to `fit_edge_length`
+// for `remesh: fit`), and checked as cloth (mesh_checks.h). Without
+// remeshing, a mesh with edges shorter than a quarter of
+// `fit_edge_length` gets a warning naming the side file's `remesh` (such
+// edges make the stretch cap hard to keep).
+ImportedMesh read_garment_mesh(const GarmentFile& file, double fit_edge_length);
 
 }  // namespace layers::import
