@@ -35,12 +35,13 @@ void save_experiment(const StudyRun& run) {
 // The experiment as fingerprinted: without run.output and data.dataset
 // (locations: the run folder holds the records, the dataset's files are
 // fingerprinted themselves, so a study folder copied with its dataset
-// stays current), without run.dist_timeout_s (how long ranks wait, not
-// what they compute) and data.allow_unhashed (whether a dataset is
+// stays current), without run.dist_timeout_s and run.ranks (how long
+// ranks wait and how many processes share each batch, not what they
+// compute; a study trains in its own process) and data.allow_unhashed (whether a dataset is
 // verified, not what is computed from it) and, for training, without the eval section.
 std::string fingerprinted_text(const StudyRun& run, bool training) {
   cfg::Node tree = cfg::to_node(run.config);
-  if (cfg::Node* r = tree.find("run")) r->erase("output"), r->erase("dist_timeout_s");
+  if (cfg::Node* r = tree.find("run")) r->erase("output"), r->erase("dist_timeout_s"), r->erase("ranks");
   if (cfg::Node* d = tree.find("data")) d->erase("dataset"), d->erase("allow_unhashed");
   if (training) tree.erase("eval");
   return cfg::to_yaml(tree);

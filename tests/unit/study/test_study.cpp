@@ -143,6 +143,16 @@ TEST_F(StudyTest, EvaluationSettingsRerunEvaluationNotTraining) {
   EXPECT_EQ(status(t, "a eval-test"), StepStatus::Ran);
 }
 
+// How a run is spread over processes is not what it computes: run.ranks
+// and run.dist_timeout_s leave every step current.
+TEST_F(StudyTest, RanksAndTimeoutsLeaveTheStepsCurrent) {
+  run();
+  const auto r = run({"set=[run.ranks=1, run.dist_timeout_s=5]"});
+  EXPECT_EQ(status(r, "a train"), StepStatus::Current);
+  EXPECT_EQ(status(r, "a eval-test"), StepStatus::Current);
+  EXPECT_EQ(status(r, "b train"), StepStatus::Current);
+}
+
 // The bench times a scene of the split the run is evaluated on: a study
 // evaluated on validation never opens the test split, and changing the
 // evaluated split benches again.
