@@ -31,7 +31,7 @@ void check_cloth_mesh(const geometry::TriMesh& mesh, const std::string& file) {
     const Eigen::Vector3d pa = mesh.vertices.row(a).cast<double>(), pb = mesh.vertices.row(b).cast<double>(),
                           pc = mesh.vertices.row(c).cast<double>();
     const double area = 0.5 * (pb - pa).cross(pc - pa).norm();
-    if (a == b || b == c || a == c || !(area >= kMinFaceArea)) {
+    if (a == b || b == c || a == c || !(area >= geometry::kMinClothFaceArea)) {
       if (first_degenerate < 0) first_degenerate = static_cast<int>(f);
       ++degenerate;
     }
@@ -39,7 +39,8 @@ void check_cloth_mesh(const geometry::TriMesh& mesh, const std::string& file) {
       ++edge_faces[{std::min(u, v), std::max(u, v)}];
   }
   if (degenerate > 0)
-    throw InputError(file, "faces", "no degenerate face (area >= 1e-10 m^2, three distinct corners)",
+    throw InputError(file, "faces", "no degenerate face (area >= 1e-8 m^2, three distinct corners; `remesh: fit` in its side file "
+                     "rebuilds the faces)",
                      std::to_string(degenerate) + " degenerate, the first face " + std::to_string(first_degenerate));
   // Winding: across an edge of two faces, each runs it the other way.
   std::map<std::pair<int, int>, int> directed;

@@ -17,7 +17,6 @@ namespace layers::sim {
 namespace {
 
 // Smallest triangle area accepted (m^2): a 0.1 mm x 0.1 mm sliver.
-constexpr double kMinArea = 1e-8;
 
 long next_revision() {
   static std::atomic<long> counter{0};
@@ -71,7 +70,7 @@ Cloth::Cloth(const geometry::TriMesh& rest, const Material& material, ClothOptio
   for (int f = 0; f < faces_.rows(); ++f) {
     const Vec3 a = row(rest_, faces_(f, 0)), b = row(rest_, faces_(f, 1)), c = row(rest_, faces_(f, 2));
     const double area = 0.5 * (b - a).cross(c - a).norm();
-    if (!(area >= kMinArea)) {
+    if (!(area >= geometry::kMinClothFaceArea)) {
       throw InputError(what, "face " + std::to_string(f), "a rest area of at least 1e-8 m^2",
                        std::to_string(area) + " m^2");
     }

@@ -31,6 +31,11 @@ struct TriMesh {
   int num_faces() const { return static_cast<int>(faces.rows()); }
 };
 
+// The smallest rest area of a cloth face (m^2): the simulator's lumped
+// masses divide by it, and a user's garment file is checked against the
+// same bound when it is read (import/mesh_checks.h).
+inline constexpr double kMinClothFaceArea = 1e-8;
+
 // Checks that every face index lies in [0, num_vertices) and that no face
 // repeats a vertex; throws layers::InputError naming `what` (e.g. a file
 // and dataset path), the face and the offending index.
