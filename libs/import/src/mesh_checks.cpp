@@ -39,7 +39,8 @@ void check_cloth_mesh(const geometry::TriMesh& mesh, const std::string& file) {
       ++edge_faces[{std::min(u, v), std::max(u, v)}];
   }
   if (degenerate > 0)
-    throw InputError(file, "faces", "no degenerate face (area >= 1e-8 m^2, three distinct corners; `remesh: fit` in its side file "
+    throw InputError(file, "faces",
+                     "no degenerate face (area >= 1e-8 m^2, three distinct corners; `remesh: fit` in its side file "
                      "rebuilds the faces)",
                      std::to_string(degenerate) + " degenerate, the first face " + std::to_string(first_degenerate));
   // Winding: across an edge of two faces, each runs it the other way.
