@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <regex>
 
 #include "coarse_scene.h"
 #include "file_bytes.h"
@@ -73,6 +74,19 @@ TEST(CliOwnGarment, ARefusedSceneIsKeptToLookAtAndDoesNotUseUpOut) {
   const std::string about = test::read_bytes(out + "/refused/seq-000000.refused.yaml");
   EXPECT_NE(about.find("rule: stretch"), std::string::npos) << about;
   EXPECT_NE(about.find("maximum edge stretch"), std::string::npos) << about;
+  // Where: the most stretched edges of the worst frame, the first of them
+  // as stretched as the rule's message says.
+  EXPECT_NE(about.find("where_frame: "), std::string::npos) << about;
+  const std::smatch said = [&] {
+    std::smatch m;
+    std::regex_search(about, m, std::regex("maximum edge stretch ([0-9.]+)%"));
+    return m;
+  }();
+  ASSERT_FALSE(said.empty()) << about;
+  const std::string first = about.substr(about.find("most_stretched_edges:"));
+  EXPECT_NE(first.find(": edge "), std::string::npos) << about;
+  EXPECT_NE(first.find("stretched " + said[1].str() + "%"), std::string::npos) << about;
+  EXPECT_NE(first.find(", nearest joint "), std::string::npos) << about;
   // The same command again: the same refusal, not "a folder holding data/";
   // with --keep-refused again, refused/ is not replaced.
   r = run_command(test::layers_bin() + " animate" + refuse + " --out " + out);

@@ -27,6 +27,7 @@
 #include "layers/data/stats.h"
 #include "layers/generate/scene_spec.h"
 #include "layers/generate/simulate.h"
+#include "refused_where.h"
 
 namespace fs = std::filesystem;
 
@@ -258,13 +259,25 @@ void write_refused(const std::string& folder, const SceneSpec& spec, const Scene
   scalar("rule", result.rule.empty() ? std::string("none") : result.rule);
   scalar("first_broken_frame", std::to_string(result.cut_frame));
   scalar("frames_kept", std::to_string(result.sequence.wind.strength.size()));
-  cfg::Node& violations = about_node.child("violations");
-  violations.kind = cfg::Node::Kind::Seq;
-  for (const std::string& v : result.violations) {
-    cfg::Node item;
-    item.kind = cfg::Node::Kind::Scalar;
-    item.scalar = v;
-    violations.seq.push_back(item);
+  const auto list = [&](const std::string& key, const std::vector<std::string>& lines) {
+    cfg::Node& node = about_node.child(key);
+    node.kind = cfg::Node::Kind::Seq;
+    for (const std::string& v : lines) {
+      cfg::Node item;
+      item.kind = cfg::Node::Kind::Scalar;
+      item.scalar = v;
+      node.seq.push_back(item);
+    }
+  };
+  list("violations", result.violations);
+  // Where on the garments: the most stretched edges of the frame that broke
+  // the rule (without a clean-window cut, of the most stretched frame).
+  const int kept = static_cast<int>(result.sequence.wind.strength.size());
+  if (kept > 0) {
+    const int at =
+        result.cut_frame >= 0 && result.cut_frame < kept ? result.cut_frame : most_stretched_frame(result.sequence);
+    scalar("where_frame", std::to_string(at));
+    list("most_stretched_edges", most_stretched_edges(result.sequence, at, 5));
   }
   const std::string text = cfg::to_yaml(about_node);
   write_text_atomic(about.string(), text);
