@@ -1,6 +1,7 @@
 // Pinch zones of a posed body (see pinch.h).
 #include "layers/geometry/pinch.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -74,6 +75,20 @@ std::vector<char> pinch_faces(const TriMesh& body, const std::vector<char>& cros
   for (int f = 0; f < nf; ++f) {
     for (int k = 0; k < 3; ++k) out[f] = out[f] || pinched[body.faces(f, k)];
   }
+  return out;
+}
+
+PinchZones pinch_zones_under(const TriMesh& body, const std::vector<char>& crossing, double distance,
+                             const Points& cloth, double longest_edge) {
+  PinchZones out;
+  out.covered.assign(static_cast<std::size_t>(body.num_vertices()), 0);
+  if (cloth.rows() > 0) {
+    const PointIndex index(cloth);
+    const double reach = 2 * std::max(distance, 0.0) + 0.5 * longest_edge;
+    for (int v = 0; v < body.num_vertices(); ++v)
+      out.covered[v] = index.nearest(body.vertices.row(v)).distance <= reach ? 1 : 0;
+  }
+  out.faces = pinch_faces(body, crossing, distance, &out.covered);
   return out;
 }
 

@@ -28,7 +28,7 @@ void BodyCollider::reset(const geometry::TriMesh& body) {
   ContactTopology topology = ContactTopology::build(body.faces, body.vertices, "body");
   copy_pose(body.vertices, start_, "vertices");
   topology_ = std::move(topology);
-  end_ = current_ = previous_ = reset_pose_ = start_;
+  end_ = current_ = previous_ = start_;
   edges_ = geometry::unique_edges(body.faces);
   std::unordered_map<std::uint64_t, int> index;
   const auto key = [](int a, int b) {

@@ -71,9 +71,6 @@ class BodyCollider {
   const ContactTopology& topology() const { return topology_; }
   const geometry::Edges& edges() const { return edges_; }
   int num_vertices() const { return static_cast<int>(start_.size()); }
-  // The pose given to reset() (the T-pose in the generator): two body
-  // points far apart there belong to different parts of the body.
-  const Vec3s& pose_at_reset() const { return reset_pose_; }
 
   // Poses: the frame starts at the current pose and ends at `next` (same
   // vertex count, finite) or, given nothing, stays.
@@ -117,7 +114,6 @@ class BodyCollider {
   bool nearest_point(const Vec3& p, int& nearest, SurfaceHit& hit) const;
 
   ContactTopology topology_;
-  Vec3s reset_pose_;          // see pose_at_reset()
   Vec3s start_, end_;         // frame poses
   Vec3s current_, previous_;  // this substep's pose and the one before
   double radius_ = 0;         // this substep's search radius (= grid cell)

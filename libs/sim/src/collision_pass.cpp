@@ -144,44 +144,12 @@ void CollisionPass::detect(double gap, std::vector<Hit>& hits, bool incremental)
   }
 }
 
-Vec3 CollisionPass::body_normal(const Hit& h) const {
-  Vec3 n = Vec3::Zero();
-  for (int v : h.v)
-    if (layout_->owner[v] < 0) n += body_normals_[v - layout_->cloth_vertices];
-  const double len = n.norm();
-  return len > 0 ? Vec3(n / len) : n;
-}
-
-void CollisionPass::mark_pinched(const std::vector<Hit>& hits) {
-  for (const Hit& h : hits) {
-    // Only a cloth vertex against a body face: an edge or a face of the
-    // cloth spans too much to say the body presses it from both sides.
-    if (h.edge_edge || layout_->owner[h.v[0]] < 0 || layout_->owner[h.v[1]] >= 0) continue;
-    const Vec3 n = body_normal(h);
-    if (n.squaredNorm() == 0) continue;
-    int from = -1;
-    for (int v : h.v)
-      if (layout_->owner[v] < 0) from = v - layout_->cloth_vertices;
-    for (int v : h.v) {
-      if (layout_->owner[v] < 0) continue;
-      if (pinch_dir_[v].squaredNorm() == 0) {
-        pinch_dir_[v] = n;
-        pinch_from_[v] = from;
-      } else if (pinch_dir_[v].dot(n) < kPinchCos) {
-        const Vec3s* apart = body_.apart;
-        if (apart == nullptr || ((*apart)[pinch_from_[v]] - (*apart)[from]).norm() > kPinchApart) pinched_[v] = 1;
-      }
-    }
-  }
-}
-
 bool CollisionPass::correct(const Hit& hit, double gap) {
-  // A body pair with a cloth vertex the body presses from two opposite
-  // sides: the body yields there (pushing it out of one side pushes it
-  // into the other, and stretches the cloth round it).
-  if (layout_->owner[hit.v[0]] < 0 || layout_->owner[hit.v[3]] < 0) {
+  // A body pair in a pinch zone: the body yields there (pushing the cloth
+  // out of one part pushes it into the other, and drags it).
+  if (body_.pinch != nullptr && (layout_->owner[hit.v[0]] < 0 || layout_->owner[hit.v[3]] < 0)) {
     for (int v : hit.v)
-      if (layout_->owner[v] >= 0 && pinched_[v]) return true;
+      if (layout_->owner[v] < 0 && (*body_.pinch)[v - layout_->cloth_vertices]) return true;
   }
   // The pair where CCD stopped, and weights w with sum_k w_k x_k = the
   // vector between its closest points (first feature minus second).
@@ -260,9 +228,6 @@ CollisionPassStats CollisionPass::run(const std::vector<Cloth>& cloths, const st
   inv_mass_.resize(total);
   back_.assign(total, 0);
   dirty_.assign(total, 0);
-  pinched_.assign(total, 0);
-  pinch_dir_.assign(total, Vec3::Zero());
-  pinch_from_.assign(total, -1);
   for (std::size_t c = 0; c < states.size(); ++c) {
     const Cloth::State& s = *states[c];
     for (std::size_t i = 0; i < s.x.size(); ++i) {
@@ -380,12 +345,10 @@ CollisionPassStats CollisionPass::resolve(const std::vector<Cloth::State*>& stat
     std::fill(dirty_.begin(), dirty_.end(), 0);
   };
   stats.pairs = static_cast<long>(hits.size());
-  mark_pinched(hits);
   while (!hits.empty() && stats.rounds < rounds) {
     for (const Hit& h : hits) correct(h, gap);
     ++stats.rounds;
     again();
-    mark_pinched(hits);
   }
   // Impact zones: the cloth vertices of cloth-cloth pairs still failing,
   // merged (union-find) with every zone they touch, each moved rigidly

@@ -36,10 +36,11 @@
 // stopped in front of a moving limb would be swept through and torn):
 // where they still fail after the rounds (the body pinches the cloth
 // between two of its parts, or sweeps into cloth stopped by the fail-safe)
-// the body yields and the pairs are counted. A cloth vertex met by body
-// pairs whose normals oppose is pinched: its body pairs are not corrected
-// at all (the body yields there from the start; pushing it out of one
-// side pushes it into the other and stretches the cloth round it).
+// the body yields and the pairs are counted. In the body's pinch zones
+// (geometry/pinch.h, the zones the measures report crossings in; SweptBody::
+// pinch) body pairs are not corrected at all: there two parts of the body
+// press the cloth between them, and pushing it out of one pushes it into
+// the other and drags or tears it.
 //
 // All corrections are returned as pushes (the solver adds no velocity for
 // them); vertices put back are flagged (the solver stops them).
@@ -56,8 +57,6 @@
 namespace layers::sim::detail {
 
 constexpr int kZoneRounds = 8;         // rounds of impact zones before the fail-safe
-constexpr double kPinchCos = -0.3;     // body normals this far apart at one cloth vertex: a pinch
-constexpr double kPinchApart = 0.036;  // m between the two parts in the apart pose (docs/metrics.md's 2 x 18 mm)
 
 struct CollisionPassStats {
   long pairs = 0;     // colliding pairs found in the first round
@@ -79,9 +78,9 @@ struct SweptBody {
   const Vec3s* frame_start = nullptr;
   const Vec3s* frame_end = nullptr;
   long frame = -1;
-  // A pose in which the body's parts stand apart (the T-pose; null: none),
-  // for telling a pinch between two parts from the two sides of one.
-  const Vec3s* apart = nullptr;
+  // Per body vertex: in a pinch zone during this frame (null: none), where
+  // the body yields to cloth.
+  const std::vector<std::uint8_t>* pinch = nullptr;
 };
 
 class CollisionPass {
@@ -127,17 +126,8 @@ class CollisionPass {
   // vertex moved since the last detection, plus the last hits with none.
   void detect(double gap, std::vector<Hit>& hits, bool incremental);
   // Pushes the pair apart; false when no vertex of it can move. A body
-  // pair with a pinched cloth vertex is left alone (the body yields).
+  // pair with a body vertex in a pinch zone is left alone (the body yields).
   bool correct(const Hit& hit, double gap);
-  // The body's outward normal at a body pair (its body vertices' normals).
-  Vec3 body_normal(const Hit& h) const;
-  // Flags the cloth vertices met by vertex-face body pairs (the cloth
-  // vertex against a body face) whose normals oppose
-  // (cosine below kPinchCos) within this substep and whose body vertices
-  // stand more than kPinchApart apart in the body's `apart` pose: pinched
-  // between two parts of the body (not lying over both sides of one thin
-  // part, where the body must not yield).
-  void mark_pinched(const std::vector<Hit>& hits);
   // Moves each impact zone (the cloth vertices with parent >= 0, grouped by
   // find()) rigidly: its centre of mass as the zone's mean motion, its
   // spin from the zone's angular momentum about the start centre. A zone
@@ -166,9 +156,6 @@ class CollisionPass {
   Vec3s x0_, x1_;                 // start and end of every global vertex
   std::vector<double> inv_mass_;  // 0 for the body and pinned vertices
   std::vector<std::uint8_t> back_;
-  std::vector<std::uint8_t> pinched_;  // cloth vertex the body presses from opposite sides this substep
-  Vec3s pinch_dir_;                    // the body's normal at the first body pair of each cloth vertex
-  std::vector<int> pinch_from_;        // a body vertex of that pair (-1: none yet)
   std::vector<std::uint8_t> dirty_;    // moved since the last detection
   std::vector<Hit> hits_;              // the pairs of the last detection
   Vec3s body_normals_;                 // the body's vertex normals at the start of the substep (area-weighted)

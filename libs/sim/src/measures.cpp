@@ -227,22 +227,17 @@ FrameMeasures measure_frame(const geometry::TriMesh& body, const std::vector<Mea
     if (body_self) {
       const geometry::MeshCrossings self = geometry::self_crossings(body_tree);
       out.body_self_crossing = static_cast<double>(self.a_faces_crossing()) / body.num_faces();
-      // Pinch zones among the body vertices under the garments (a garment
-      // vertex within twice the pinch distance plus half the garments'
-      // longest edge: every point of a garment face is within half its
-      // longest edge of one of its vertices, roughly); their share of the
-      // body faces under the garments.
+      // Pinch zones among the body vertices under the garments; their
+      // share of the body faces under the garments.
       double longest = 0;
       for (const MeasuredGarment& g : garments) {
         const Eigen::VectorXd lengths = geometry::edge_lengths(g.positions, geometry::unique_edges(g.faces));
         if (lengths.size() > 0) longest = std::max(longest, lengths.maxCoeff());
       }
-      const geometry::PointIndex cloth(stack(all));
-      std::vector<char> covered(static_cast<std::size_t>(body.num_vertices()), 0);
-      for (int v = 0; v < body.num_vertices(); ++v)
-        covered[v] = cloth.nearest(body.vertices.row(v)).distance <= 2 * pinch_distance + 0.5 * longest ? 1 : 0;
-      const std::vector<char> pinch =
-          geometry::pinch_faces(body, self.pairs > 0 ? self.a_faces : std::vector<char>{}, pinch_distance, &covered);
+      const geometry::PinchZones zones = geometry::pinch_zones_under(
+          body, self.pairs > 0 ? self.a_faces : std::vector<char>{}, pinch_distance, stack(all), longest);
+      const std::vector<char>& pinch = zones.faces;
+      const std::vector<char>& covered = zones.covered;
       const auto in_pinch = std::count(pinch.begin(), pinch.end(), 1);
       long under = 0, under_pinched = 0;
       for (int f = 0; f < body.num_faces(); ++f) {

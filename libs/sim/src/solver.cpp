@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "body_collider.h"
+#include "body_pinch.h"
 #include "cloth_contact.h"
 #include "collision_pass.h"
 #include "contact_candidates.h"
@@ -42,6 +43,8 @@ struct Solver::Impl {
   std::vector<std::vector<std::uint8_t>> claimed;  // per cloth: attachment aimed this iteration
   std::vector<std::uint8_t> held;                  // scratch: vertices touching the body or an inner layer
   detail::CollisionPass pass;
+  detail::BodyPinch pinch;                          // the body's pinch zones, for the pass
+  const std::vector<std::uint8_t>* pinch_now = nullptr;  // this frame's (null: no pass or no body)
   std::vector<Cloth::State*> states;                // per cloth, for the collision pass
   std::vector<std::vector<std::uint8_t>> reverted;  // per cloth: put back by the collision pass this substep
   std::vector<Vec3s> before_pass, before_cap;       // per cloth: positions before the pass and before its cap
@@ -148,6 +151,7 @@ const Cloth& Solver::cloth(int index) const { return const_cast<Solver*>(this)->
 
 void Solver::set_body(const geometry::TriMesh& body) {
   impl_->body.reset(body);
+  impl_->pinch.forget();
   body_ = body;
   for (std::size_t i = 0; i < cloths_.size(); ++i) impl_->body_memory[i].resize(cloths_[i].num_vertices());
 }
@@ -155,6 +159,7 @@ void Solver::set_body(const geometry::TriMesh& body) {
 void Solver::set_body_positions(const geometry::Points& positions) {
   if (!has_body()) throw InputError("body", "positions", "set_body() before set_body_positions()", "no body");
   impl_->body.set_pose(positions);
+  impl_->pinch.forget();
   body_.vertices = positions;
 }
 
@@ -190,6 +195,7 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
   const bool body = has_body();
   if (body) m.body.begin_frame(body_next);
   const SolverConfig& c = config_;
+  m.pinch_now = body && c.collision_pass ? &m.pinch.update(m.body, cloths_, c.validation.pinch_distance) : nullptr;
   const int n = c.substeps;
   const double h = 1.0 / (c.fps * n);
   Wind unit_wind = wind;
@@ -470,7 +476,7 @@ void Solver::collision_pass(bool body) {
     swept.frame_start = &m.body.frame_start();
     swept.frame_end = &m.body.frame_end();
     swept.frame = m.body.sweep_revision();
-    swept.apart = &m.body.pose_at_reset();
+    swept.pinch = m.pinch_now;
   }
   for (std::size_t ci = 0; ci < cloths_.size(); ++ci) m.before_pass[ci] = cloths_[ci].state_.x;
   const detail::CollisionPassStats ps =

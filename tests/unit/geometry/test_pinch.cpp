@@ -68,3 +68,26 @@ TEST(Pinch, TheBodysOwnCrossingsAndTheirRingArePinched) {
   EXPECT_EQ(pinch, g::grow_faces(sheet, crossing, 1));
   EXPECT_GT(count(pinch), 1);  // the face and its neighbours
 }
+
+TEST(Pinch, ZonesUnderClothExamineOnlyTheBodyTheClothCovers) {
+  // The two plates of the test above, and cloth (a few points) over the
+  // corner where they face each other: the zones there are found, those
+  // of the same body far from any cloth are not looked for.
+  const g::TriMesh low = plate(11, 0.1f, 0), high = plate(5, 0.04f, 0.012f);
+  const g::TriMesh body = g::concatenate({low, high});
+  g::Points cloth(2, 3);
+  cloth << 0.005f, 0.005f, 0.006f, 0.01f, 0.005f, 0.006f;
+  const g::PinchZones zones = g::pinch_zones_under(body, {}, 0.018, cloth, 0.004);
+  // Covered: the body vertices within 2 x 18 mm + 2 mm of a cloth point.
+  for (int v = 0; v < body.num_vertices(); ++v) {
+    double nearest = 1e9;
+    for (int c = 0; c < cloth.rows(); ++c)
+      nearest = std::min(nearest, static_cast<double>((body.vertices.row(v) - cloth.row(c)).norm()));
+    EXPECT_EQ(zones.covered[v] != 0, nearest <= 0.038) << v;
+  }
+  EXPECT_EQ(zones.faces, g::pinch_faces(body, {}, 0.018, &zones.covered));
+  EXPECT_GT(count(zones.faces), 0);
+  EXPECT_LT(count(zones.faces), count(g::pinch_faces(body, {}, 0.018)));  // the far corner of the upper plate
+  // No cloth: nothing covered, no zone.
+  EXPECT_EQ(count(g::pinch_zones_under(body, {}, 0.018, g::Points(0, 3), 0).faces), 0);
+}

@@ -11,10 +11,13 @@
 #include <random>
 #include <tuple>
 
+#include "body_collider.h"
+#include "body_pinch.h"
 #include "ccd.h"
 #include "collision_pass.h"
 #include "fixtures.h"
 #include "layers/geometry/intersect.h"
+#include "layers/geometry/pinch.h"
 #include "layers/geometry/topology.h"
 #include "layers/sim/measures.h"
 #include "layers/sim/solver.h"
@@ -151,8 +154,9 @@ TEST(CollisionPass, RandomDisplacementsNeverEndCrossed) {
 TEST(CollisionPass, ClothPinchedBetweenTwoBodyPartsMakesTheBodyYield) {
   // The body: two plates closing from 10 mm to 1 mm apart in one substep,
   // a sheet at rest between them. Each plate alone would push the sheet
-  // out of its way, into the other; the sheet is pinched, so the plates
-  // yield and the sheet does not move.
+  // out of its way, into the other. Where the body is in a pinch zone (here
+  // all of it: two parts closer than the pinch distance) the plates yield
+  // and the sheet does not move; told of no zone, the pass pushes it.
   const geometry::TriMesh lower = grid(V3(-0.05, -0.005, -0.05), V3(0, 0, 0.3), V3(0.3, 0, 0), 6, 6);
   const geometry::TriMesh upper = grid(V3(-0.05, 0.005, -0.05), V3(0.3, 0, 0), V3(0, 0, 0.3), 6, 6);
   const geometry::TriMesh body = geometry::concatenate({lower, upper});
@@ -172,18 +176,68 @@ TEST(CollisionPass, ClothPinchedBetweenTwoBodyPartsMakesTheBodyYield) {
   swept.faces = &faces;
   swept.edges = &edges;
 
+  const std::vector<std::uint8_t> pinch(start.size(), 1);
+
   std::vector<Cloth> cloths;
   cloths.emplace_back(grid(V3(0, 0, 0), V3(0, 0, 0.2), V3(0.2, 0, 0), 8, 8), Material{}, ClothOptions("sheet", 0));
-  std::vector<Cloth::State> states{cloths[0].state()};
-  states[0].x_start = states[0].x;
-  std::vector<Cloth::State*> ptr{&states[0]};
-  std::vector<Vec3s> push{Vec3s(states[0].x.size(), Vec3::Zero())};
-  std::vector<std::vector<std::uint8_t>> back{std::vector<std::uint8_t>(states[0].x.size(), 0)};
-  detail::CollisionPass pass;
-  const detail::CollisionPassStats st = pass.run(cloths, ptr, swept, 5e-4, 16, push, back);
-  EXPECT_GT(st.pairs, 0);
-  EXPECT_GT(st.yielded, 0);
-  for (std::size_t i = 0; i < states[0].x.size(); ++i) EXPECT_EQ(states[0].x[i], states[0].x_start[i]) << i;
+  for (const bool zone : {true, false}) {
+    swept.pinch = zone ? &pinch : nullptr;
+    std::vector<Cloth::State> states{cloths[0].state()};
+    states[0].x_start = states[0].x;
+    std::vector<Cloth::State*> ptr{&states[0]};
+    std::vector<Vec3s> push{Vec3s(states[0].x.size(), Vec3::Zero())};
+    std::vector<std::vector<std::uint8_t>> back{std::vector<std::uint8_t>(states[0].x.size(), 0)};
+    detail::CollisionPass pass;
+    const detail::CollisionPassStats st = pass.run(cloths, ptr, swept, 5e-4, 16, push, back);
+    EXPECT_GT(st.pairs, 0);
+    EXPECT_GT(st.yielded, 0);
+    double moved = 0;
+    for (std::size_t i = 0; i < states[0].x.size(); ++i)
+      moved = std::max(moved, (states[0].x[i] - states[0].x_start[i]).norm());
+    if (zone) {
+      EXPECT_EQ(moved, 0.0);
+    } else {
+      EXPECT_GT(moved, 1e-4);
+    }
+  }
+}
+
+TEST(BodyPinch, TheBodyYieldsOnlyWhereEveryFaceIsPinchedAtBothEndsOfTheFrame) {
+  // The body: a 10 cm plate and a 4 cm plate 12 mm over its corner (two
+  // parts closer than the 18 mm pinch distance), cloth lying between them.
+  const auto body_at = [](double height) {
+    return geometry::concatenate({grid(V3(0, 0, 0), V3(0, 0, 0.1), V3(0.1, 0, 0), 10, 10),
+                                  grid(V3(0, height, 0), V3(0.04, 0, 0), V3(0, 0, 0.04), 4, 4)});
+  };
+  const geometry::TriMesh body = body_at(0.012);
+  std::vector<Cloth> cloths;
+  cloths.emplace_back(grid(V3(0, 0.006, 0), V3(0, 0, 0.04), V3(0.04, 0, 0), 4, 4), Material{}, ClothOptions("sheet", 0));
+  detail::BodyCollider collider;
+  collider.reset(body);
+  detail::BodyPinch pinch;
+  // Standing still: a vertex yields when every face around it is in a
+  // zone of geometry::pinch_zones_under() (the measures' zones).
+  collider.begin_frame(nullptr);
+  const std::vector<std::uint8_t> still = pinch.update(collider, cloths, 0.018);
+  geometry::Points stacked(cloths[0].num_vertices(), 3);
+  for (int i = 0; i < cloths[0].num_vertices(); ++i) stacked.row(i) = cloths[0].state().x[i].cast<float>();
+  const geometry::PinchZones zones = geometry::pinch_zones_under(body, {}, 0.018, stacked, 0.01);
+  long yielding = 0;
+  for (int v = 0; v < body.num_vertices(); ++v) {
+    bool all = true;
+    for (int f = 0; f < body.num_faces(); ++f)
+      for (int k = 0; k < 3; ++k)
+        if (body.faces(f, k) == v && !zones.faces[f]) all = false;
+    EXPECT_EQ(still[v] != 0, all) << v;
+    yielding += still[v];
+  }
+  EXPECT_GT(yielding, 25);  // at least the upper plate's 5 x 5 vertices
+  // The upper plate lifts to 5 cm in this frame: pinched at the start, not
+  // at the end, so the body does not yield anywhere.
+  const geometry::TriMesh lifted = body_at(0.05);
+  collider.begin_frame(&lifted.vertices);
+  const std::vector<std::uint8_t> lifting = pinch.update(collider, cloths, 0.018);
+  EXPECT_EQ(std::count(lifting.begin(), lifting.end(), 1), 0);
 }
 
 TEST(CollisionPass, AnImpactZoneMovesWithItsClothInsteadOfStopping) {

@@ -9,7 +9,9 @@
 //    two thighs, closer than the cloth stack between them needs; on one
 //    smooth part of the surface the path along the edges is at most about
 //    1.4 times the straight distance).
-// Garment-body crossings are reported inside and outside these zones.
+// Garment-body crossings are reported inside and outside these zones
+// (sim/measures.h), and the simulator's collision pass lets the body yield
+// to cloth there (docs/sim.md "Contact"): both ask pinch_zones_under().
 #pragma once
 
 #include <vector>
@@ -28,5 +30,17 @@ constexpr double kPinchDetour = 2.0;
 // the garments (the toes and the lips pinch too, but no cloth goes there).
 std::vector<char> pinch_faces(const TriMesh& body, const std::vector<char>& crossing, double distance,
                               const std::vector<char>* examine = nullptr);
+
+// The pinch zones where cloth lies: pinch_faces() examined on the body
+// vertices under the cloth, those within 2 x `distance` + half the cloth's
+// longest edge of a cloth vertex (every point of a cloth face lies within
+// about half its longest edge of one of its vertices). `cloth` holds the
+// cloth's vertices (all garments stacked).
+struct PinchZones {
+  std::vector<char> covered;  // per body vertex: under the cloth
+  std::vector<char> faces;    // per body face: in a pinch zone
+};
+PinchZones pinch_zones_under(const TriMesh& body, const std::vector<char>& crossing, double distance,
+                             const Points& cloth, double longest_edge);
 
 }  // namespace layers::geometry
