@@ -8,10 +8,12 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <set>
 #include <sstream>
 
 #include "layers/core/error.h"
+#include "layers/core/install_paths.h"
 #include "layers/core/text_file.h"
 #include "layers/core/yaml_text.h"
 
@@ -132,6 +134,23 @@ Node convert(const YAML::Node& y, const std::string& name, Budget& budget) {
   return out;
 }
 
+// An include's file: relative to the including file's folder; a relative
+// path under configs/ that is not there is the installed toolkit's config
+// (<prefix>/share/layers/configs), so a config outside a clone can include
+// the shipped ones as a clone's do.
+fs::path include_target(const fs::path& including, const fs::path& include) {
+  if (!include.is_relative()) return include;
+  const fs::path here = including.parent_path() / include;
+  if (fs::exists(here)) return here;
+  const auto first = include.begin();
+  if (first == include.end() || *first != "configs") return here;
+  const std::string installed = installed_dir(kInstalledConfigDir);
+  if (installed.empty()) return here;
+  fs::path shipped = installed;
+  for (auto part = std::next(first); part != include.end(); ++part) shipped /= *part;
+  return fs::exists(shipped) ? shipped : here;
+}
+
 Node load_recursive(const fs::path& path, std::vector<std::string>& stack, int& files) {
   std::string name = path.string();
   if (++files > kMaxConfigFiles)
@@ -170,8 +189,7 @@ Node load_recursive(const fs::path& path, std::vector<std::string>& stack, int& 
   result.kind = Node::Kind::Map;
   result.file = name;
   for (const Node* p : paths) {
-    fs::path target = fs::path(p->scalar);
-    if (target.is_relative()) target = path.parent_path() / target;
+    const fs::path target = include_target(path, fs::path(p->scalar));
     if (!fs::exists(target)) throw InputError(p->where(), "include", "an existing file", "'" + target.string() + "'");
     merge(result, load_recursive(target, stack, files));
   }
