@@ -239,7 +239,8 @@ FinalizeReport finalize(const Layout& layout, const std::string& config_yaml) {
 
 // A refused scene to look at (GenerateOptions::keep_refused). Never
 // replaces a file: a name already there is refused.
-void write_refused(const std::string& folder, const SceneSpec& spec, const SceneResult& result) {
+void write_refused(const std::string& folder, const SceneSpec& spec, const SceneResult& result,
+                   double pinch_distance) {
   fs::create_directories(folder);
   const fs::path shard = fs::path(folder) / (spec.id + ".h5");
   const fs::path about = fs::path(folder) / (spec.id + ".refused.yaml");
@@ -278,6 +279,7 @@ void write_refused(const std::string& folder, const SceneSpec& spec, const Scene
         result.cut_frame >= 0 && result.cut_frame < kept ? result.cut_frame : most_stretched_frame(result.sequence);
     scalar("where_frame", std::to_string(at));
     list("most_stretched_edges", most_stretched_edges(result.sequence, at, 5));
+    list("crossings", crossing_places(result.sequence, at, pinch_distance, 3));
   }
   const std::string text = cfg::to_yaml(about_node);
   write_text_atomic(about.string(), text);
@@ -325,7 +327,7 @@ GenerateReport generate_dataset(const GeneratorConfig& config, const std::string
     std::string reasons;
     for (const auto& v : result.violations) reasons += (reasons.empty() ? "" : "; ") + v;
     if (!result.ok && !options.keep_refused.empty() && !result.sequence.garments.empty())
-      write_refused(options.keep_refused, spec, result);
+      write_refused(options.keep_refused, spec, result, config.sim.validation.pinch_distance);
     // The outcome first: a scene counts as done once its part or marker exists.
     if (config.window_min_frames > 0) write_outcome(layout, spec.id, result);
     if (result.ok)
