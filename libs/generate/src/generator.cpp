@@ -239,8 +239,7 @@ FinalizeReport finalize(const Layout& layout, const std::string& config_yaml) {
 
 // A refused scene to look at (GenerateOptions::keep_refused). Never
 // replaces a file: a name already there is refused.
-void write_refused(const std::string& folder, const SceneSpec& spec, const SceneResult& result,
-                   double pinch_distance) {
+void write_refused(const std::string& folder, const SceneSpec& spec, const SceneResult& result, double pinch_distance) {
   fs::create_directories(folder);
   const fs::path shard = fs::path(folder) / (spec.id + ".h5");
   const fs::path about = fs::path(folder) / (spec.id + ".refused.yaml");

@@ -66,14 +66,14 @@ geometry::TriMesh garment_mesh(const data::GarmentData& g, int frame) {
   const std::size_t nv = static_cast<std::size_t>(g.n_vertices());
   if (g.positions.size() < (static_cast<std::size_t>(frame) + 1) * nv * 3) return m;
   m.vertices = Eigen::Map<const geometry::Points>(g.positions.data() + static_cast<std::size_t>(frame) * nv * 3,
-                                                   static_cast<Eigen::Index>(nv), 3);
+                                                  static_cast<Eigen::Index>(nv), 3);
   m.faces = Eigen::Map<const geometry::Faces>(g.faces.data(), static_cast<Eigen::Index>(g.n_faces()), 3);
   return m;
 }
 
 // "<what>: N faces, near J n at (x, y, z) m, ..." for the flagged faces of `mesh`.
-std::string place_line(const data::SequenceData& seq, int frame, const std::string& what,
-                       const geometry::TriMesh& mesh, const std::vector<char>& faces, int count) {
+std::string place_line(const data::SequenceData& seq, int frame, const std::string& what, const geometry::TriMesh& mesh,
+                       const std::vector<char>& faces, int count) {
   struct Group {
     int faces = 0;
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
@@ -90,7 +90,8 @@ std::string place_line(const data::SequenceData& seq, int frame, const std::stri
     ++total;
   }
   std::vector<std::pair<std::string, Group>> order(groups.begin(), groups.end());
-  std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.second.faces > b.second.faces; });
+  std::stable_sort(order.begin(), order.end(),
+                   [](const auto& a, const auto& b) { return a.second.faces > b.second.faces; });
   std::string line = what + ": " + std::to_string(total) + (total == 1 ? " face" : " faces");
   for (std::size_t i = 0; i < order.size() && i < static_cast<std::size_t>(std::max(count, 0)); ++i) {
     const Eigen::Vector3d c = order[i].second.sum / order[i].second.faces;
@@ -111,9 +112,10 @@ std::vector<std::string> crossing_places(const data::SequenceData& seq, int fram
   const std::size_t nb = static_cast<std::size_t>(seq.body.n_vertices());
   if (seq.body.positions.size() >= (static_cast<std::size_t>(frame) + 1) * nb * 3 && nb > 0) {
     geometry::TriMesh body;
-    body.vertices = Eigen::Map<const geometry::Points>(seq.body.positions.data() + static_cast<std::size_t>(frame) * nb * 3,
-                                                       static_cast<Eigen::Index>(nb), 3);
-    body.faces = Eigen::Map<const geometry::Faces>(seq.body.faces.data(), static_cast<Eigen::Index>(seq.body.n_faces()), 3);
+    body.vertices = Eigen::Map<const geometry::Points>(
+        seq.body.positions.data() + static_cast<std::size_t>(frame) * nb * 3, static_cast<Eigen::Index>(nb), 3);
+    body.faces =
+        Eigen::Map<const geometry::Faces>(seq.body.faces.data(), static_cast<Eigen::Index>(seq.body.n_faces()), 3);
     const geometry::FaceTree tree(body);
     const geometry::MeshCrossings self = geometry::self_crossings(tree);
     double longest = 0;
@@ -127,8 +129,9 @@ std::vector<std::string> crossing_places(const data::SequenceData& seq, int fram
       rows += m.num_vertices();
       for (int f = 0; f < m.num_faces(); ++f)
         for (int k = 0; k < 3; ++k)
-          longest = std::max(longest, static_cast<double>((m.vertices.row(m.faces(f, k)) -
-                                                           m.vertices.row(m.faces(f, (k + 1) % 3))).norm()));
+          longest = std::max(
+              longest,
+              static_cast<double>((m.vertices.row(m.faces(f, k)) - m.vertices.row(m.faces(f, (k + 1) % 3))).norm()));
     }
     const geometry::PinchZones zones = geometry::pinch_zones_under(
         body, self.pairs > 0 ? self.a_faces : std::vector<char>{}, pinch_distance, cloth, longest);
@@ -141,7 +144,8 @@ std::vector<std::string> crossing_places(const data::SequenceData& seq, int fram
         through[a] = 1;
         any = true;
       });
-      if (any) out.push_back(place_line(seq, frame, seq.garments[g].name + " through the body", garments[g], through, count));
+      if (any)
+        out.push_back(place_line(seq, frame, seq.garments[g].name + " through the body", garments[g], through, count));
     }
   }
   for (std::size_t a = 0; a < garments.size(); ++a)

@@ -334,8 +334,9 @@ SceneResult simulate_scene(const GeneratorConfig& config, const SceneSpec& spec,
     }
     measures.add(m);
     if (trace)
-      spdlog::trace("{} record {}: H-crossing {:.3f}% ({:.3f}% outside pinch zones), L-crossing {:.3f}%, stretch {:.3f}",
-                    spec.id, r, 100 * m.h_crossing, 100 * m.h_crossing_clear, 100 * m.l_crossing, m.max_stretch);
+      spdlog::trace(
+          "{} record {}: H-crossing {:.3f}% ({:.3f}% outside pinch zones), L-crossing {:.3f}%, stretch {:.3f}", spec.id,
+          r, 100 * m.h_crossing, 100 * m.h_crossing_clear, 100 * m.l_crossing, m.max_stretch);
     if (observer) observer("record", r, solver);
     keep_frame(r);
   }

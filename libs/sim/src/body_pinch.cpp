@@ -19,8 +19,8 @@ std::vector<std::uint8_t> zones_at(const Vec3s& pose, const geometry::Faces& fac
   for (std::size_t i = 0; i < pose.size(); ++i) body.vertices.row(static_cast<Eigen::Index>(i)) = pose[i].cast<float>();
   const geometry::MeshCrossings self = geometry::self_crossings(geometry::FaceTree(body));
 
-  const geometry::PinchZones zones = geometry::pinch_zones_under(
-      body, self.pairs > 0 ? self.a_faces : std::vector<char>{}, distance, cloth, longest);
+  const geometry::PinchZones zones =
+      geometry::pinch_zones_under(body, self.pairs > 0 ? self.a_faces : std::vector<char>{}, distance, cloth, longest);
   // A vertex all of whose faces are in a zone: any body pair made of such
   // vertices crosses the body only where the measures count a pinch.
   std::vector<std::uint8_t> out(pose.size(), 1);
@@ -49,8 +49,10 @@ const std::vector<std::uint8_t>& BodyPinch::update(const BodyCollider& body, con
   geometry::Faces faces(static_cast<Eigen::Index>(body.topology().faces.size()), 3);
   for (std::size_t f = 0; f < body.topology().faces.size(); ++f)
     for (int k = 0; k < 3; ++k) faces(static_cast<Eigen::Index>(f), k) = body.topology().faces[f][k];
-  if (!carried_) start_ = zones_at(body.frame_start(), faces, cloth, longest, distance);
-  else start_.swap(end_);
+  if (!carried_)
+    start_ = zones_at(body.frame_start(), faces, cloth, longest, distance);
+  else
+    start_.swap(end_);
   end_ = body.frame_end() == body.frame_start() ? start_ : zones_at(body.frame_end(), faces, cloth, longest, distance);
   carried_ = true;
   frame_.resize(start_.size());

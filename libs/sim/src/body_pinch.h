@@ -24,8 +24,7 @@ class BodyPinch {
   void forget() { carried_ = false; }
   // The zones of the frame `body` is about to sweep (after begin_frame),
   // under the cloths as they stand now.
-  const std::vector<std::uint8_t>& update(const BodyCollider& body, const std::vector<Cloth>& cloths,
-                                          double distance);
+  const std::vector<std::uint8_t>& update(const BodyCollider& body, const std::vector<Cloth>& cloths, double distance);
 
  private:
   std::vector<std::uint8_t> start_, end_, frame_;

@@ -56,7 +56,7 @@
 
 namespace layers::sim::detail {
 
-constexpr int kZoneRounds = 8;         // rounds of impact zones before the fail-safe
+constexpr int kZoneRounds = 8;  // rounds of impact zones before the fail-safe
 
 struct CollisionPassStats {
   long pairs = 0;     // colliding pairs found in the first round
@@ -156,9 +156,9 @@ class CollisionPass {
   Vec3s x0_, x1_;                 // start and end of every global vertex
   std::vector<double> inv_mass_;  // 0 for the body and pinned vertices
   std::vector<std::uint8_t> back_;
-  std::vector<std::uint8_t> dirty_;    // moved since the last detection
-  std::vector<Hit> hits_;              // the pairs of the last detection
-  Vec3s body_normals_;                 // the body's vertex normals at the start of the substep (area-weighted)
+  std::vector<std::uint8_t> dirty_;  // moved since the last detection
+  std::vector<Hit> hits_;            // the pairs of the last detection
+  Vec3s body_normals_;               // the body's vertex normals at the start of the substep (area-weighted)
   std::vector<Box> vertex_boxes_, edge_boxes_, face_boxes_;  // the features' swept boxes, grown by half the gap
   std::vector<std::uint8_t> edge_moved_, face_moved_;        // this detection's features with a moved vertex
   SweptBody body_;                                           // this run's body

@@ -43,12 +43,12 @@ struct Solver::Impl {
   std::vector<std::vector<std::uint8_t>> claimed;  // per cloth: attachment aimed this iteration
   std::vector<std::uint8_t> held;                  // scratch: vertices touching the body or an inner layer
   detail::CollisionPass pass;
-  detail::BodyPinch pinch;                          // the body's pinch zones, for the pass
+  detail::BodyPinch pinch;                               // the body's pinch zones, for the pass
   const std::vector<std::uint8_t>* pinch_now = nullptr;  // this frame's (null: no pass or no body)
-  std::vector<Cloth::State*> states;                // per cloth, for the collision pass
-  std::vector<std::vector<std::uint8_t>> reverted;  // per cloth: put back by the collision pass this substep
-  std::vector<Vec3s> before_pass, before_cap;       // per cloth: positions before the pass and before its cap
-  std::vector<std::vector<std::uint8_t>> moved;     // per cloth: moved by the cap after the pass
+  std::vector<Cloth::State*> states;                     // per cloth, for the collision pass
+  std::vector<std::vector<std::uint8_t>> reverted;       // per cloth: put back by the collision pass this substep
+  std::vector<Vec3s> before_pass, before_cap;            // per cloth: positions before the pass and before its cap
+  std::vector<std::vector<std::uint8_t>> moved;          // per cloth: moved by the cap after the pass
   // The shared broad phase (contact_candidates.h): read by the layer and
   // body edge contacts and the collision pass.
   detail::ContactLayout layout;

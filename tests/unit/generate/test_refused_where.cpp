@@ -16,7 +16,8 @@ namespace {
 // A square of two triangles at height y, x and z in [x0, x0 + size].
 void square(std::vector<float>& points, std::vector<std::int32_t>& faces, float x0, float y, float size) {
   const auto base = static_cast<std::int32_t>(points.size() / 3);
-  for (const auto& [x, z] : std::vector<std::pair<float, float>>{{x0, 0}, {x0 + size, 0}, {x0 + size, size}, {x0, size}})
+  for (const auto& [x, z] :
+       std::vector<std::pair<float, float>>{{x0, 0}, {x0 + size, 0}, {x0 + size, size}, {x0, size}})
     points.insert(points.end(), {x, y, z});
   faces.insert(faces.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
 }
@@ -38,7 +39,8 @@ data::SequenceData frame_with(bool through_body) {
   seq.body.skin_index.assign(4 * 4, 0);  // four vertices, all on the first joint
   seq.body.skin_weight.assign(4 * 4, 0.25f);
   // Joint world transforms [R | p], row-major 3x4: identity at x = 0.2 and x = 0.8.
-  for (const float x : {0.2f, 0.8f}) seq.body.joints.insert(seq.body.joints.end(), {1, 0, 0, x, 0, 1, 0, 0.3f, 0, 0, 1, 0.3f});
+  for (const float x : {0.2f, 0.8f})
+    seq.body.joints.insert(seq.body.joints.end(), {1, 0, 0, x, 0, 1, 0, 0.3f, 0, 0, 1, 0.3f});
   data::GarmentData dress, jacket;
   dress.name = "dress";
   jacket.name = "jacket";

@@ -211,7 +211,8 @@ TEST(BodyPinch, TheBodyYieldsOnlyWhereEveryFaceIsPinchedAtBothEndsOfTheFrame) {
   };
   const geometry::TriMesh body = body_at(0.012);
   std::vector<Cloth> cloths;
-  cloths.emplace_back(grid(V3(0, 0.006, 0), V3(0, 0, 0.04), V3(0.04, 0, 0), 4, 4), Material{}, ClothOptions("sheet", 0));
+  cloths.emplace_back(grid(V3(0, 0.006, 0), V3(0, 0, 0.04), V3(0.04, 0, 0), 4, 4), Material{},
+                      ClothOptions("sheet", 0));
   detail::BodyCollider collider;
   collider.reset(body);
   detail::BodyPinch pinch;
