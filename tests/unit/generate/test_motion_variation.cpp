@@ -101,7 +101,9 @@ TEST(MotionVariation, ClipWindowsFitDifferAndMirrorAboutHalf) {
 }
 
 TEST(MotionVariation, EveryScenePlaysItsOwnMotion) {
-  generate::GeneratorConfig config = load("medium.yaml");
+  // As the generator loads it (the library folder stands for its clips).
+  generate::GeneratorConfig config =
+      generate::load_generator_config(test::source_dir() + "/configs/data/medium.yaml", {}, false);
   config.sequences = 50;
   generate::check(config, "medium.yaml");
   std::set<std::string> motions, families;
