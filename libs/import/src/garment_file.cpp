@@ -6,7 +6,11 @@
 
 #include <cmath>
 #include <filesystem>
+#include <mutex>
+#include <string>
+#include <vector>
 
+#include "layers/core/checksum.h"
 #include "layers/core/error.h"
 #include "layers/core/text_file.h"
 #include "layers/core/yaml_text.h"
@@ -75,10 +79,33 @@ GarmentFile read_garment_file(const std::string& entry) {
   return g;
 }
 
+namespace {
+
+// The meshes read so far in this process, by what they were made from (the
+// file's path and bytes, its scale, the remesh target): the generator reads
+// a garment file when it loads the config and again for every scene, and a
+// remesh takes a while and logs a line. A changed file has other bytes and
+// is read again.
+struct ReadMesh {
+  std::string key;
+  ImportedMesh mesh;
+};
+std::mutex read_mutex;
+std::vector<ReadMesh> read_meshes;
+
+}  // namespace
+
 ImportedMesh read_garment_mesh(const GarmentFile& file, double fit_edge_length) {
+  const double target = file.remesh > 0.0 ? file.remesh : file.remesh != 0.0 ? fit_edge_length : 0.0;
+  std::string key = file.mesh + '\n' + content_hash(read_text_file(file.mesh)) + '\n';
+  key += std::to_string(file.scale) + ' ' + std::to_string(target) + ' ' + std::to_string(fit_edge_length);
+  {
+    const std::lock_guard<std::mutex> lock(read_mutex);
+    for (const ReadMesh& r : read_meshes)
+      if (r.key == key) return r.mesh;
+  }
   ImportedMesh m = import_mesh(file.mesh, file.scale);
   if (file.remesh != 0.0) {
-    const double target = file.remesh > 0.0 ? file.remesh : fit_edge_length;
     RemeshReport r;
     m = remesh(m, target, 5, &r);
     spdlog::info("{}: remeshed to {:.1f} mm edges: {} faces -> {}, shortest edge {:.1f} -> {:.1f} mm", file.mesh,
@@ -95,6 +122,8 @@ ImportedMesh read_garment_mesh(const GarmentFile& file, double fit_edge_length) 
                                  : file.side_file);
   }
   check_cloth_mesh(m.mesh, file.mesh);
+  const std::lock_guard<std::mutex> lock(read_mutex);
+  read_meshes.push_back({key, m});
   return m;
 }
 

@@ -151,5 +151,36 @@ TEST(Remesh, TheSideFileAsksForIt) {
   EXPECT_NE(said.find("shirt.yaml: remesh: expected fit, off, or an edge length in metres"), std::string::npos) << said;
 }
 
+// The tube written as an OBJ, its positions times `scale`.
+void write_tube(const std::string& path, float scale) {
+  const ImportedMesh m = fine_collar_tube();
+  std::ofstream out(path);
+  for (int v = 0; v < m.mesh.num_vertices(); ++v)
+    out << "v " << scale * m.mesh.vertices(v, 0) << ' ' << scale * m.mesh.vertices(v, 1) << ' '
+        << scale * m.mesh.vertices(v, 2) << '\n';
+  for (int f = 0; f < m.mesh.num_faces(); ++f)
+    out << "f " << m.mesh.faces(f, 0) + 1 << ' ' << m.mesh.faces(f, 1) + 1 << ' ' << m.mesh.faces(f, 2) + 1 << '\n';
+}
+
+TEST(Remesh, AFileIsRemeshedOnceUntilItChanges) {
+  test::TempDir dir("remesh");
+  const std::string mesh = dir.file("collar.obj");
+  write_tube(mesh, 1.0f);
+  dir.write("collar.yaml", "remesh: 0.025\n");
+  const GarmentFile file = read_garment_file("file:" + mesh);
+  const ImportedMesh first = read_garment_mesh(file, 0.025);
+  const ImportedMesh again = read_garment_mesh(file, 0.025);
+  EXPECT_EQ(again.mesh.vertices, first.mesh.vertices);
+  EXPECT_EQ(again.mesh.faces, first.mesh.faces);
+  // The file changed (a wider tube): read and remeshed anew, not the first mesh.
+  write_tube(mesh, 1.2f);
+  const ImportedMesh wider = read_garment_mesh(read_garment_file("file:" + mesh), 0.025);
+  EXPECT_NEAR(wider.mesh.vertices.col(0).maxCoeff(), 1.2f * first.mesh.vertices.col(0).maxCoeff(), 1e-3);
+  // Another target: remeshed again.
+  dir.write("collar.yaml", "remesh: 0.05\n");
+  const ImportedMesh coarser = read_garment_mesh(read_garment_file("file:" + mesh), 0.025);
+  EXPECT_LT(coarser.mesh.num_faces(), wider.mesh.num_faces());
+}
+
 }  // namespace
 }  // namespace layers::import

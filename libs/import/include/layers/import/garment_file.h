@@ -53,7 +53,9 @@ GarmentFile read_garment_file(const std::string& entry);
 // for `remesh: fit`), and checked as cloth (mesh_checks.h). Without
 // remeshing, a mesh with edges shorter than a quarter of
 // `fit_edge_length` gets a warning naming the side file's `remesh` (such
-// edges make the stretch cap hard to keep).
+// edges make the stretch cap hard to keep). A process reads each file once
+// for the same bytes, scale and target: later calls return that mesh
+// without reading, remeshing or logging again (a changed file is read anew).
 ImportedMesh read_garment_mesh(const GarmentFile& file, double fit_edge_length);
 
 }  // namespace layers::import
