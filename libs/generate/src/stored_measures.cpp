@@ -1,6 +1,9 @@
 // Stored frames for the validation measures (see stored_measures.h).
 #include "layers/generate/stored_measures.h"
 
+#include <string>
+
+#include "layers/core/error.h"
 #include "layers/generate/simulate.h"
 #include "layers/geometry/topology.h"
 
@@ -18,8 +21,10 @@ geometry::Faces faces_of(const std::vector<std::int32_t>& faces) {
 
 }  // namespace
 
-void for_each_stored_frame(const data::SequenceData& seq,
-                           const std::function<void(std::int64_t, const StoredFrame&)>& visit) {
+namespace {
+
+// The frame-independent part: faces, edges, rest lengths, layers.
+StoredFrame frame_shape(const data::SequenceData& seq) {
   StoredFrame f;
   f.body.faces = faces_of(seq.body.faces);
   for (const data::GarmentData& g : seq.garments) {
@@ -31,12 +36,32 @@ void for_each_stored_frame(const data::SequenceData& seq,
     m.self_contact = garment_self_contact(g);
     f.garments.push_back(std::move(m));
   }
+  return f;
+}
+
+void set_positions(const data::SequenceData& seq, std::int64_t t, StoredFrame& f) {
+  f.body.vertices = frame_points(seq.body.positions, t, seq.body.n_vertices());
+  for (std::size_t k = 0; k < seq.garments.size(); ++k)
+    f.garments[k].positions = frame_points(seq.garments[k].positions, t, seq.garments[k].n_vertices());
+}
+
+}  // namespace
+
+void for_each_stored_frame(const data::SequenceData& seq,
+                           const std::function<void(std::int64_t, const StoredFrame&)>& visit) {
+  StoredFrame f = frame_shape(seq);
   for (std::int64_t t = 0; t < seq.n_frames; ++t) {
-    f.body.vertices = frame_points(seq.body.positions, t, seq.body.n_vertices());
-    for (std::size_t k = 0; k < seq.garments.size(); ++k)
-      f.garments[k].positions = frame_points(seq.garments[k].positions, t, seq.garments[k].n_vertices());
+    set_positions(seq, t, f);
     visit(t, f);
   }
+}
+
+StoredFrame stored_frame(const data::SequenceData& seq, std::int64_t frame) {
+  if (frame < 0 || frame >= seq.n_frames)
+    throw Error("stored_frame: frame " + std::to_string(frame) + " of a sequence of " + std::to_string(seq.n_frames));
+  StoredFrame f = frame_shape(seq);
+  set_positions(seq, frame, f);
+  return f;
 }
 
 }  // namespace layers::generate

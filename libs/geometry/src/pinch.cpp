@@ -92,4 +92,24 @@ PinchZones pinch_zones_under(const TriMesh& body, const std::vector<char>& cross
   return out;
 }
 
+PinchZones pinch_zones_under(const TriMesh& body, const std::vector<char>& crossing, double distance,
+                             const std::vector<TriMesh>& cloth) {
+  Eigen::Index rows = 0;
+  for (const TriMesh& m : cloth) rows += m.num_vertices();
+  Points points(rows, 3);
+  double longest = 0;
+  rows = 0;
+  for (const TriMesh& m : cloth) {
+    if (m.num_vertices() == 0) continue;
+    points.middleRows(rows, m.num_vertices()) = m.vertices;
+    rows += m.num_vertices();
+    for (int f = 0; f < m.num_faces(); ++f)
+      for (int k = 0; k < 3; ++k)
+        longest = std::max(longest, (m.vertices.row(m.faces(f, k)).cast<double>() -
+                                     m.vertices.row(m.faces(f, (k + 1) % 3)).cast<double>())
+                                        .norm());
+  }
+  return pinch_zones_under(body, crossing, distance, points, longest);
+}
+
 }  // namespace layers::geometry

@@ -22,9 +22,10 @@ class BodyPinch {
   // The next frame starts from a pose whose zones are not known (a new
   // body, or a pose set without motion).
   void forget() { carried_ = false; }
-  // The zones of the frame `body` is about to sweep (after begin_frame),
-  // under the cloths as they stand now.
-  const std::vector<std::uint8_t>& update(const BodyCollider& body, const std::vector<Cloth>& cloths, double distance);
+  // The zones of the frame `body` is about to sweep (after begin_frame;
+  // `body_faces` its faces), under the cloths as they stand now.
+  const std::vector<std::uint8_t>& update(const BodyCollider& body, const geometry::Faces& body_faces,
+                                          const std::vector<Cloth>& cloths, double distance);
 
  private:
   std::vector<std::uint8_t> start_, end_, frame_;

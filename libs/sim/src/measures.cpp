@@ -229,13 +229,8 @@ FrameMeasures measure_frame(const geometry::TriMesh& body, const std::vector<Mea
       out.body_self_crossing = static_cast<double>(self.a_faces_crossing()) / body.num_faces();
       // Pinch zones among the body vertices under the garments; their
       // share of the body faces under the garments.
-      double longest = 0;
-      for (const MeasuredGarment& g : garments) {
-        const Eigen::VectorXd lengths = geometry::edge_lengths(g.positions, geometry::unique_edges(g.faces));
-        if (lengths.size() > 0) longest = std::max(longest, lengths.maxCoeff());
-      }
       const geometry::PinchZones zones = geometry::pinch_zones_under(
-          body, self.pairs > 0 ? self.a_faces : std::vector<char>{}, pinch_distance, stack(all), longest);
+          body, self.pairs > 0 ? self.a_faces : std::vector<char>{}, pinch_distance, meshes);
       const std::vector<char>& pinch = zones.faces;
       const std::vector<char>& covered = zones.covered;
       const auto in_pinch = std::count(pinch.begin(), pinch.end(), 1);

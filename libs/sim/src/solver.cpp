@@ -195,7 +195,8 @@ void Solver::advance(const geometry::Points* body_next, const Wind& wind) {
   const bool body = has_body();
   if (body) m.body.begin_frame(body_next);
   const SolverConfig& c = config_;
-  m.pinch_now = body && c.collision_pass ? &m.pinch.update(m.body, cloths_, c.validation.pinch_distance) : nullptr;
+  m.pinch_now =
+      body && c.collision_pass ? &m.pinch.update(m.body, body_.faces, cloths_, c.validation.pinch_distance) : nullptr;
   const int n = c.substeps;
   const double h = 1.0 / (c.fps * n);
   Wind unit_wind = wind;

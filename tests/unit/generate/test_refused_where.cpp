@@ -33,6 +33,7 @@ void wall(std::vector<float>& points, std::vector<std::int32_t>& faces, float x)
 data::SequenceData frame_with(bool through_body) {
   data::SequenceData seq;
   seq.id = "seq-000000";
+  seq.n_frames = 1;
   square(seq.body.positions, seq.body.faces, 0, 0, 1);  // the body: a 1 m plate at y = 0
   seq.body.joint_names = {"LeftHand", "RightHand"};
   seq.body.joint_parents = {-1, 0};

@@ -219,7 +219,7 @@ TEST(BodyPinch, TheBodyYieldsOnlyWhereEveryFaceIsPinchedAtBothEndsOfTheFrame) {
   // Standing still: a vertex yields when every face around it is in a
   // zone of geometry::pinch_zones_under() (the measures' zones).
   collider.begin_frame(nullptr);
-  const std::vector<std::uint8_t> still = pinch.update(collider, cloths, 0.018);
+  const std::vector<std::uint8_t> still = pinch.update(collider, body.faces, cloths, 0.018);
   geometry::Points stacked(cloths[0].num_vertices(), 3);
   for (int i = 0; i < cloths[0].num_vertices(); ++i) stacked.row(i) = cloths[0].state().x[i].cast<float>();
   const geometry::PinchZones zones = geometry::pinch_zones_under(body, {}, 0.018, stacked, 0.01);
@@ -237,7 +237,7 @@ TEST(BodyPinch, TheBodyYieldsOnlyWhereEveryFaceIsPinchedAtBothEndsOfTheFrame) {
   // at the end, so the body does not yield anywhere.
   const geometry::TriMesh lifted = body_at(0.05);
   collider.begin_frame(&lifted.vertices);
-  const std::vector<std::uint8_t> lifting = pinch.update(collider, cloths, 0.018);
+  const std::vector<std::uint8_t> lifting = pinch.update(collider, body.faces, cloths, 0.018);
   EXPECT_EQ(std::count(lifting.begin(), lifting.end(), 1), 0);
 }
 

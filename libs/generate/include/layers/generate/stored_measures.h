@@ -26,4 +26,7 @@ struct StoredFrame {
 void for_each_stored_frame(const data::SequenceData& seq,
                            const std::function<void(std::int64_t, const StoredFrame&)>& visit);
 
+// Frame `frame` of `seq` alone (layers::Error outside 0 .. n_frames-1).
+StoredFrame stored_frame(const data::SequenceData& seq, std::int64_t frame);
+
 }  // namespace layers::generate

@@ -42,5 +42,9 @@ struct PinchZones {
 };
 PinchZones pinch_zones_under(const TriMesh& body, const std::vector<char>& crossing, double distance,
                              const Points& cloth, double longest_edge);
+// The same under cloth meshes (the garments of a frame): their vertices,
+// and the longest edge of their faces as they stand.
+PinchZones pinch_zones_under(const TriMesh& body, const std::vector<char>& crossing, double distance,
+                             const std::vector<TriMesh>& cloth);
 
 }  // namespace layers::geometry
