@@ -1,9 +1,14 @@
 // `layers` CLI: global behaviour (help, exit codes) and the `config` verb.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <string>
+
+#include "layers/core/text_file.h"
 #include "run_command.h"
 #include "temp_dir.h"
 
+using layers::read_text_file;
 using layers::test::layers_bin;
 using layers::test::run_command;
 using layers::test::TempDir;
@@ -74,4 +79,24 @@ TEST(CliConfig, BadConfigExitsOneWithPreciseMessage) {
   EXPECT_NE(m.output.find("malformed YAML"), std::string::npos) << m.output;
   auto missing = run_command(layers_bin() + " config " + dir.file("nope.yaml"));
   EXPECT_EQ(missing.exit_code, 2) << missing.output;
+}
+
+// Every shipped config reads: a key renamed in the code, a file a study
+// names that is gone, or a value out of range fails here, not in the
+// middle of someone's experiment. The experiments' shared settings
+// (configs/experiments/<dataset>.yaml, "# Shared settings ...") are read
+// through the experiments that include them.
+TEST(CliConfig, EveryShippedConfigReads) {
+  const std::filesystem::path src = layers::test::source_dir();
+  int checked = 0;
+  for (const char* folder : {"configs/data", "configs/experiments", "configs/studies"}) {
+    for (const auto& e : std::filesystem::directory_iterator(src / folder)) {
+      if (e.path().extension() != ".yaml") continue;
+      if (read_text_file(e.path().string()).rfind("# Shared settings", 0) == 0) continue;
+      auto r = run_command(layers_bin() + " config " + e.path().string());
+      EXPECT_EQ(r.exit_code, 0) << e.path() << "\n" << r.output;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 30);
 }

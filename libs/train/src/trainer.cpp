@@ -182,6 +182,7 @@ void write_selection(const ExperimentConfig& config, const CheckpointState& stat
       {"val_split", config.data.val_split},
       {"val_horizon", config.train.val_horizon},
       {"val_sequences", config.train.val_sequences},
+      {"patience", config.train.patience},
       {"train_split", config.data.train_split},
       {"test_split", config.data.test_split},
       {"source_revision", source_revision()}};  // the build that wrote this record
@@ -405,6 +406,22 @@ void keep_epoch(TrainingRun& run, const EpochSummary& e, torch::optim::Adam& opt
         e.peak_resident_mib);
 }
 
+// Epochs since the lowest validation error when train.patience of them
+// have passed without a lower one (0: train on). Read from the history
+// every rank keeps, so the ranks stop together, and a resumed run stops
+// where one process would have.
+int epochs_without_gain(const TrainConfig& t, const CheckpointState& state) {
+  if (t.patience <= 0) return 0;
+  int best = 0;  // epoch of the lowest error so far (1-based; 0: none)
+  for (std::size_t k = 0; k < state.val_mm_by_epoch.size(); ++k) {
+    const double mm = state.val_mm_by_epoch[k];
+    if (mm >= 0 && (best == 0 || mm < state.val_mm_by_epoch[static_cast<std::size_t>(best - 1)]))
+      best = static_cast<int>(k) + 1;
+  }
+  const int since = state.epochs_done - best;
+  return best > 0 && since >= t.patience ? since : 0;
+}
+
 }  // namespace
 
 TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& registry, const TrainOptions& options) {
@@ -426,6 +443,11 @@ TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& re
   resume_and_sync(run, optimizer);
   WindowLoader loader(run.s.dataset, loader_options(run));
   for (int epoch = run.state.epochs_done; epoch < config.train.epochs; ++epoch) {
+    if (const int since = epochs_without_gain(config.train, run.state); since > 0) {
+      spdlog::info("stopping after epoch {} of {}: no lower validation error in {} epochs (train.patience {})",
+                   run.state.epochs_done, config.train.epochs, since, config.train.patience);
+      break;
+    }
     EpochSummary e = train_epoch(run, loader, optimizer, params, epoch);
     run.s.model->train(false);
     const Validation v = validate(run.s, run.group);

@@ -101,6 +101,38 @@ TEST_F(Fixture, TrainingLowersTheLossAndValidates) {
   EXPECT_TRUE(std::filesystem::exists(r.best_checkpoint));
 }
 
+// train.patience: with learning rate 0 every epoch validates the same
+// model, so no epoch after the first has a lower error: patience 2 stops
+// after epoch 3 of 6, the selection record says so, and resuming the run
+// with more epochs trains none.
+TEST_F(Fixture, PatienceStopsWhenValidationNoLongerImproves) {
+  ExperimentConfig c = config("patience");
+  c.train.epochs = 6;
+  c.train.lr = 0;
+  c.train.curriculum_max = 0;
+  c.train.patience = 2;
+  const TrainReport r = run_training(c, registry, quiet());
+  EXPECT_EQ(r.epochs_done, 3);
+  ASSERT_EQ(r.epochs.size(), 3u);
+  EXPECT_DOUBLE_EQ(r.epochs[1].val_error_mm, r.epochs[0].val_error_mm);
+  const nlohmann::json sel = nlohmann::json::parse(
+      read_text_file((std::filesystem::path(c.run.output) / data::run_layout::kSelection).string()));
+  EXPECT_EQ(sel.at("epochs_done"), 3);
+  EXPECT_EQ(sel.at("epochs"), 6);
+  EXPECT_EQ(sel.at("patience"), 2);
+  EXPECT_EQ(sel.at("chosen_epoch"), 1);
+  c.train.epochs = 9;
+  TrainOptions resume = quiet();
+  resume.resume = true;
+  const TrainReport again = run_training(c, registry, resume);
+  EXPECT_TRUE(again.epochs.empty());
+  EXPECT_EQ(again.epochs_done, 3);
+  // Without patience the same run trains on.
+  c.train.patience = 0;
+  c.train.epochs = 4;
+  EXPECT_EQ(run_training(c, registry, quiet()).epochs_done, 4);
+}
+
 // The selection record names the splits whose sequences the validation
 // read, measured from the ids, not copied from data.val_split: pointed at
 // the subset "T" (a train and the test sequence), the record says

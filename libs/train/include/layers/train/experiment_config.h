@@ -80,6 +80,7 @@ struct TrainConfig {
   int prefetch = 4;        // batches loaded ahead by the loader thread
   int val_horizon = 10;    // rollout length of the per-epoch validation
   int val_sequences = 8;   // sequences of the validation split used; 0 = all
+  int patience = 0;        // stop after this many epochs without a lower validation error; 0 = off
 
   template <class V>
   void visit(V& v) {
@@ -98,6 +99,8 @@ struct TrainConfig {
     v("prefetch", prefetch, cfg::opt().range(1, 64));
     v("val_horizon", val_horizon, cfg::opt().range(1, 100000));
     v("val_sequences", val_sequences, cfg::opt().min(0));
+    v("patience", patience,
+      cfg::opt().min(0).help("stop after this many epochs in a row without a lower validation error (0 = off)"));
   }
 };
 
