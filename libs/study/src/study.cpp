@@ -39,9 +39,12 @@ void save_experiment(const StudyRun& run) {
 // ranks wait and how many processes share each batch, not what they
 // compute; a study trains in its own process) and data.allow_unhashed (whether a dataset is
 // verified, not what is computed from it) and, for training, without the eval section.
+// A setting added after studies were run is left out at its default, so
+// their records stay current: train.patience 0 (train every epoch).
 std::string fingerprinted_text(const StudyRun& run, bool training) {
   cfg::Node tree = cfg::to_node(run.config);
   if (cfg::Node* r = tree.find("run")) r->erase("output"), r->erase("dist_timeout_s"), r->erase("ranks");
+  if (cfg::Node* t = tree.find("train"); t != nullptr && run.config.train.patience == 0) t->erase("patience");
   if (cfg::Node* d = tree.find("data")) d->erase("dataset"), d->erase("allow_unhashed");
   if (training) tree.erase("eval");
   return cfg::to_yaml(tree);

@@ -153,6 +153,18 @@ TEST_F(StudyTest, RanksAndTimeoutsLeaveTheStepsCurrent) {
   EXPECT_EQ(status(r, "b train"), StepStatus::Current);
 }
 
+// A setting added after a study ran leaves its records current at the
+// default (train.patience 0 is how every earlier run trained), and
+// reruns the training when it is set.
+TEST_F(StudyTest, ALaterSettingAtItsDefaultLeavesTheStepsCurrent) {
+  run();
+  const auto same = run({"set=[train.patience=0]"});
+  EXPECT_EQ(status(same, "a train"), StepStatus::Current);
+  EXPECT_EQ(status(same, "b eval-test"), StepStatus::Current);
+  const auto set = run({"set=[train.patience=2]"});
+  EXPECT_EQ(status(set, "a train"), StepStatus::Ran);
+}
+
 // The bench times a scene of the split the run is evaluated on: a study
 // evaluated on validation never opens the test split, and changing the
 // evaluated split benches again.
