@@ -118,7 +118,7 @@ TEST(MotionVariation, EveryScenePlaysItsOwnMotion) {
 }
 
 TEST(MotionVariation, WithoutTheSectionScenesDrawAsBefore) {
-  const generate::GeneratorConfig plain = load("small.yaml");
+  const generate::GeneratorConfig plain = load("small_tables.yaml");
   EXPECT_FALSE(plain.body.variation.has_value());
   EXPECT_EQ(cfg::to_yaml(cfg::to_node(plain)).find("variation"), std::string::npos);
   generate::GeneratorConfig varied = plain;

@@ -15,8 +15,8 @@ namespace layers {
 namespace {
 
 generate::GeneratorConfig small_config() {
-  auto config =
-      cfg::read<generate::GeneratorConfig>(cfg::load_file(test::source_dir() + "/configs/data/small.yaml"), "small");
+  auto config = cfg::read<generate::GeneratorConfig>(
+      cfg::load_file(test::source_dir() + "/configs/data/small_tables.yaml"), "small");
   config.splits.unseen_motions.clear();
   config.splits.unseen_outfits.clear();
   return config;
