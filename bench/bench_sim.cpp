@@ -2,7 +2,7 @@
 // two-layer outfit (a jumpsuit under a jacket) on the full MPFB2 body
 // (13,380 vertices) walking (procedural walk), with strong wind, at about
 // 1k, 4k and 16k garment vertices (edge lengths 50, 25 and 12.5 mm) with
-// the 16 substeps of configs/data/small.yaml, and at 5k vertices (22.5 mm)
+// the 16 substeps of configs/data/small_tables.yaml, and at 5k vertices (22.5 mm)
 // with 10 and 16 substeps, as `layers generate` runs it: one simulation
 // alone (threads:1) and two side by side on two cores (threads:2, each
 // thread its own scene, as with `--threads 2`). Set-up and warm-up (a
@@ -33,7 +33,7 @@ namespace gen = layers::generate;
 namespace {
 
 // The scene of one benchmark thread: the given edge length and substeps,
-// the settings of configs/data/small.yaml otherwise (2 iterations).
+// the settings of configs/data/small_tables.yaml otherwise (2 iterations).
 gen::SceneSimulation make_scene(double edge_mm, int substeps, int frames, int edge_contact) {
   gen::GeneratorConfig config;
   config.name = "bench";

@@ -373,9 +373,12 @@ void keep_epoch(TrainingRun& run, const EpochSummary& e, torch::optim::Adam& opt
   state.val_mm_by_epoch.push_back(e.val_error_mm);
   run.report.epochs.push_back(e);
   if (!run.root) {
-    // The best-so-far bookkeeping as on rank 0 (it decides what is saved).
-    if (e.val_error_mm >= 0 && (state.best_val_mm < 0 || e.val_error_mm < state.best_val_mm))
+    // The best-so-far bookkeeping as on rank 0 (it decides what is saved,
+    // and train.patience when to stop).
+    if (e.val_error_mm >= 0 && (state.best_val_mm < 0 || e.val_error_mm < state.best_val_mm)) {
       state.best_val_mm = e.val_error_mm;
+      state.chosen_epoch = e.epoch;
+    }
     return;
   }
   run.save("last", &optimizer);
@@ -407,19 +410,15 @@ void keep_epoch(TrainingRun& run, const EpochSummary& e, torch::optim::Adam& opt
 }
 
 // Epochs since the lowest validation error when train.patience of them
-// have passed without a lower one (0: train on). Read from the history
-// every rank keeps, so the ranks stop together, and a resumed run stops
+// have passed without a lower one (0: train on). The best epoch is the
+// one checkpoint-best.pt holds (CheckpointState::chosen_epoch, kept on
+// every rank and saved in the checkpoint, also by runs from before the
+// per-epoch history), so the ranks stop together and a resumed run stops
 // where one process would have.
 int epochs_without_gain(const TrainConfig& t, const CheckpointState& state) {
-  if (t.patience <= 0) return 0;
-  int best = 0;  // epoch of the lowest error so far (1-based; 0: none)
-  for (std::size_t k = 0; k < state.val_mm_by_epoch.size(); ++k) {
-    const double mm = state.val_mm_by_epoch[k];
-    if (mm >= 0 && (best == 0 || mm < state.val_mm_by_epoch[static_cast<std::size_t>(best - 1)]))
-      best = static_cast<int>(k) + 1;
-  }
-  const int since = state.epochs_done - best;
-  return best > 0 && since >= t.patience ? since : 0;
+  if (t.patience <= 0 || state.chosen_epoch <= 0) return 0;
+  const int since = state.epochs_done - state.chosen_epoch;
+  return since >= t.patience ? since : 0;
 }
 
 }  // namespace
@@ -441,11 +440,19 @@ TrainReport run_training(const ExperimentConfig& config, const zoo::Registry& re
   }
   torch::optim::Adam optimizer(params, torch::optim::AdamOptions(config.train.lr));
   resume_and_sync(run, optimizer);
+  if (config.train.patience > 0 && select_sequences(run.s.dataset, config.data.val_split, config.data.subsets).empty())
+    throw InputError(config.source, "train.patience",
+                     "0 when there is no validation to stop on (the validation split '" + config.data.val_split +
+                         "' has no sequences here)",
+                     std::to_string(config.train.patience));
   WindowLoader loader(run.s.dataset, loader_options(run));
   for (int epoch = run.state.epochs_done; epoch < config.train.epochs; ++epoch) {
     if (const int since = epochs_without_gain(config.train, run.state); since > 0) {
-      spdlog::info("stopping after epoch {} of {}: no lower validation error in {} epochs (train.patience {})",
-                   run.state.epochs_done, config.train.epochs, since, config.train.patience);
+      if (run.root) {
+        write_selection(config, run.state);  // epochs as asked now
+        spdlog::info("stopping after epoch {} of {}: no lower validation error in {} epochs (train.patience {})",
+                     run.state.epochs_done, config.train.epochs, since, config.train.patience);
+      }
       break;
     }
     EpochSummary e = train_epoch(run, loader, optimizer, params, epoch);

@@ -127,10 +127,23 @@ TEST_F(Fixture, PatienceStopsWhenValidationNoLongerImproves) {
   const TrainReport again = run_training(c, registry, resume);
   EXPECT_TRUE(again.epochs.empty());
   EXPECT_EQ(again.epochs_done, 3);
-  // Without patience the same run trains on.
+  // Resumed without patience, the stopped run trains on.
   c.train.patience = 0;
   c.train.epochs = 4;
-  EXPECT_EQ(run_training(c, registry, quiet()).epochs_done, 4);
+  const TrainReport on = run_training(c, registry, resume);
+  EXPECT_EQ(on.epochs_done, 4);
+  EXPECT_EQ(on.epochs.size(), 1u);
+  // Patience with nothing to validate on is refused before training.
+  ExperimentConfig blind = config("blind");
+  blind.train.patience = 2;
+  blind.data.subsets = {"T"};  // a train and the test sequence: no validation sequence
+  try {
+    run_training(blind, registry, quiet());
+    ADD_FAILURE() << "patience without validation was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("train.patience: expected 0 when there is no validation"), std::string::npos)
+        << e.what();
+  }
 }
 
 // The selection record names the splits whose sequences the validation
