@@ -71,7 +71,8 @@ VerbRun register_body(CLI::App& app, const Global&) {
       ->capture_default_str()
       ->check(CLI::Range(0, 100000));
   cmd->add_option("--seed", a->seed, "randomises procedural speed and amplitude")->capture_default_str();
-  cmd->add_option("--on-intersection", a->on_intersection, "longest_run, drop or keep")->capture_default_str();
+  cmd->add_option("--on-intersection", a->on_intersection, "longest_run, first_run, drop or keep")
+      ->capture_default_str();
   cmd->add_option("--gap", a->gap,
                   "mm of room body parts that are not neighbours keep from each other (0 = off: depth over 4 mm "
                   "counts; the paper keeps 4)")

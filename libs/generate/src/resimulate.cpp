@@ -84,6 +84,11 @@ Resimulation resimulate(const std::string& dataset_dir, const std::string& seque
   config.garments.fit.edge_length = scaled_edge(config, options.edge_scale, path);
   SceneSimulation scene(config, spec);
   if (!scene.usable()) throw InputError::message(path, sequence_id, "cannot be simulated again: " + scene.problem());
+  if (frames > scene.recorded_frames())
+    throw InputError(path, "frames",
+                     "at most " + std::to_string(scene.recorded_frames()) + " for " + sequence_id +
+                         " (its body crosses itself beyond repair after that)",
+                     std::to_string(frames));
   scene.warm_up();
   Resimulation run;
   const sim::Solver& solver = scene.solver();

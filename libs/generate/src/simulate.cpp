@@ -56,7 +56,10 @@ motion::GeneratedBody make_body(const GeneratorConfig& config, const SceneSpec& 
   body.arm_room_mm = config.body.arm_room_mm;
   body.thigh_room_mm = config.body.thigh_room_mm;
   body.skin_untangle = config.body.skin_untangle;
-  body.on_intersection = "longest_run";
+  // With clean windows the motion is kept as asked up to its first frame
+  // the repair cannot resolve (the scene is cut there); otherwise the
+  // whole window must be clean.
+  body.on_intersection = config.window_min_frames > 0 ? "first_run" : "longest_run";
   return motion::generate_body(body);
 }
 
@@ -128,12 +131,23 @@ SceneSimulation::SceneSimulation(const GeneratorConfig& config, const SceneSpec&
   if (config.body.skin_untangle.passes > 0)
     spdlog::debug("{}: skin untangled in {} frames: {} -> {} crossing skin faces", spec_.id, ir.skin_frames,
                   ir.skin_crossing_before, ir.skin_crossing_after);
-  const int needed = config_.body.transition_frames + config_.frames;
-  if (motion.num_frames < needed || motion.source_frame.front() != 0) {
+  const int transition = config_.body.transition_frames;
+  const int needed = transition + config_.frames;
+  if (config_.window_min_frames > 0 && motion.source_frame.front() == 0 && motion.num_frames < needed &&
+      motion.num_frames - transition < config_.window_min_frames) {
+    problem_ = "the body self-intersects beyond repair from recorded frame " +
+               std::to_string(std::max(0, motion.num_frames - transition)) +
+               ": the clean window before it has fewer than " + std::to_string(config_.window_min_frames) +
+               " frames (window_min_frames)";
+    return;
+  }
+  const int least = config_.window_min_frames > 0 ? transition + config_.window_min_frames : needed;
+  if (motion.num_frames < least || motion.source_frame.front() != 0) {
     problem_ = "the body self-intersects in frames that could not be repaired (" + std::to_string(motion.num_frames) +
                " of " + std::to_string(needed) + " frames usable)";
     return;
   }
+  recordable_ = std::min(config_.frames, motion.num_frames - transition);
   const body::BodyArrays body_arrays = body::body_arrays(generated_.body);
   geometry::TriMesh body;
   body.faces = Eigen::Map<const geometry::Faces>(body_arrays.faces.data(),
@@ -261,6 +275,9 @@ void SceneSimulation::warm_up(const FrameObserver& observer) {
 
 void SceneSimulation::record(int r) {
   if (!usable()) throw Error("SceneSimulation::record: " + problem_);
+  if (r < 0 || r >= recordable_)
+    throw Error("SceneSimulation::record: frame " + std::to_string(r) + " outside the " + std::to_string(recordable_) +
+                " recorded frames the body allows");
   solver_.step(body_frame(config_.body.transition_frames + r), wind_.at(r));
 }
 
@@ -294,8 +311,9 @@ SceneResult simulate_scene(const GeneratorConfig& config, const SceneSpec& spec,
     if (observer) observer(phase, frame, solver);
   });
 
-  // Recorded frames, measured as they come.
-  const int record = config.frames;
+  // Recorded frames, measured as they come: config.frames, or the frames
+  // before the body's first one beyond repair (a cut, below).
+  const int record = scene.recorded_frames();
   const sim::Solver& solver = scene.solver();
   std::vector<data::GarmentData>& garments = scene.garments();
   sim::SequenceMeasures measures;
@@ -333,6 +351,11 @@ SceneResult simulate_scene(const GeneratorConfig& config, const SceneSpec& spec,
       }
     }
     measures.add(m);
+    if (r + 1 == record && record < config.frames) {
+      // The next frame's body crosses itself beyond repair: the window ends here.
+      result.cut_frame = record;
+      broken = {sim::Violation{"body", "the body crosses itself beyond repair in the next frame"}};
+    }
     if (trace)
       spdlog::trace(
           "{} record {}: H-crossing {:.3f}% ({:.3f}% outside pinch zones), L-crossing {:.3f}%, stretch {:.3f}", spec.id,
@@ -364,8 +387,8 @@ SceneResult simulate_scene(const GeneratorConfig& config, const SceneSpec& spec,
                                    " (window_min_frames)");
     } else if (window.empty()) {
       result.rule = broken.front().rule;
-      spdlog::info("{} cut at recorded frame {} of {} ({}): {} frames kept", spec.id, result.cut_frame, record, why,
-                   kept);
+      spdlog::info("{} cut at recorded frame {} of {} ({}): {} frames kept", spec.id, result.cut_frame, config.frames,
+                   why, kept);
     }
   }
   result.ok = result.violations.empty();

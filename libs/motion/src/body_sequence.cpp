@@ -53,8 +53,8 @@ std::string RoomReport::describe(const std::string& limbs, int of) const {
 BodySequence generate_body_sequence(const body::Body& body, const MotionSource& motion,
                                     const SequenceOptions& options) {
   const std::string& policy = options.on_intersection;
-  if (policy != "longest_run" && policy != "drop" && policy != "keep")
-    throw InputError("body", "on_intersection", "longest_run, drop or keep", "'" + policy + "'");
+  if (policy != "longest_run" && policy != "first_run" && policy != "drop" && policy != "keep")
+    throw InputError("body", "on_intersection", "longest_run, first_run, drop or keep", "'" + policy + "'");
   const body::Skeleton& sk = body.skeleton;
   const body::SelfIntersection si(body, options.intersection);
   const int n = motion.num_frames();
@@ -134,6 +134,8 @@ BodySequence generate_body_sequence(const body::Body& body, const MotionSource& 
   } else if (policy == "drop") {
     for (int f = 0; f < n; ++f)
       if (!bad[f]) keep.push_back(f);
+  } else if (policy == "first_run") {
+    for (int f = 0; f < n && !bad[f]; ++f) keep.push_back(f);
   } else {
     int best_start = 0, best_len = 0;
     for (int f = 0; f < n;) {

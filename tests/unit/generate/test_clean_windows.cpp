@@ -112,6 +112,36 @@ TEST(CleanWindows, AWindowShorterThanTheMinimumSkipsTheScene) {
   EXPECT_EQ(f.dropped.at("stretch"), kFrames);
 }
 
+// A body that crosses itself beyond repair from a later frame (the CMU
+// clip 02_04 with the paper's 4 mm gap) is a cut too: the frames before
+// it are stored and dataset.yaml charges the rest to the body. Without
+// clean windows the same scene is skipped whole.
+TEST(CleanWindows, ABodyBeyondRepairCutsTheWindowThere) {
+  constexpr int kAsked = 20;
+  GeneratorConfig c = cfg::read<GeneratorConfig>(
+      tiny_tree({"frames=" + std::to_string(kAsked), "body.motions=[cmu/library/02_04.bvh]", "body.self_gap_mm=4"}));
+  c.window_min_frames = 3;
+  test::TempDir dir;
+  const GenerateReport report = generate(c, dir.file("data"));
+  ASSERT_EQ(report.written, 1) << (report.skip_reasons.empty() ? "" : report.skip_reasons[0]);
+  const data::DatasetManifest m = data::read_manifest(dir.file("data") + "/dataset.yaml");
+  const data::MotionFamilyCount& f = m.motion_families.begin()->second;
+  EXPECT_EQ(f.cut, 1);
+  ASSERT_GE(f.frames_stored, c.window_min_frames);
+  ASSERT_LT(f.frames_stored, kAsked);
+  EXPECT_EQ(f.frames_simulated, f.frames_stored);  // nothing simulated past the body's last good frame
+  EXPECT_EQ(f.dropped.at("body"), kAsked - f.frames_stored);
+  // The body's first frame beyond repair is where the window ends.
+  const SceneSimulation scene(c, sample_scene(c, 0));
+  EXPECT_EQ(scene.recorded_frames(), f.frames_stored);
+  EXPECT_EQ(scene.body().sequence.num_frames, c.body.transition_frames + f.frames_stored);
+  // Without clean windows the whole window must be clean: skipped.
+  c.window_min_frames = 0;
+  test::TempDir whole;
+  const GenerateReport skipped = generate(c, whole.file("data"));
+  EXPECT_EQ(skipped.written, 0);
+}
+
 TEST(CleanWindows, TheMinimumIsOffOrThreeToTheRecordedFrames) {
   GeneratorConfig c = windowed_config();
   c.window_min_frames = 2;

@@ -357,6 +357,11 @@ TEST(SelfIntersection, PoliciesForFramesThatStayIntersecting) {
   EXPECT_EQ(seq.num_frames, 15);
   EXPECT_EQ(seq.source_frame.front(), 15);
   EXPECT_EQ(seq.intersection.dropped, 15);
+  o.on_intersection = "first_run";  // the frames before the first bad one
+  seq = generate_body_sequence(b, motion, o);
+  EXPECT_EQ(seq.num_frames, 10);
+  EXPECT_EQ(seq.source_frame.front(), 0);
+  EXPECT_EQ(seq.source_frame.back(), 9);
   o.on_intersection = "drop";
   seq = generate_body_sequence(b, motion, o);
   EXPECT_EQ(seq.num_frames, 25);

@@ -62,7 +62,8 @@ class SceneSimulation {
   SceneSimulation(const GeneratorConfig& config, const SceneSpec& spec);
 
   // False when the body self-intersects in frames that could not be
-  // repaired, or a garment could not be made into a valid cloth;
+  // repaired (with clean windows: before window_min_frames recorded
+  // frames), or a garment could not be made into a valid cloth;
   // problem() says why. Nothing can be simulated then.
   bool usable() const { return problem_.empty(); }
   const std::string& problem() const { return problem_; }
@@ -73,7 +74,10 @@ class SceneSimulation {
   // in order, after warm_up()).
   void record(int r);
   int warm_up_frames() const;
-  int recorded_frames() const { return config_.frames; }
+  // config.frames, or fewer with clean windows (window_min_frames > 0)
+  // when the body crosses itself beyond repair from a later frame: the
+  // frames before it.
+  int recorded_frames() const { return recordable_; }
 
   const sim::Solver& solver() const { return solver_; }
   sim::Solver& solver() { return solver_; }
@@ -93,6 +97,7 @@ class SceneSimulation {
   GeneratorConfig config_;
   SceneSpec spec_;
   std::string problem_;
+  int recordable_ = 0;
   motion::GeneratedBody generated_;
   std::vector<data::GarmentData> garments_;
   Eigen::Isometry3d place_ = Eigen::Isometry3d::Identity();

@@ -14,7 +14,7 @@
 //     arm_room_mm: 0               # > 0: abduct arms closer than this to the torso
 //     thigh_room_mm: 0             # > 0: abduct legs whose thighs come closer than this
 //     skin_untangle: {passes: 0, margin_mm: 0.5, steps: 3}  # push the skin out of itself
-//     on_intersection: longest_run # or drop, keep
+//     on_intersection: longest_run # or first_run, drop, keep
 #pragma once
 
 #include <cstdint>
@@ -87,7 +87,7 @@ struct BodyMotionConfig {
     v("thigh_room_mm", thigh_room_mm,
       cfg::opt().range(0, 100).help("room for the cloth between the thighs; closer legs are abducted (0 = off)"));
     v("skin_untangle", skin_untangle);
-    v("on_intersection", on_intersection, cfg::opt().choices({"longest_run", "drop", "keep"}));
+    v("on_intersection", on_intersection, cfg::opt().choices({"longest_run", "first_run", "drop", "keep"}));
     v("assets", assets,
       cfg::opt().help("asset root (default: $LAYERS_ASSETS, then <prefix>/share/layers/assets, then <source>/assets)"));
   }

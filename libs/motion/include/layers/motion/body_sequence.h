@@ -45,6 +45,8 @@ struct SequenceOptions {
   body::SkinUntangleOptions skin_untangle;
   // What happens to frames still intersecting after resolution:
   // "longest_run" keeps the longest run of consecutive clean frames,
+  // "first_run" the frames before the first bad one (a clean window:
+  // the motion as asked, cut short),
   // "drop" removes the bad frames (the sequence then skips in time),
   // "keep" keeps them (only reported).
   std::string on_intersection = "longest_run";
