@@ -133,18 +133,17 @@ SceneSimulation::SceneSimulation(const GeneratorConfig& config, const SceneSpec&
                   ir.skin_crossing_before, ir.skin_crossing_after);
   const int transition = config_.body.transition_frames;
   const int needed = transition + config_.frames;
-  if (config_.window_min_frames > 0 && motion.source_frame.front() == 0 && motion.num_frames < needed &&
-      motion.num_frames - transition < config_.window_min_frames) {
-    problem_ = "the body self-intersects beyond repair from recorded frame " +
-               std::to_string(std::max(0, motion.num_frames - transition)) +
-               ": the clean window before it has fewer than " + std::to_string(config_.window_min_frames) +
-               " frames (window_min_frames)";
-    return;
-  }
-  const int least = config_.window_min_frames > 0 ? transition + config_.window_min_frames : needed;
-  if (motion.num_frames < least || motion.source_frame.front() != 0) {
-    problem_ = "the body self-intersects in frames that could not be repaired (" + std::to_string(motion.num_frames) +
-               " of " + std::to_string(needed) + " frames usable)";
+  // With clean windows the body may end early (first_run): the frames it
+  // allows must still make a window of window_min_frames.
+  const bool windows = config_.window_min_frames > 0;
+  if (motion.num_frames < (windows ? transition + config_.window_min_frames : needed) ||
+      motion.source_frame.front() != 0) {
+    problem_ = windows ? "the body self-intersects beyond repair from recorded frame " +
+                             std::to_string(std::max(0, motion.num_frames - transition)) +
+                             ": the clean window before it has fewer than " +
+                             std::to_string(config_.window_min_frames) + " frames (window_min_frames)"
+                       : "the body self-intersects in frames that could not be repaired (" +
+                             std::to_string(motion.num_frames) + " of " + std::to_string(needed) + " frames usable)";
     return;
   }
   recordable_ = std::min(config_.frames, motion.num_frames - transition);
