@@ -13,7 +13,7 @@
 #include "layers/core/error.h"
 #include "layers/data/format.h"
 #include "layers/garment/garment_recipes.h"
-#include "layers/geometry/intersect.h"
+#include "layers/garment/garment_untangle.h"
 #include "layers/geometry/normals.h"
 
 namespace layers::garment {
@@ -24,7 +24,6 @@ using garment::FitContext;
 using garment::Pattern;
 
 const char* kConfig = "garment config";
-constexpr int kUntangleRounds = 10;
 
 std::string joined(const std::vector<std::string>& names) {
   std::ostringstream s;
@@ -77,47 +76,6 @@ int push_outside(geometry::Points& v, const geometry::Surface& surface, double c
     if (now == 0) break;
   }
   return moved;
-}
-
-// Faces of a garment that pass through another face of it: the clearance
-// pushes above move vertices along the normals of their nearest skin
-// vertices, which converge over a concave stretch (the spine's groove, a
-// shoulder blade) and can fold a panel onto itself there. Each round
-// smooths the vertices of the crossing faces and of two rings around them
-// (each to the mean of its neighbours, openings kept), then pushes out
-// again. Returns the crossing face pairs left (0 on success).
-std::int64_t untangle(geometry::Points& v, const geometry::Faces& faces, const std::vector<std::uint8_t>& boundary,
-                      const std::function<void()>& push_out) {
-  std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(v.rows()));
-  for (Eigen::Index f = 0; f < faces.rows(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int a = faces(f, k), b = faces(f, (k + 1) % 3);
-      neighbours[a].push_back(b);
-      neighbours[b].push_back(a);
-    }
-  std::int64_t pairs = 0;
-  for (int round = 0; round < kUntangleRounds; ++round) {
-    const geometry::TriMesh mesh{v, faces};
-    const geometry::MeshCrossings c = geometry::self_crossings(geometry::FaceTree(mesh));
-    pairs = c.pairs;
-    if (pairs == 0) break;
-    const std::vector<char> region = geometry::grow_faces(mesh, c.a_faces, 2);
-    std::vector<char> moving(static_cast<std::size_t>(v.rows()), 0);
-    for (Eigen::Index f = 0; f < faces.rows(); ++f)
-      if (region[f])
-        for (int k = 0; k < 3; ++k) moving[faces(f, k)] = !boundary[faces(f, k)];
-    for (int sweep = 0; sweep < 3; ++sweep) {
-      const geometry::Points before = v;
-      for (Eigen::Index i = 0; i < v.rows(); ++i) {
-        if (!moving[i] || neighbours[i].empty()) continue;
-        Eigen::RowVector3f mean = Eigen::RowVector3f::Zero();
-        for (int j : neighbours[i]) mean += before.row(j);
-        v.row(i) = mean / static_cast<float>(neighbours[i].size());
-      }
-    }
-    push_out();
-  }
-  return pairs;
 }
 
 }  // namespace
