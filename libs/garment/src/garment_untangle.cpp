@@ -2,6 +2,7 @@
 // (see garment_untangle.h).
 #include "layers/garment/garment_untangle.h"
 
+#include <algorithm>
 #include <map>
 #include <utility>
 
@@ -43,8 +44,10 @@ std::int64_t untangle(geometry::Points& v, const geometry::Faces& faces, const s
     for (int sweep = 0; sweep < 3; ++sweep) {
       const geometry::Points before = v;
       for (Eigen::Index i = 0; i < v.rows(); ++i) {
+        // An opening vertex moves along the opening, between its two
+        // neighbours there (fewer: an end or a flag off any opening, kept).
         const std::vector<int>& around = boundary[i] ? along_opening[i] : neighbours[i];
-        if (!moving[i] || around.empty()) continue;
+        if (!moving[i] || around.size() < (boundary[i] ? 2u : 1u)) continue;
         Eigen::RowVector3f mean = Eigen::RowVector3f::Zero();
         for (int j : around) mean += before.row(j);
         v.row(i) = mean / static_cast<float>(around.size());

@@ -24,8 +24,9 @@ constexpr int kUntangleRounds = 10;
 // neighbours) and calls `push_out` (the clearance again). The first
 // kUntangleRounds rounds keep the openings (`boundary`, one flag per
 // vertex) where they are; if crossings remain, up to kUntangleRounds more
-// move an opening vertex too, to the mean of its neighbours along the
-// opening, which rounds the opening's corner. Returns the crossing face
+// move an opening vertex too, to the mean of its two neighbours along the
+// opening, which rounds the opening's corner (a flagged vertex with fewer
+// than two stays). Returns the crossing face
 // pairs left (0 on success). A garment that does not cross itself is not
 // touched.
 std::int64_t untangle(geometry::Points& vertices, const geometry::Faces& faces,
