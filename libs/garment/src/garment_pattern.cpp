@@ -7,12 +7,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <numeric>
 #include <string>
 
 #include "layers/core/error.h"
 #include "layers/garment/garment_triangulate.h"
+#include "layers/geometry/topology.h"
 
 namespace layers::garment {
 namespace {
@@ -377,15 +377,8 @@ GarmentMesh sew(const Pattern& pattern, double h, const geometry::PointIndex& bo
   }
   repair_slivers(out);
   // Openings: edges used by a single face.
-  std::map<std::pair<int, int>, int> uses;
-  for (int f = 0; f < out.num_faces(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int a = out.faces(f, k), b = out.faces(f, (k + 1) % 3);
-      ++uses[{std::min(a, b), std::max(a, b)}];
-    }
-  out.boundary.assign(sum.size(), 0);
-  for (const auto& [e, n] : uses)
-    if (n == 1) out.boundary[e.first] = out.boundary[e.second] = 1;
+  const std::vector<char> open = geometry::boundary_vertices(out.faces, static_cast<int>(sum.size()));
+  out.boundary.assign(open.begin(), open.end());
   return out;
 }
 

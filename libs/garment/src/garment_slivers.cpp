@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "layers/garment/garment_pattern.h"
+#include "layers/geometry/topology.h"
 
 namespace layers::garment {
 namespace {
@@ -88,16 +89,9 @@ int repair_slivers(GarmentMesh& m) {
   // longest edge on an opening): the corners that are not on an opening
   // move towards the mean of their neighbours, a few times.
   std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(m.vertices.rows()));
-  std::map<std::pair<int, int>, int> uses;
   for (int f = 0; f < m.num_faces(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int a = m.faces(f, k), b = m.faces(f, (k + 1) % 3);
-      neighbours[a].push_back(b);
-      ++uses[{std::min(a, b), std::max(a, b)}];
-    }
-  std::vector<char> opening(neighbours.size(), 0);
-  for (const auto& [e, n] : uses)
-    if (n == 1) opening[e.first] = opening[e.second] = 1;
+    for (int k = 0; k < 3; ++k) neighbours[m.faces(f, k)].push_back(m.faces(f, (k + 1) % 3));
+  const std::vector<char> opening = geometry::boundary_vertices(m.faces, m.num_vertices());
   for (int round = 0; round < 10; ++round) {
     bool any = false;
     for (int f = 0; f < m.num_faces(); ++f) {

@@ -2,39 +2,40 @@
 // (see garment_untangle.h).
 #include "layers/garment/garment_untangle.h"
 
-#include <algorithm>
-#include <map>
-#include <utility>
-
 #include "layers/geometry/intersect.h"
+#include "layers/geometry/topology.h"
 
 namespace layers::garment {
 
 std::int64_t untangle(geometry::Points& v, const geometry::Faces& faces, const std::vector<std::uint8_t>& boundary,
                       const std::function<void()>& push_out) {
-  std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(v.rows()));
-  std::map<std::pair<int, int>, int> uses;
-  for (Eigen::Index f = 0; f < faces.rows(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int a = faces(f, k), b = faces(f, (k + 1) % 3);
-      neighbours[a].push_back(b);
-      neighbours[b].push_back(a);
-      ++uses[{std::min(a, b), std::max(a, b)}];
+  // Built at the first crossing: most garments have none.
+  std::vector<std::vector<int>> neighbours, along_opening;
+  const auto build_neighbours = [&] {
+    neighbours.resize(static_cast<std::size_t>(v.rows()));
+    for (Eigen::Index f = 0; f < faces.rows(); ++f)
+      for (int k = 0; k < 3; ++k) {
+        const int a = faces(f, k), b = faces(f, (k + 1) % 3);
+        neighbours[a].push_back(b);
+        neighbours[b].push_back(a);
+      }
+    // Along an opening: boundary edges between two opening vertices.
+    along_opening.resize(neighbours.size());
+    const geometry::Edges open = geometry::boundary_edges(faces);
+    for (Eigen::Index e = 0; e < open.rows(); ++e) {
+      const int a = open(e, 0), b = open(e, 1);
+      if (!boundary[a] || !boundary[b]) continue;
+      along_opening[a].push_back(b);
+      along_opening[b].push_back(a);
     }
-  // Neighbours along an opening: edges of one face between two opening
-  // vertices.
-  std::vector<std::vector<int>> along_opening(static_cast<std::size_t>(v.rows()));
-  for (const auto& [edge, count] : uses) {
-    if (count != 1 || !boundary[edge.first] || !boundary[edge.second]) continue;
-    along_opening[edge.first].push_back(edge.second);
-    along_opening[edge.second].push_back(edge.first);
-  }
+  };
   std::int64_t pairs = 0;
-  for (int round = 0; round < 2 * kUntangleRounds; ++round) {
+  for (int round = 0;; ++round) {
     const geometry::TriMesh mesh{v, faces};
     const geometry::MeshCrossings c = geometry::self_crossings(geometry::FaceTree(mesh));
     pairs = c.pairs;
-    if (pairs == 0) break;
+    if (pairs == 0 || round == 2 * kUntangleRounds) break;
+    if (neighbours.empty()) build_neighbours();
     const bool openings_move = round >= kUntangleRounds;
     const std::vector<char> region = geometry::grow_faces(mesh, c.a_faces, 2);
     std::vector<char> moving(static_cast<std::size_t>(v.rows()), 0);
@@ -55,7 +56,6 @@ std::int64_t untangle(geometry::Points& v, const geometry::Faces& faces, const s
     }
     push_out();
   }
-  if (pairs > 0) pairs = geometry::self_crossings(geometry::FaceTree(geometry::TriMesh{v, faces})).pairs;
   return pairs;
 }
 

@@ -43,16 +43,28 @@ Eigen::VectorXd edge_lengths(const Points& points, const Edges& edges) {
   return out;
 }
 
-std::vector<char> boundary_vertices(const Faces& faces, int num_vertices) {
+Edges boundary_edges(const Faces& faces) {
   const std::vector<std::pair<int, int>> pairs = sorted_face_edges(faces);
-  std::vector<char> out(static_cast<std::size_t>(num_vertices), 0);
+  std::vector<std::pair<int, int>> once;
   for (std::size_t i = 0; i < pairs.size();) {
     std::size_t j = i;
     while (j < pairs.size() && pairs[j] == pairs[i]) ++j;
-    if (j - i == 1)
-      out.at(static_cast<std::size_t>(pairs[i].first)) = out.at(static_cast<std::size_t>(pairs[i].second)) = 1;
+    if (j - i == 1) once.push_back(pairs[i]);
     i = j;
   }
+  Edges out(static_cast<Eigen::Index>(once.size()), 2);
+  for (std::size_t e = 0; e < once.size(); ++e) {
+    out(static_cast<Eigen::Index>(e), 0) = once[e].first;
+    out(static_cast<Eigen::Index>(e), 1) = once[e].second;
+  }
+  return out;
+}
+
+std::vector<char> boundary_vertices(const Faces& faces, int num_vertices) {
+  const Edges edges = boundary_edges(faces);
+  std::vector<char> out(static_cast<std::size_t>(num_vertices), 0);
+  for (Eigen::Index e = 0; e < edges.rows(); ++e)
+    out.at(static_cast<std::size_t>(edges(e, 0))) = out.at(static_cast<std::size_t>(edges(e, 1))) = 1;
   return out;
 }
 

@@ -124,9 +124,19 @@ TEST(Topology, BoundaryVerticesOfAGridAndAClosedTetra) {
   }
   EXPECT_EQ(count, 12);
   EXPECT_EQ(open[16], 0);
+  // The grid's outline: 3 edges a side, each once, sorted, i < j.
+  const g::Edges outline = g::boundary_edges(grid.faces);
+  ASSERT_EQ(outline.rows(), 12);
+  for (Eigen::Index e = 0; e < outline.rows(); ++e) {
+    EXPECT_LT(outline(e, 0), outline(e, 1));
+    EXPECT_TRUE(open[outline(e, 0)] && open[outline(e, 1)]);
+    if (e > 0)
+      EXPECT_TRUE(std::make_pair(outline(e - 1, 0), outline(e - 1, 1)) < std::make_pair(outline(e, 0), outline(e, 1)));
+  }
   g::Faces tetra(4, 3);
   tetra << 0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2;
   for (char b : g::boundary_vertices(tetra, 4)) EXPECT_EQ(b, 0);
+  EXPECT_EQ(g::boundary_edges(tetra).rows(), 0);
 }
 
 TEST(Topology, TetraAndIsolatedVertex) {

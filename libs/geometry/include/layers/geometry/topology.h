@@ -1,6 +1,6 @@
 // layers/geometry/topology.h -- mesh connectivity: unique undirected edges
-// (and their lengths), open-boundary vertices and vertex adjacency (compressed rows: the neighbours of vertex i are
-// neighbours[offsets[i] .. offsets[i+1])).
+// (and their lengths), open-boundary edges and vertices and vertex adjacency (compressed rows: the neighbours of vertex
+// i are neighbours[offsets[i] .. offsets[i+1])).
 #pragma once
 
 #include <vector>
@@ -25,8 +25,12 @@ struct Adjacency {
 // Length of every edge (rows of `edges`) in `points`, in double precision.
 Eigen::VectorXd edge_lengths(const Points& points, const Edges& edges);
 
-// 1 for every vertex on an open boundary (an edge used by one face only:
-// a hem, a cuff, a neckline), 0 otherwise; `num_vertices` entries.
+// The edges used by one face only (an open boundary: a hem, a cuff, a
+// neckline), as (i, j) with i < j, sorted by (i, j).
+Edges boundary_edges(const Faces& faces);
+
+// 1 for every vertex on an open boundary (an end of a boundary edge), 0
+// otherwise; `num_vertices` entries.
 std::vector<char> boundary_vertices(const Faces& faces, int num_vertices);
 
 // Vertex-to-vertex adjacency through mesh edges. Indices must lie in
